@@ -1,0 +1,53 @@
+// Plain C++17 + Eigen types shared by the deformation core (no VTK here).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mlsdeform
+{
+using Vec3 = Eigen::Vector3d;
+using PointList = std::vector<Vec3>;
+using SparseMatrix = Eigen::SparseMatrix<double>;       // column major, for the solver
+using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>; // rows = evaluation points
+using Displacements = Eigen::Matrix<double, Eigen::Dynamic, 3>; // one row per point
+
+/// Bad input (empty, NaN, degenerate, nothing selected): the caller reports it and keeps its data.
+struct InvalidInputException : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// The linear system could not be solved (singular or not positive definite).
+struct SolverException : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// Reports the fraction [0,1] of a long computation; may be empty.
+using ProgressCallback = void (*)(void* client, double fraction);
+struct Progress
+{
+  ProgressCallback callback = nullptr;
+  void* client = nullptr;
+  double begin = 0.0;
+  double end = 1.0;
+  void report(double fraction) const
+  {
+    if (callback)
+    {
+      callback(client, begin + (end - begin) * fraction);
+    }
+  }
+  /// The part [a,b] of this progress range.
+  Progress sub(double a, double b) const
+  {
+    return Progress{ callback, client, begin + (end - begin) * a, begin + (end - begin) * b };
+  }
+};
+} // namespace mlsdeform

@@ -1,0 +1,47 @@
+// A static kd-tree over 3D points: nearest neighbours, radius queries and, given one radius per
+// point, "which balls contain x" (the MLS supports covering a position).
+#pragma once
+
+#include "CoreTypes.h"
+
+namespace mlsdeform
+{
+class KdTree
+{
+public:
+  KdTree() = default;
+  explicit KdTree(const PointList& points) { build(points); }
+  void build(const PointList& points);
+
+  /// Gives each point a ball radius; enables containing().
+  void setRadii(const std::vector<double>& radii);
+
+  /// Index of the nearest point (-1 if the tree is empty).
+  int nearest(const Vec3& x) const;
+  /// Up to k nearest points, closest first, with squared distances.
+  void kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const;
+  /// All points with |p - x| < radius.
+  void withinRadius(const Vec3& x, double radius, std::vector<int>& indices) const;
+  /// All points i with |p_i - x| < radius_i (requires setRadii).
+  void containing(const Vec3& x, std::vector<int>& indices) const;
+
+  std::size_t size() const { return Points.size(); }
+
+private:
+  struct Node
+  {
+    Vec3 lower, upper;   // bounding box of the node's points
+    double maxRadius = 0; // largest ball radius below this node
+    int begin = 0, end = 0; // range in Order
+    int left = -1, right = -1;
+  };
+  int buildNode(int begin, int end);
+  double maxRadiusBelow(int node);
+  static double squaredDistanceToBox(const Node& node, const Vec3& x);
+
+  PointList Points;
+  std::vector<int> Order;
+  std::vector<Node> Nodes;
+  std::vector<double> Radii;
+};
+} // namespace mlsdeform

@@ -1,0 +1,42 @@
+// Moving-least-squares shape functions (paper section 4):
+//   phi_j(x) = p(x)^T M^+(x) p(c_j) w_j(x),   M(x) = sum_j w_j(x) p(c_j) p(c_j)^T,
+// linear basis p = (1, x, y, z), compactly supported weight w(r) = 1/2 cos(pi r / sigma_j) + 1/2,
+// M^+ the SVD pseudo-inverse, with analytic gradients and Laplacians (Fries & Matthies [5]).
+#pragma once
+
+#include "KdTree.h"
+
+namespace mlsdeform
+{
+/// The shape functions that do not vanish at one position, and optionally their derivatives.
+struct ShapeFunctionValues
+{
+  std::vector<int> index;       // sample j
+  std::vector<double> value;    // phi_j(x)
+  std::vector<Vec3> gradient;   // grad phi_j(x)   (when derivatives were asked for)
+  std::vector<double> laplacian; // Laplacian phi_j(x) (when derivatives were asked for)
+  bool empty() const { return index.empty(); }
+};
+
+class MLSBasis
+{
+public:
+  /// Samples c_j with support radii sigma_j > 0.
+  MLSBasis(const PointList& centers, const std::vector<double>& supportRadii);
+
+  /// Evaluates at x; the result is empty when x lies outside every support.
+  void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const;
+
+  /// w(r) = 1/2 cos(pi r / sigma) + 1/2 for r < sigma, else 0.
+  static double weight(double r, double sigma);
+
+  std::size_t size() const { return Centers.size(); }
+  const PointList& centers() const { return Centers; }
+  const std::vector<double>& supportRadii() const { return Radii; }
+
+private:
+  PointList Centers;
+  std::vector<double> Radii;
+  KdTree Supports;
+};
+} // namespace mlsdeform

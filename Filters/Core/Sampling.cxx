@@ -1,0 +1,379 @@
+#include "Sampling.h"
+
+#include "KdTree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <random>
+
+namespace mlsdeform
+{
+namespace
+{
+// A position's s-th nearest center lies at 1/SupportMargin of that center's radius, where its
+// weight is w = 1/2 cos(pi / 1.5) + 1/2 = 0.25.
+constexpr double SupportMargin = 1.5;
+
+struct DenseSamples
+{
+  PointList surface;
+  PointList volume;
+  double volumeOfDomain = 0;
+};
+
+double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+double tetrahedronVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+  return std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
+}
+
+// Picks `count` elements with probability proportional to their measure.
+template <typename Measure, typename Draw>
+PointList sampleByMeasure(std::size_t elements, int count, Measure measure, Draw draw, std::mt19937_64& random, double& total)
+{
+  std::vector<double> cumulative(elements);
+  total = 0;
+  for (std::size_t e = 0; e < elements; ++e)
+  {
+    total += measure(e);
+    cumulative[e] = total;
+  }
+  PointList out;
+  if (!(total > 0))
+  {
+    return out;
+  }
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  out.reserve(count);
+  for (int i = 0; i < count; ++i)
+  {
+    const double t = uniform(random) * total;
+    const std::size_t e = std::min<std::size_t>(elements - 1, std::upper_bound(cumulative.begin(), cumulative.end(), t) - cumulative.begin());
+    out.push_back(draw(e, uniform));
+  }
+  return out;
+}
+
+DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int volumeCount, double padding, std::mt19937_64& random)
+{
+  DenseSamples dense;
+  const PointList& x = domain.points;
+  double area = 0;
+  dense.surface = sampleByMeasure(
+    domain.triangles.size(), surfaceCount,
+    [&](std::size_t t) {
+      const auto& f = domain.triangles[t];
+      return triangleArea(x[f[0]], x[f[1]], x[f[2]]);
+    },
+    [&](std::size_t t, std::uniform_real_distribution<double>& uniform) {
+      const auto& f = domain.triangles[t];
+      const double r1 = std::sqrt(uniform(random)), r2 = uniform(random); // uniform in a triangle
+      return Vec3((1 - r1) * x[f[0]] + r1 * (1 - r2) * x[f[1]] + r1 * r2 * x[f[2]]);
+    },
+    random, area);
+  if (dense.surface.empty())
+  {
+    dense.surface = x; // a point cloud (or only degenerate faces): the points are the surface
+  }
+  dense.volume = sampleByMeasure(
+    domain.tetrahedra.size(), volumeCount,
+    [&](std::size_t t) {
+      const auto& c = domain.tetrahedra[t];
+      return tetrahedronVolume(x[c[0]], x[c[1]], x[c[2]], x[c[3]]);
+    },
+    [&](std::size_t t, std::uniform_real_distribution<double>& uniform) {
+      const auto& c = domain.tetrahedra[t];
+      // uniform in a tetrahedron: fold the unit cube (Rocchini & Cignoni 2000)
+      double s = uniform(random), u = uniform(random), v = uniform(random);
+      if (s + u > 1)
+      {
+        s = 1 - s;
+        u = 1 - u;
+      }
+      if (u + v > 1)
+      {
+        const double tmp = v;
+        v = 1 - s - u;
+        u = 1 - tmp;
+      }
+      else if (s + u + v > 1)
+      {
+        const double tmp = v;
+        v = s + u + v - 1;
+        s = 1 - u - tmp;
+      }
+      return Vec3((1 - s - u - v) * x[c[0]] + s * x[c[1]] + u * x[c[2]] + v * x[c[3]]);
+    },
+    random, dense.volumeOfDomain);
+  if (dense.volume.empty() && volumeCount > 0)
+  {
+    // No volume cells: sample the padded bounding box around the input.
+    Vec3 lower = x[0], upper = x[0];
+    for (const Vec3& p : x)
+    {
+      lower = lower.cwiseMin(p);
+      upper = upper.cwiseMax(p);
+    }
+    const double pad = padding * (upper - lower).norm();
+    lower.array() -= pad;
+    upper.array() += pad;
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    dense.volume.reserve(volumeCount);
+    for (int i = 0; i < volumeCount; ++i)
+    {
+      const Vec3 t(uniform(random), uniform(random), uniform(random));
+      dense.volume.push_back(lower + t.cwiseProduct(upper - lower));
+    }
+    dense.volumeOfDomain = (upper - lower).prod();
+  }
+  return dense;
+}
+
+PointList select(const PointList& points, const std::vector<int>& indices)
+{
+  PointList out;
+  out.reserve(indices.size());
+  for (int i : indices)
+  {
+    out.push_back(points[i]);
+  }
+  return out;
+}
+
+// Surface samples by farthest points on the surface, then volume samples by farthest points in
+// the volume away from them, then a combined Lloyd relaxation with the surface weighted higher.
+PointList placeSites(const DenseSamples& dense, int surfaceCount, int volumeCount, const SamplingParameters& parameters,
+  const PointList& allDense, const std::vector<double>& weights, std::uint64_t seed, int& surfaceSites)
+{
+  PointList sites = select(dense.surface, farthestPointSelection(dense.surface, surfaceCount, {}, seed));
+  surfaceSites = static_cast<int>(sites.size());
+  const PointList volumeSites = select(dense.volume, farthestPointSelection(dense.volume, volumeCount, sites, seed + 1));
+  sites.insert(sites.end(), volumeSites.begin(), volumeSites.end());
+  lloydRelaxation(sites, allDense, weights, parameters.lloydIterations);
+  return sites;
+}
+} // namespace
+
+void requireFinite(const PointList& points, const char* what)
+{
+  for (const Vec3& p : points)
+  {
+    if (!p.allFinite())
+    {
+      throw InvalidInputException(std::string(what) + " contain NaN or infinite coordinates");
+    }
+  }
+}
+
+std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed)
+{
+  std::vector<int> chosen;
+  if (candidates.empty() || count <= 0)
+  {
+    return chosen;
+  }
+  const KdTree candidateTree(candidates);
+  std::vector<double> minDistance(candidates.size(), std::numeric_limits<double>::infinity());
+  if (!alreadyChosen.empty())
+  {
+    const KdTree chosenTree(alreadyChosen);
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+    {
+      minDistance[i] = (alreadyChosen[chosenTree.nearest(candidates[i])] - candidates[i]).norm();
+    }
+  }
+  // Max-heap with lazily refreshed entries: a stored distance is an upper bound of the current one.
+  std::priority_queue<std::pair<double, int>> heap;
+  if (alreadyChosen.empty())
+  {
+    std::mt19937_64 random(seed);
+    heap.emplace(std::numeric_limits<double>::infinity(), static_cast<int>(random() % candidates.size()));
+  }
+  else
+  {
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+    {
+      heap.emplace(minDistance[i], static_cast<int>(i));
+    }
+  }
+  std::vector<int> nearby;
+  double radius = std::numeric_limits<double>::infinity();
+  while (static_cast<int>(chosen.size()) < count && !heap.empty())
+  {
+    const auto [stored, i] = heap.top();
+    heap.pop();
+    if (stored > minDistance[i] && !chosen.empty())
+    {
+      heap.emplace(minDistance[i], i);
+      continue;
+    }
+    if (!(minDistance[i] > 0))
+    {
+      break; // only duplicates of chosen points are left
+    }
+    chosen.push_back(i);
+    radius = std::isfinite(minDistance[i]) ? minDistance[i] : radius;
+    // Only candidates closer than the current selection radius can get closer to the new point.
+    if (std::isfinite(radius))
+    {
+      candidateTree.withinRadius(candidates[i], radius, nearby);
+    }
+    else
+    {
+      nearby.resize(candidates.size());
+      std::iota(nearby.begin(), nearby.end(), 0);
+    }
+    for (int j : nearby)
+    {
+      const double d = (candidates[j] - candidates[i]).norm();
+      if (d < minDistance[j])
+      {
+        minDistance[j] = d;
+        if (chosen.size() == 1)
+        {
+          heap.emplace(d, j); // first selection: fill the heap
+        }
+      }
+    }
+  }
+  return chosen;
+}
+
+void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations)
+{
+  std::vector<int> owner(dense.size());
+  for (int iteration = 0; iteration < iterations && !sites.empty(); ++iteration)
+  {
+    const KdTree tree(sites);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < static_cast<long>(dense.size()); ++i)
+    {
+      owner[i] = tree.nearest(dense[i]);
+    }
+    PointList sum(sites.size(), Vec3::Zero());
+    std::vector<double> weight(sites.size(), 0.0);
+    for (std::size_t i = 0; i < dense.size(); ++i)
+    {
+      sum[owner[i]] += denseWeight[i] * dense[i];
+      weight[owner[i]] += denseWeight[i];
+    }
+    for (std::size_t j = 0; j < sites.size(); ++j)
+    {
+      if (weight[j] > 0)
+      {
+        sites[j] = sum[j] / weight[j];
+      }
+    }
+  }
+}
+
+std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover)
+{
+  std::vector<double> radius(centers.size(), 0.0);
+  const KdTree tree(centers);
+  const int s = std::max(1, static_cast<int>(std::ceil(cover)));
+  for (const PointList* list : positions)
+  {
+    const long count = static_cast<long>(list->size());
+#pragma omp parallel
+    {
+      std::vector<double> local(centers.size(), 0.0);
+      std::vector<int> indices;
+      std::vector<double> d2;
+#pragma omp for schedule(static)
+      for (long i = 0; i < count; ++i)
+      {
+        tree.kNearest((*list)[i], s, indices, d2);
+        for (std::size_t a = 0; a < indices.size(); ++a)
+        {
+          local[indices[a]] = std::max(local[indices[a]], std::sqrt(d2[a]));
+        }
+      }
+#pragma omp critical
+      for (std::size_t j = 0; j < centers.size(); ++j)
+      {
+        radius[j] = std::max(radius[j], local[j]);
+      }
+    }
+  }
+  const double largest = *std::max_element(radius.begin(), radius.end());
+  for (double& r : radius)
+  {
+    r = SupportMargin * (r > 0 ? r : largest);
+  }
+  return radius;
+}
+
+Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress)
+{
+  if (domain.points.empty())
+  {
+    throw InvalidInputException("the input has no points");
+  }
+  requireFinite(domain.points, "input points");
+  Vec3 lower = domain.points[0], upper = domain.points[0];
+  for (const Vec3& p : domain.points)
+  {
+    lower = lower.cwiseMin(p);
+    upper = upper.cwiseMax(p);
+  }
+  if (!((upper - lower).norm() > 0))
+  {
+    throw InvalidInputException("all input points coincide: the domain has zero extent");
+  }
+  const int ks = std::max(0, parameters.numberOfSurfaceSamples);
+  const int kv = std::max(0, parameters.numberOfVolumeSamples);
+  if (ks + kv < 4)
+  {
+    throw InvalidInputException("at least 4 MLS samples are needed for a linear basis");
+  }
+  const double ratio = std::max(1.0, parameters.integrationPointRatio);
+  const int ns = static_cast<int>(std::lround(ratio * ks)), nv = static_cast<int>(std::lround(ratio * kv));
+  const int perSample = std::max(1, parameters.denseSamplesPerSample);
+
+  std::mt19937_64 random(parameters.randomSeed);
+  // Volume dense samples are always drawn: they measure the Voronoi volumes of integration points.
+  DenseSamples dense = denseSampling(domain, perSample * (ks + ns), perSample * (kv + nv + ns),
+    parameters.boundsPadding, random);
+  progress.report(0.1);
+
+  PointList all = dense.surface;
+  all.insert(all.end(), dense.volume.begin(), dense.volume.end());
+  std::vector<double> weights(all.size(), 1.0);
+  std::fill(weights.begin(), weights.begin() + dense.surface.size(), parameters.surfaceWeight);
+
+  Samples out;
+  out.centers = placeSites(dense, ks, kv, parameters, all, weights, parameters.randomSeed + 11, out.numberOfSurfaceCenters);
+  progress.report(0.4);
+  int surfaceIntegrationPoints = 0;
+  out.integrationPoints = placeSites(dense, ns, nv, parameters, all, weights, parameters.randomSeed + 23, surfaceIntegrationPoints);
+  progress.report(0.7);
+  if (out.centers.size() < 4)
+  {
+    throw InvalidInputException("fewer than 4 distinct positions to place MLS samples at");
+  }
+
+  // V_i: the share of the volume's dense samples closest to q_i (Monte Carlo Voronoi volume).
+  out.domainVolume = dense.volumeOfDomain;
+  out.volume.assign(out.integrationPoints.size(), 0.0);
+  if (!dense.volume.empty())
+  {
+    const KdTree tree(out.integrationPoints);
+    const double each = dense.volumeOfDomain / dense.volume.size();
+    for (const Vec3& p : dense.volume)
+    {
+      out.volume[tree.nearest(p)] += each;
+    }
+  }
+  progress.report(0.8);
+  out.supportRadius = coverSupportRadii(out.centers, { &all, &out.integrationPoints, &domain.points, &out.centers }, parameters.cover);
+  progress.report(1.0);
+  return out;
+}
+} // namespace mlsdeform

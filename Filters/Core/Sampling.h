@@ -1,0 +1,65 @@
+// Placement of MLS samples and integration points (paper Fig. 2 and section 5): dense random
+// samples on the surface and in the volume, farthest-point selection, Lloyd relaxation with the
+// surface weighted more than the volume, support radii from the cover s, and approximate Voronoi
+// volumes of the integration points.
+#pragma once
+
+#include "CoreTypes.h"
+
+#include <array>
+#include <cstdint>
+
+namespace mlsdeform
+{
+/// What is sampled: all points, the surface as triangles and the volume as tetrahedra (indices
+/// into points). Without tetrahedra the embedding space is the bounding box of the points, padded
+/// by SamplingParameters::boundsPadding; without triangles the points themselves are the surface.
+struct SamplingDomain
+{
+  PointList points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<int, 4>> tetrahedra;
+};
+
+struct SamplingParameters
+{
+  int numberOfSurfaceSamples = 800; // k_s
+  int numberOfVolumeSamples = 200;  // k_v
+  double integrationPointRatio = 4;  // N / k
+  int lloydIterations = 10;
+  double cover = 5;                  // s: every sampled position lies in at least s supports
+  std::uint64_t randomSeed = 0;
+  double surfaceWeight = 10;         // weight of a dense surface sample in the Lloyd step (volume: 1)
+  int denseSamplesPerSample = 10;    // dense random samples per selected sample or point
+  double boundsPadding = 0.1;        // fraction of the bounding-box diagonal, for surface-only input
+};
+
+struct Samples
+{
+  PointList centers;                // MLS samples c_j, surface samples first
+  std::vector<double> supportRadius; // sigma_j
+  int numberOfSurfaceCenters = 0;
+  PointList integrationPoints;      // q_i
+  std::vector<double> volume;       // V_i, approximate Voronoi volume within the domain
+  double domainVolume = 0;          // volume of the embedding space that was sampled
+};
+
+/// The whole sampling of Fig. 2 / section 5. Throws InvalidInputException on empty or
+/// non-finite input and on a domain of zero extent.
+Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress = {});
+
+/// Farthest-point selection of up to count indices of candidates, starting from the points
+/// already chosen (or from a random candidate). Stops early when only duplicates remain.
+std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed);
+
+/// Weighted Lloyd relaxation: each site moves to the weighted barycenter of the dense points
+/// closest to it.
+void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations);
+
+/// Support radii such that each of the positions lies inside the supports of its s nearest
+/// centers, with a margin so that its weight there is at least w(1/margin).
+std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover);
+
+/// Throws InvalidInputException if a coordinate is NaN or infinite.
+void requireFinite(const PointList& points, const char* what);
+} // namespace mlsdeform

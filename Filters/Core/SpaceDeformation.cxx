@@ -1,0 +1,162 @@
+#include "SpaceDeformation.h"
+
+#include "SubspaceOperators.h"
+
+#include <cmath>
+
+namespace mlsdeform
+{
+namespace
+{
+// Below this estimate of 1/cond the Cholesky factor is numerically singular in double precision.
+constexpr double SingularReciprocalCondition = 1e-15;
+
+double diagonalOf(const PointList& a, const PointList& b)
+{
+  Vec3 lower = a.front(), upper = a.front();
+  for (const PointList* list : { &a, &b })
+  {
+    for (const Vec3& p : *list)
+    {
+      lower = lower.cwiseMin(p);
+      upper = upper.cwiseMax(p);
+    }
+  }
+  return (upper - lower).norm();
+}
+}
+
+SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progress)
+  : Basis(samples.centers, samples.supportRadius)
+{
+  if (samples.integrationPoints.empty() || samples.integrationPoints.size() != samples.volume.size())
+  {
+    throw InvalidInputException("no integration points with volumes");
+  }
+  requireFinite(samples.centers, "MLS samples");
+  requireFinite(samples.integrationPoints, "integration points");
+  double total = 0;
+  for (double v : samples.volume)
+  {
+    if (!(v >= 0) || !std::isfinite(v))
+    {
+      throw InvalidInputException("integration point volumes must be finite and non-negative");
+    }
+    total += v;
+  }
+  if (!(total > 0))
+  {
+    throw InvalidInputException("the integration points have zero total volume");
+  }
+  const double l = diagonalOf(samples.centers, samples.integrationPoints);
+  Energy = energyMatrix(Basis, samples.integrationPoints, samples.volume, l / std::sqrt(total), l * l / std::sqrt(total), progress);
+}
+
+void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
+{
+  PointList positions;
+  std::vector<double> scale;
+  RegionSizes.clear();
+  for (std::size_t r = 0; r < regions.size(); ++r)
+  {
+    const DirichletRegion& region = regions[r];
+    if (region.positions.empty())
+    {
+      throw InvalidInputException("region " + std::to_string(r) + " selects no point");
+    }
+    requireFinite(region.positions, "region positions");
+    positions.insert(positions.end(), region.positions.begin(), region.positions.end());
+    scale.insert(scale.end(), region.positions.size(), std::sqrt(region.weight / region.positions.size()));
+    RegionSizes.push_back(static_cast<int>(region.positions.size()));
+  }
+  std::vector<int> outside;
+  RegionSubspace = subspaceMatrix(Basis, positions, &outside);
+  if (!outside.empty())
+  {
+    throw InvalidInputException(std::to_string(outside.size()) + " region position(s) lie outside every MLS support, e.g. (" +
+      std::to_string(positions[outside[0]].x()) + ", " + std::to_string(positions[outside[0]].y()) + ", " +
+      std::to_string(positions[outside[0]].z()) + "); resample on a geometry that contains the regions");
+  }
+  RegionScale = Eigen::Map<Eigen::VectorXd>(scale.data(), static_cast<long>(scale.size()));
+  Factor.reset();
+}
+
+void SpaceDeformation::factorize(const EnergyWeights& weights)
+{
+  Weights = weights;
+  Eigen::VectorXd energyWeight(Energy.rows());
+  for (long i = 0; i < energyWeight.size(); ++i)
+  {
+    energyWeight[i] = i % 4 == 3 ? weights.bend : weights.stretch;
+  }
+  const SparseRowMatrix FPhi = RegionScale.asDiagonal() * RegionSubspace;
+  System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy) +
+    SparseMatrix(weights.fix * (FPhi.transpose() * FPhi));
+  Factor = std::make_unique<SparseCholesky>();
+  Factor->compute(System);
+  ReciprocalCondition = Factor->reciprocalCondition();
+  if (Factor->info() != Eigen::Success || !(ReciprocalCondition > SingularReciprocalCondition))
+  {
+    Factor.reset();
+    throw SolverException("the deformation system (eq. 14) is singular (reciprocal condition " +
+      std::to_string(ReciprocalCondition) +
+      "): the handle and fixed regions and the energies do not determine every MLS coefficient; "
+      "use a positive StretchWeight or BendWeight, or more integration points");
+  }
+}
+
+Eigen::VectorXd SpaceDeformation::stackPrescribed(const std::vector<Displacements>& prescribed, int column) const
+{
+  if (prescribed.size() != RegionSizes.size())
+  {
+    throw InvalidInputException("one prescribed displacement set per region is needed");
+  }
+  Eigen::VectorXd out(RegionScale.size());
+  long offset = 0;
+  for (std::size_t r = 0; r < prescribed.size(); ++r)
+  {
+    if (prescribed[r].rows() != RegionSizes[r] || !prescribed[r].allFinite())
+    {
+      throw InvalidInputException("region " + std::to_string(r) + ": prescribed displacements missing or not finite");
+    }
+    out.segment(offset, RegionSizes[r]) = prescribed[r].col(column);
+    offset += RegionSizes[r];
+  }
+  return out;
+}
+
+Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescribed) const
+{
+  if (!Factor)
+  {
+    throw SolverException("solve() before a successful factorize()");
+  }
+  Displacements w(Basis.size(), 3);
+  for (int c = 0; c < 3; ++c)
+  {
+    const Eigen::VectorXd dbar = stackPrescribed(prescribed, c);
+    const Eigen::VectorXd rhs = Weights.fix * (RegionSubspace.transpose() * (RegionScale.cwiseProduct(RegionScale.cwiseProduct(dbar))));
+    Eigen::VectorXd x = Factor->solve(rhs);
+    x += Factor->solve(rhs - System * x); // one step of iterative refinement
+    w.col(c) = x;
+  }
+  if (!w.allFinite())
+  {
+    throw SolverException("the solution of eq. 14 is not finite");
+  }
+  return w;
+}
+
+std::vector<double> SpaceDeformation::regionResiduals(const Displacements& w, const std::vector<Displacements>& prescribed) const
+{
+  const Displacements d = RegionSubspace * w;
+  std::vector<double> out;
+  long offset = 0;
+  for (std::size_t r = 0; r < RegionSizes.size(); ++r)
+  {
+    out.push_back((d.middleRows(offset, RegionSizes[r]) - prescribed[r]).rowwise().norm().maxCoeff());
+    offset += RegionSizes[r];
+  }
+  return out;
+}
+} // namespace mlsdeform

@@ -1,0 +1,71 @@
+// The MLS space deformation of paper section 5: minimizes
+//   gamma_s |G w|^2 + gamma_b |L w|^2 + gamma_f |F (Phi w - dbar)|^2
+// over the k x 3 coefficients w by the normal equations (eq. 14)
+//   (gamma_s G^T G + gamma_b L^T L + gamma_f Phi^T F^T F Phi) w = gamma_f Phi^T F^T F dbar,
+// factorized once (CHOLMOD) and solved again for every new dbar (a design variation).
+// Energies are normalized to be independent of the model's units: lengths are measured in
+// bounding-box diagonals l and volumes in fractions of the sampled volume V, i.e.
+// E_stretch = sum_i V_i/V l^2 |grad d(q_i)|^2 and E_bend = sum_i V_i/V l^4 |Lap d(q_i)|^2, while
+// each region r contributes weight_r / n_r sum_{i in r} |d(x_i) - dbar_i|^2 (section 7).
+#pragma once
+
+#include "MLSBasis.h"
+#include "Sampling.h"
+#include "SparseCholesky.h"
+
+#include <memory>
+
+namespace mlsdeform
+{
+struct EnergyWeights
+{
+  double stretch = 0.0; // gamma_s
+  double bend = 1.0;    // gamma_b
+  double fix = 1000.0;  // gamma_f
+};
+
+/// Positions whose displacement is prescribed (a handle or a fixed region).
+struct DirichletRegion
+{
+  PointList positions;
+  double weight = 1.0; // relative weight of this region within gamma_f
+};
+
+class SpaceDeformation
+{
+public:
+  /// Builds the MLS basis on the samples and G, L at the integration points (eq. 12, 13).
+  explicit SpaceDeformation(const Samples& samples, const Progress& progress = {});
+
+  /// Phi at the region positions and F. Throws InvalidInputException for an empty region or a
+  /// position outside every support.
+  void setRegions(const std::vector<DirichletRegion>& regions);
+
+  /// Factorizes the matrix of eq. 14; throws SolverException when it is singular.
+  void factorize(const EnergyWeights& weights);
+
+  /// Coefficients w (k x 3) of eq. 14 for the prescribed displacements of each region (one row
+  /// per region position, in the order given to setRegions).
+  Displacements solve(const std::vector<Displacements>& prescribed) const;
+
+  /// max_i |d(x_i) - dbar_i| over each region's positions.
+  std::vector<double> regionResiduals(const Displacements& w, const std::vector<Displacements>& prescribed) const;
+
+  const MLSBasis& basis() const { return Basis; }
+  std::size_t numberOfIntegrationPoints() const { return Energy.rows() / 4; }
+  double reciprocalCondition() const { return ReciprocalCondition; }
+
+private:
+  Eigen::VectorXd stackPrescribed(const std::vector<Displacements>& prescribed, int column) const;
+
+  MLSBasis Basis;
+  SparseRowMatrix Energy;          // D = [G; L] interleaved, see SubspaceOperators.h
+  SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
+  Eigen::VectorXd RegionScale;     // F_ii
+  std::vector<int> RegionSizes;
+  EnergyWeights Weights;
+  SparseMatrix System;             // the matrix of eq. 14
+  std::unique_ptr<SparseCholesky> Factor;
+  double ReciprocalCondition = 0;
+};
+} // namespace mlsdeform

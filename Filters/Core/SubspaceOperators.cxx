@@ -1,0 +1,118 @@
+#include "SubspaceOperators.h"
+
+#include <omp.h>
+
+namespace mlsdeform
+{
+namespace
+{
+// Assembles a row-major sparse matrix with rowsPerPoint rows per position, evaluated in
+// parallel chunks; fill(i, values, rows) writes the rows of position i from its shape functions.
+template <typename Fill>
+SparseRowMatrix assembleRows(const MLSBasis& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
+  Fill fill, std::vector<int>* outside, const Progress& progress)
+{
+  const long n = static_cast<long>(positions.size());
+  constexpr long Chunk = 4096;
+  const long chunks = (n + Chunk - 1) / Chunk;
+  struct Part
+  {
+    std::vector<int> columns;
+    std::vector<double> values;
+    std::vector<int> rowLength;
+    std::vector<int> outside;
+  };
+  std::vector<Part> parts(chunks);
+  long done = 0;
+#pragma omp parallel
+  {
+    ShapeFunctionValues phi;
+    std::vector<std::vector<double>> rows(rowsPerPoint);
+#pragma omp for schedule(dynamic)
+    for (long c = 0; c < chunks; ++c)
+    {
+      Part& part = parts[c];
+      for (long i = c * Chunk; i < std::min(n, (c + 1) * Chunk); ++i)
+      {
+        basis.evaluate(positions[i], phi, withDerivatives);
+        if (phi.empty())
+        {
+          part.outside.push_back(static_cast<int>(i));
+        }
+        for (auto& row : rows)
+        {
+          row.resize(phi.index.size());
+        }
+        fill(i, phi, rows);
+        for (const auto& row : rows)
+        {
+          part.columns.insert(part.columns.end(), phi.index.begin(), phi.index.end());
+          part.values.insert(part.values.end(), row.begin(), row.end());
+          part.rowLength.push_back(static_cast<int>(phi.index.size()));
+        }
+      }
+#pragma omp atomic
+      ++done;
+      if (omp_get_thread_num() == 0)
+      {
+        progress.report(static_cast<double>(done) / chunks);
+      }
+    }
+  }
+  // Concatenate the chunks into compressed row storage.
+  std::size_t nonZeros = 0;
+  for (const Part& part : parts)
+  {
+    nonZeros += part.values.size();
+  }
+  SparseRowMatrix A(n * rowsPerPoint, static_cast<long>(basis.size()));
+  A.resizeNonZeros(static_cast<long>(nonZeros));
+  auto* outer = A.outerIndexPtr();
+  std::size_t offset = 0, row = 0;
+  outer[0] = 0;
+  for (Part& part : parts)
+  {
+    std::copy(part.columns.begin(), part.columns.end(), A.innerIndexPtr() + offset);
+    std::copy(part.values.begin(), part.values.end(), A.valuePtr() + offset);
+    for (int length : part.rowLength)
+    {
+      outer[row + 1] = outer[row] + length;
+      ++row;
+    }
+    offset += part.values.size();
+    if (outside)
+    {
+      outside->insert(outside->end(), part.outside.begin(), part.outside.end());
+    }
+  }
+  return A;
+}
+}
+
+SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+{
+  return assembleRows(
+    basis, positions, 1, false,
+    [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) { rows[0] = phi.value; },
+    outside, progress);
+}
+
+SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+  double gradientScale, double laplacianScale, const Progress& progress)
+{
+  return assembleRows(
+    basis, integrationPoints, 4, true,
+    [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
+      const double g = std::sqrt(volume[i]) * gradientScale, l = std::sqrt(volume[i]) * laplacianScale;
+      for (std::size_t a = 0; a < phi.index.size(); ++a)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          rows[d][a] = g * phi.gradient[a][d];
+        }
+        rows[3][a] = l * phi.laplacian[a];
+      }
+    },
+    nullptr, progress);
+}
+} // namespace mlsdeform

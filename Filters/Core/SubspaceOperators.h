@@ -1,0 +1,22 @@
+// Sparse matrices of the MLS subspace evaluated at positions (paper sections 4 and 5):
+//   Phi_ij = phi_j(x_i)                                   (d = Phi w)
+//   G_{3i+d, j} = sqrt(V_i) d phi_j(q_i)/dx_d             (eq. 12, E_stretch = |G w|^2)
+//   L_{i,j}     = sqrt(V_i) Laplacian phi_j(q_i)          (eq. 13, E_bend    = |L w|^2)
+// G and L are stored interleaved in one energy matrix D with rows 4i..4i+2 = G_{3i..3i+2} and
+// row 4i+3 = L_i, so that gamma_s G^T G + gamma_b L^T L = D^T diag(gamma_s, gamma_s, gamma_s, gamma_b, ...) D
+// and the derivatives are evaluated once per integration point.
+#pragma once
+
+#include "MLSBasis.h"
+
+namespace mlsdeform
+{
+/// Phi at the positions (one row each). Rows of positions outside every support are empty;
+/// their indices are appended to outside when given.
+SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+
+/// D (4N x k) at the integration points q_i with volumes V_i; the gradient rows are multiplied by
+/// sqrt(V_i) * gradientScale, the Laplacian rows by sqrt(V_i) * laplacianScale.
+SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+  double gradientScale, double laplacianScale, const Progress& progress = {});
+} // namespace mlsdeform

@@ -1,0 +1,186 @@
+#include "MLSGeometry.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCell.h>
+#include <vtkCellArray.h>
+#include <vtkCompositeDataIterator.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkGenericCell.h>
+#include <vtkGeometryFilter.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <sstream>
+
+namespace mlsgeometry
+{
+std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped)
+{
+  std::vector<vtkPointSet*> sets;
+  int others = 0;
+  if (auto* set = vtkPointSet::SafeDownCast(input))
+  {
+    sets.push_back(set);
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it = vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        sets.push_back(leaf);
+      }
+      else
+      {
+        ++others;
+      }
+    }
+  }
+  else if (input)
+  {
+    ++others;
+  }
+  if (skipped)
+  {
+    *skipped = others;
+  }
+  return sets;
+}
+
+mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
+{
+  mlsdeform::PointList out;
+  for (vtkPointSet* set : sets)
+  {
+    const vtkIdType n = set->GetNumberOfPoints();
+    const std::size_t offset = out.size();
+    out.resize(offset + n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      set->GetPoint(i, out[offset + i].data());
+    }
+  }
+  return out;
+}
+
+namespace
+{
+// Splits every cell of the given dimension into simplices (triangles or tetrahedra).
+template <std::size_t N>
+void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
+{
+  vtkNew<vtkGenericCell> cell;
+  vtkNew<vtkIdList> ids;
+  vtkNew<vtkPoints> pts;
+  for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
+  {
+    set->GetCell(c, cell);
+    if (cell->GetCellDimension() != dimension)
+    {
+      continue;
+    }
+    if (!cell->Triangulate(0, ids, pts))
+    {
+      continue;
+    }
+    for (vtkIdType s = 0; s + static_cast<vtkIdType>(N) <= ids->GetNumberOfIds(); s += N)
+    {
+      std::array<int, N> simplex;
+      for (std::size_t v = 0; v < N; ++v)
+      {
+        const vtkIdType id = ids->GetId(s + v);
+        simplex[v] = offset + static_cast<int>(pointMap ? pointMap[id] : id);
+      }
+      out.push_back(simplex);
+    }
+  }
+}
+}
+
+mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)
+{
+  mlsdeform::SamplingDomain domain;
+  domain.points = points(sets);
+  int offset = 0;
+  for (vtkPointSet* set : sets)
+  {
+    simplices<3>(set, 2, nullptr, offset, domain.triangles);
+    simplices<4>(set, 3, nullptr, offset, domain.tetrahedra);
+    offset += static_cast<int>(set->GetNumberOfPoints());
+  }
+  if (domain.triangles.empty() && !domain.tetrahedra.empty())
+  {
+    // A volume mesh without surface cells: its boundary faces are the surface.
+    offset = 0;
+    for (vtkPointSet* set : sets)
+    {
+      if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
+      {
+        vtkNew<vtkGeometryFilter> boundary;
+        boundary->SetInputData(grid);
+        boundary->SetPassThroughPointIds(true);
+        boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
+        boundary->MergingOff();
+        boundary->Update();
+        vtkPolyData* faces = boundary->GetOutput();
+        auto* ids = vtkIdTypeArray::SafeDownCast(faces->GetPointData()->GetArray("MLSOriginalPointIds"));
+        if (ids)
+        {
+          simplices<3>(faces, 2, ids->GetPointer(0), offset, domain.triangles);
+        }
+      }
+      offset += static_cast<int>(set->GetNumberOfPoints());
+    }
+  }
+  return domain;
+}
+
+std::string pointsSignature(const std::vector<vtkPointSet*>& sets)
+{
+  std::ostringstream s;
+  for (vtkPointSet* set : sets)
+  {
+    vtkPoints* p = set->GetPoints();
+    s << p << ':' << (p ? p->GetMTime() : 0) << ':' << (p ? p->GetData()->GetMTime() : 0) << ':' << set->GetNumberOfPoints() << ';';
+  }
+  return s.str();
+}
+
+vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& positions,
+  const std::vector<std::pair<std::string, const std::vector<double>*>>& arrays)
+{
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(positions.size()));
+  vtkNew<vtkCellArray> vertices;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    pts->SetPoint(static_cast<vtkIdType>(i), positions[i].data());
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    vertices->InsertNextCell(1, &id);
+  }
+  cloud->SetPoints(pts);
+  cloud->SetVerts(vertices);
+  for (const auto& [name, values] : arrays)
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(name.c_str());
+    array->SetNumberOfValues(static_cast<vtkIdType>(values->size()));
+    std::copy(values->begin(), values->end(), array->GetPointer(0));
+    cloud->GetPointData()->AddArray(array);
+  }
+  return cloud;
+}
+
+void reportProgress(void* algorithm, double fraction)
+{
+  static_cast<vtkAlgorithm*>(algorithm)->UpdateProgress(fraction);
+}
+}

@@ -1,0 +1,177 @@
+#include "vtkConstraintRegion.h"
+
+#include "MLSGeometry.h"
+
+#include <vtkDataArray.h>
+#include <vtkDataObject.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkImplicitFunction.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkMath.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkTransform.h>
+
+vtkStandardNewMacro(vtkConstraintRegion);
+vtkCxxSetObjectMacro(vtkConstraintRegion, Region, vtkImplicitFunction);
+
+vtkConstraintRegion::vtkConstraintRegion()
+{
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+vtkConstraintRegion::~vtkConstraintRegion()
+{
+  this->SetRegion(nullptr);
+}
+
+const char* vtkConstraintRegion::GetRoleName(int role)
+{
+  static const char* names[] = { "Handle", "Fixed", "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid" };
+  return role >= Handle && role <= Rigid ? names[role] : "Unknown";
+}
+
+void vtkConstraintRegion::SetSelectionArray(const char* name)
+{
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name);
+}
+
+vtkMTimeType vtkConstraintRegion::GetMTime()
+{
+  vtkMTimeType time = this->Superclass::GetMTime();
+  if (this->Region)
+  {
+    time = std::max(time, this->Region->GetMTime());
+  }
+  return time;
+}
+
+int vtkConstraintRegion::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  const std::vector<vtkPointSet*> sets = mlsgeometry::pointSets(input);
+
+  // Select positions.
+  mlsdeform::PointList selected;
+  if (this->SelectionMode == ImplicitFunction && !this->Region)
+  {
+    vtkErrorMacro(<< "SelectionMode is ImplicitFunction but no Region function is set.");
+    return 0;
+  }
+  for (vtkPointSet* set : sets)
+  {
+    vtkDataArray* values = nullptr;
+    if (this->SelectionMode == ArrayRange)
+    {
+      values = this->GetInputArrayToProcess(0, set);
+      if (!values)
+      {
+        continue; // this block lacks the array
+      }
+    }
+    for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+    {
+      mlsdeform::Vec3 x;
+      set->GetPoint(i, x.data());
+      bool take = true;
+      if (this->SelectionMode == ImplicitFunction)
+      {
+        take = (this->Region->FunctionValue(x.data()) <= 0) != this->InsideOut;
+      }
+      else if (this->SelectionMode == ArrayRange)
+      {
+        const double v = values->GetComponent(i, 0);
+        take = v >= this->Range[0] && v <= this->Range[1];
+      }
+      if (take)
+      {
+        selected.push_back(x);
+      }
+    }
+  }
+  if (selected.empty())
+  {
+    vtkWarningMacro(<< GetRoleName(this->Role) << " region selects no point.");
+  }
+
+  // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
+  mlsdeform::Vec3 pivot(this->Center);
+  if (this->UseCentroid && !selected.empty())
+  {
+    pivot.setZero();
+    for (const auto& x : selected)
+    {
+      pivot += x / static_cast<double>(selected.size());
+    }
+  }
+  vtkNew<vtkTransform> motion;
+  motion->PostMultiply();
+  motion->Translate(-pivot.x(), -pivot.y(), -pivot.z());
+  motion->Scale(this->Scale);
+  motion->RotateX(this->Rotation[0]);
+  motion->RotateY(this->Rotation[1]);
+  motion->RotateZ(this->Rotation[2]);
+  motion->Translate(pivot.x() + this->Translation[0], pivot.y() + this->Translation[1], pivot.z() + this->Translation[2]);
+
+  output->ShallowCopy(mlsgeometry::pointCloud(selected, {}));
+  vtkNew<vtkDoubleArray> displacement;
+  displacement->SetName("PrescribedDisplacement");
+  displacement->SetNumberOfComponents(3);
+  displacement->SetNumberOfTuples(static_cast<vtkIdType>(selected.size()));
+  for (std::size_t i = 0; i < selected.size(); ++i)
+  {
+    mlsdeform::Vec3 moved = selected[i];
+    if (this->Role == Handle)
+    {
+      motion->TransformPoint(selected[i].data(), moved.data());
+    }
+    const mlsdeform::Vec3 d = moved - selected[i];
+    displacement->SetTuple(static_cast<vtkIdType>(i), d.data());
+  }
+  output->GetPointData()->AddArray(displacement);
+
+  vtkNew<vtkIntArray> role;
+  role->SetName("Role");
+  role->InsertNextValue(this->Role);
+  vtkNew<vtkStringArray> roleName;
+  roleName->SetName("RoleName");
+  roleName->InsertNextValue(GetRoleName(this->Role));
+  vtkNew<vtkDoubleArray> weight;
+  weight->SetName("Weight");
+  weight->InsertNextValue(this->Weight);
+  output->GetFieldData()->AddArray(role);
+  output->GetFieldData()->AddArray(roleName);
+  output->GetFieldData()->AddArray(weight);
+  return 1;
+}
+
+void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Role: " << GetRoleName(this->Role) << "\n"
+     << indent << "SelectionMode: " << this->SelectionMode << "\n"
+     << indent << "Region: " << this->Region << "\n"
+     << indent << "InsideOut: " << this->InsideOut << "\n"
+     << indent << "Range: " << this->Range[0] << " " << this->Range[1] << "\n"
+     << indent << "Translation: " << this->Translation[0] << " " << this->Translation[1] << " " << this->Translation[2] << "\n"
+     << indent << "Rotation: " << this->Rotation[0] << " " << this->Rotation[1] << " " << this->Rotation[2] << "\n"
+     << indent << "Scale: " << this->Scale[0] << " " << this->Scale[1] << " " << this->Scale[2] << "\n"
+     << indent << "Center: " << this->Center[0] << " " << this->Center[1] << " " << this->Center[2] << "\n"
+     << indent << "UseCentroid: " << this->UseCentroid << "\n"
+     << indent << "Weight: " << this->Weight << "\n";
+}

@@ -1,0 +1,134 @@
+/**
+ * @class vtkConstraintRegion
+ * @brief Selects a set of positions from its input and gives it a role in a deformation.
+ *
+ * A space deformation only needs positions (design notes, paper section 3): a region is the set
+ * of input points selected by one of the SelectionMode rules, with a Role:
+ *  - Handle: the positions move by the handle transform (Translation, Rotation, Scale about Center);
+ *  - Fixed: the positions stay in place;
+ *  - Planarity, Circularity, Cylinder, FeatureLine, Rigid: geometric constraints (section 6).
+ *
+ * Output: vtkPolyData with the selected positions as vertices, point array
+ * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
+ * data "Role" (the Role value), "RoleName" and "Weight". Plug it into MLSDeform's Regions input.
+ */
+#ifndef vtkConstraintRegion_h
+#define vtkConstraintRegion_h
+
+#include "MLSDeformFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkImplicitFunction;
+
+class MLSDEFORMFILTERS_EXPORT vtkConstraintRegion : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkConstraintRegion* New();
+  vtkTypeMacro(vtkConstraintRegion, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Roles
+  {
+    Handle = 0,
+    Fixed,
+    Planarity,
+    Circularity,
+    Cylinder,
+    FeatureLine,
+    Rigid
+  };
+  static const char* GetRoleName(int role);
+
+  enum SelectionModes
+  {
+    ImplicitFunction = 0, // points with Region(x) <= 0 (> 0 with InsideOut)
+    ArrayRange,           // points whose SelectionArray value (component 0) is within Range
+    AllPoints             // every input point (for use after Extract Selection)
+  };
+
+  ///@{
+  /// The region's role (default Handle).
+  vtkSetClampMacro(Role, int, Handle, Rigid);
+  vtkGetMacro(Role, int);
+  ///@}
+
+  ///@{
+  /// How the positions are selected (default ImplicitFunction).
+  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, AllPoints);
+  vtkGetMacro(SelectionMode, int);
+  ///@}
+
+  ///@{
+  /// The implicit function (Box, Sphere, Plane, Cylinder, ...) of mode ImplicitFunction.
+  void SetRegion(vtkImplicitFunction*);
+  vtkGetObjectMacro(Region, vtkImplicitFunction);
+  ///@}
+
+  ///@{
+  /// Select the outside (Region(x) > 0) instead of the inside (default off).
+  vtkSetMacro(InsideOut, bool);
+  vtkGetMacro(InsideOut, bool);
+  vtkBooleanMacro(InsideOut, bool);
+  ///@}
+
+  ///@{
+  /// Closed value range of mode ArrayRange; the array is set with SetInputArrayToProcess(0, ...)
+  /// or SetSelectionArray.
+  vtkSetVector2Macro(Range, double);
+  vtkGetVector2Macro(Range, double);
+  void SetSelectionArray(const char* name);
+  ///@}
+
+  ///@{
+  /// Handle motion, applied as scale, then rotation about X, Y and Z (degrees), then translation,
+  /// about Center (defaults: no motion).
+  vtkSetVector3Macro(Translation, double);
+  vtkGetVector3Macro(Translation, double);
+  vtkSetVector3Macro(Rotation, double);
+  vtkGetVector3Macro(Rotation, double);
+  vtkSetVector3Macro(Scale, double);
+  vtkGetVector3Macro(Scale, double);
+  vtkSetVector3Macro(Center, double);
+  vtkGetVector3Macro(Center, double);
+  ///@}
+
+  ///@{
+  /// Rotate and scale about the centroid of the selected positions instead of Center (default on).
+  vtkSetMacro(UseCentroid, bool);
+  vtkGetMacro(UseCentroid, bool);
+  vtkBooleanMacro(UseCentroid, bool);
+  ///@}
+
+  ///@{
+  /// Relative weight of this region among the regions of its role (default 1).
+  vtkSetClampMacro(Weight, double, 0.0, 1e6);
+  vtkGetMacro(Weight, double);
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkConstraintRegion();
+  ~vtkConstraintRegion() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Role = Handle;
+  int SelectionMode = ImplicitFunction;
+  vtkImplicitFunction* Region = nullptr;
+  bool InsideOut = false;
+  double Range[2] = { 0.0, 1.0 };
+  double Translation[3] = { 0.0, 0.0, 0.0 };
+  double Rotation[3] = { 0.0, 0.0, 0.0 };
+  double Scale[3] = { 1.0, 1.0, 1.0 };
+  double Center[3] = { 0.0, 0.0, 0.0 };
+  bool UseCentroid = true;
+  double Weight = 1.0;
+
+private:
+  vtkConstraintRegion(const vtkConstraintRegion&) = delete;
+  void operator=(const vtkConstraintRegion&) = delete;
+};
+
+#endif

@@ -1,0 +1,404 @@
+#include "vtkMLSDeformFilter.h"
+
+#include "MLSGeometry.h"
+#include "SubspaceOperators.h"
+#include "vtkConstraintRegion.h"
+
+#include <vtkCompositeDataIterator.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <chrono>
+#include <memory>
+#include <sstream>
+
+using namespace mlsdeform;
+
+vtkStandardNewMacro(vtkMLSDeformFilter);
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Below this, a tiny stretching term decides between equally bent results (see the header).
+constexpr double MinimumStretchPerBend = 1e-6;
+
+struct Region
+{
+  int role = 0;
+  double weight = 1;
+  PointList positions;
+  Displacements prescribed;
+};
+
+std::vector<Region> readRegions(vtkInformationVector* connections, vtkObject* self)
+{
+  std::vector<Region> regions;
+  for (int c = 0; c < connections->GetNumberOfInformationObjects(); ++c)
+  {
+    vtkPolyData* data = vtkPolyData::GetData(connections, c);
+    const std::string which = "Regions input #" + std::to_string(c);
+    auto* role = data ? vtkIntArray::SafeDownCast(data->GetFieldData()->GetArray("Role")) : nullptr;
+    vtkDataArray* displacement = data ? data->GetPointData()->GetArray("PrescribedDisplacement") : nullptr;
+    if (!role || role->GetNumberOfValues() < 1 || !displacement || displacement->GetNumberOfComponents() != 3)
+    {
+      throw InvalidInputException(which + " is not a ConstraintRegion output (no Role or PrescribedDisplacement)");
+    }
+    Region region;
+    region.role = role->GetValue(0);
+    if (vtkDataArray* weight = data->GetFieldData()->GetArray("Weight"))
+    {
+      region.weight = weight->GetTuple1(0);
+    }
+    const vtkIdType n = data->GetNumberOfPoints();
+    if (n == 0)
+    {
+      throw InvalidInputException(which + " (" + vtkConstraintRegion::GetRoleName(region.role) + ") selects no point");
+    }
+    if (region.role != vtkConstraintRegion::Handle && region.role != vtkConstraintRegion::Fixed)
+    {
+      vtkWarningWithObjectMacro(self, << which << ": role " << vtkConstraintRegion::GetRoleName(region.role)
+                                      << " is not supported by this version and is ignored.");
+      continue;
+    }
+    region.positions.resize(n);
+    region.prescribed.resize(n, 3);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      data->GetPoint(i, region.positions[i].data());
+      for (int d = 0; d < 3; ++d)
+      {
+        region.prescribed(i, d) = displacement->GetComponent(i, d);
+      }
+    }
+    requireFinite(region.positions, (which + " positions").c_str());
+    if (!region.prescribed.allFinite())
+    {
+      throw InvalidInputException(which + ": prescribed displacements are not finite");
+    }
+    regions.push_back(std::move(region));
+  }
+  bool handle = false;
+  for (const Region& r : regions)
+  {
+    handle = handle || r.role == vtkConstraintRegion::Handle;
+  }
+  if (!handle)
+  {
+    throw InvalidInputException("no Handle region among the Regions inputs: nothing would move");
+  }
+  return regions;
+}
+
+Samples readSamples(vtkPolyData* centers, vtkPolyData* integration)
+{
+  if (!integration)
+  {
+    throw InvalidInputException("MLS samples were given without integration points (connect both outputs of MLSSampler)");
+  }
+  vtkDataArray* radius = centers->GetPointData()->GetArray("SupportRadius");
+  vtkDataArray* volume = integration->GetPointData()->GetArray("Volume");
+  if (!radius || !volume)
+  {
+    throw InvalidInputException("the Samples input needs a SupportRadius array and the IntegrationPoints input a Volume array");
+  }
+  Samples samples;
+  samples.centers = mlsgeometry::points({ centers });
+  samples.integrationPoints = mlsgeometry::points({ integration });
+  for (vtkIdType i = 0; i < radius->GetNumberOfTuples(); ++i)
+  {
+    samples.supportRadius.push_back(radius->GetTuple1(i));
+  }
+  for (vtkIdType i = 0; i < volume->GetNumberOfTuples(); ++i)
+  {
+    samples.volume.push_back(volume->GetTuple1(i));
+  }
+  return samples;
+}
+
+// The output starts as the unchanged input: shallow copies in new leaf objects, so that setting
+// new points on them never touches the input.
+void copyInput(vtkDataObject* input, vtkDataObject* output)
+{
+  auto* inComposite = vtkCompositeDataSet::SafeDownCast(input);
+  auto* outComposite = vtkCompositeDataSet::SafeDownCast(output);
+  if (inComposite && outComposite)
+  {
+    outComposite->CopyStructure(inComposite);
+    vtkSmartPointer<vtkCompositeDataIterator> it = vtkSmartPointer<vtkCompositeDataIterator>::Take(inComposite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      vtkDataObject* leaf = it->GetCurrentDataObject();
+      vtkSmartPointer<vtkDataObject> copy = vtkSmartPointer<vtkDataObject>::Take(leaf->NewInstance());
+      copy->ShallowCopy(leaf);
+      outComposite->SetDataSet(it, copy);
+    }
+    outComposite->GetFieldData()->ShallowCopy(inComposite->GetFieldData());
+  }
+  else
+  {
+    output->ShallowCopy(input);
+  }
+}
+
+void addField(vtkFieldData* field, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  field->AddArray(array);
+}
+}
+
+struct vtkMLSDeformFilter::Cache
+{
+  std::string samplesKey;
+  std::unique_ptr<SpaceDeformation> model;
+  std::string geometryKey;
+  SparseRowMatrix geometrySubspace; // Phi at the input points
+  std::vector<PointList> regionPositions;
+  std::vector<double> regionWeights;
+  bool factorized = false;
+  EnergyWeights weights;
+  double setupTime = 0;
+};
+
+vtkMLSDeformFilter::vtkMLSDeformFilter()
+  : Cached(new Cache)
+{
+  this->SetNumberOfInputPorts(4);
+}
+
+vtkMLSDeformFilter::~vtkMLSDeformFilter()
+{
+  delete this->Cached;
+}
+
+int vtkMLSDeformFilter::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+    return 1;
+  }
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  }
+  return 1;
+}
+
+int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
+  copyInput(input, output);
+  int skipped = 0;
+  const std::vector<vtkPointSet*> inSets = mlsgeometry::pointSets(input, &skipped);
+  const std::vector<vtkPointSet*> outSets = mlsgeometry::pointSets(output);
+  if (skipped > 0)
+  {
+    vtkWarningMacro(<< skipped << " block(s) are not point sets and are passed through unchanged.");
+  }
+  Cache& cache = *this->Cached;
+  bool resampled = false, refactorized = false;
+  try
+  {
+    const auto setupStart = Clock::now();
+    const PointList points = mlsgeometry::points(inSets);
+    if (points.empty())
+    {
+      throw InvalidInputException("the input has no points");
+    }
+    requireFinite(points, "input points");
+    const std::vector<Region> regions = readRegions(inputVector[1], this);
+
+    // 1. Samples and the operators on them (paper section 4, 5).
+    vtkPolyData* externalCenters = vtkPolyData::GetData(inputVector[2], 0);
+    vtkPolyData* externalIntegration = vtkPolyData::GetData(inputVector[3], 0);
+    std::ostringstream key;
+    if (externalCenters)
+    {
+      key << "external " << mlsgeometry::pointsSignature({ externalCenters }) << externalCenters->GetPointData()->GetMTime() << " "
+          << (externalIntegration ? mlsgeometry::pointsSignature({ externalIntegration }) + std::to_string(externalIntegration->GetPointData()->GetMTime()) : "");
+    }
+    else
+    {
+      key << "internal " << mlsgeometry::pointsSignature(inSets) << this->NumberOfSamples << ' ' << this->VolumeSampleFraction << ' '
+          << this->IntegrationPointRatio << ' ' << this->LloydIterations << ' ' << this->Cover << ' ' << this->RandomSeed;
+    }
+    if (!cache.model || key.str() != cache.samplesKey)
+    {
+      cache = Cache{};
+      Samples samples;
+      if (externalCenters)
+      {
+        samples = readSamples(externalCenters, externalIntegration);
+      }
+      else
+      {
+        SamplingParameters parameters;
+        parameters.numberOfVolumeSamples = static_cast<int>(std::lround(this->VolumeSampleFraction * this->NumberOfSamples));
+        parameters.numberOfSurfaceSamples = this->NumberOfSamples - parameters.numberOfVolumeSamples;
+        parameters.integrationPointRatio = this->IntegrationPointRatio;
+        parameters.lloydIterations = this->LloydIterations;
+        parameters.cover = this->Cover;
+        parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+        samples = sampleDomain(mlsgeometry::samplingDomain(inSets), parameters, { &mlsgeometry::reportProgress, this, 0.0, 0.4 });
+      }
+      cache.model = std::make_unique<SpaceDeformation>(samples, mlsdeform::Progress{ &mlsgeometry::reportProgress, this, 0.4, 0.6 });
+      cache.samplesKey = key.str();
+      ++this->NumberOfSamplings;
+      resampled = true;
+    }
+    SpaceDeformation& model = *cache.model;
+
+    // 2. Phi at the points to deform.
+    const std::string geometryKey = mlsgeometry::pointsSignature(inSets);
+    if (geometryKey != cache.geometryKey)
+    {
+      std::vector<int> outside;
+      cache.geometrySubspace = subspaceMatrix(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
+      if (!outside.empty())
+      {
+        cache.geometryKey.clear();
+        throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
+          std::to_string(outside[0]) + "): the samples do not cover the input; sample this input or raise Cover");
+      }
+      cache.geometryKey = geometryKey;
+    }
+
+    // 3. Regions and the factorization of eq. 14.
+    std::vector<PointList> positions;
+    std::vector<double> regionWeights;
+    for (const Region& r : regions)
+    {
+      positions.push_back(r.positions);
+      regionWeights.push_back(r.weight);
+    }
+    if (positions != cache.regionPositions || regionWeights != cache.regionWeights)
+    {
+      std::vector<DirichletRegion> dirichlet;
+      for (const Region& r : regions)
+      {
+        dirichlet.push_back({ r.positions, r.weight });
+      }
+      cache.factorized = false;
+      model.setRegions(dirichlet);
+      cache.regionPositions = positions;
+      cache.regionWeights = regionWeights;
+    }
+    const EnergyWeights weights{ std::max(this->StretchWeight, MinimumStretchPerBend * this->BendWeight), this->BendWeight, this->FixWeight };
+    if (!cache.factorized || weights.stretch != cache.weights.stretch || weights.bend != cache.weights.bend || weights.fix != cache.weights.fix)
+    {
+      cache.factorized = false;
+      model.factorize(weights);
+      cache.weights = weights;
+      cache.factorized = true;
+      ++this->NumberOfFactorizations;
+      refactorized = true;
+    }
+    if (resampled || refactorized)
+    {
+      cache.setupTime = secondsSince(setupStart);
+    }
+
+    // 4. The variation: right-hand side, back-substitution, d(x) = Phi(x) w.
+    const auto solveStart = Clock::now();
+    std::vector<Displacements> prescribed;
+    for (const Region& r : regions)
+    {
+      prescribed.push_back(r.prescribed);
+    }
+    const Displacements w = model.solve(prescribed);
+    const Displacements d = cache.geometrySubspace * w;
+    ++this->NumberOfSolves;
+    if (!d.allFinite())
+    {
+      throw SolverException("the displacement is not finite");
+    }
+    long offset = 0;
+    for (std::size_t s = 0; s < inSets.size(); ++s)
+    {
+      vtkPoints* inPoints = inSets[s]->GetPoints();
+      const vtkIdType n = inSets[s]->GetNumberOfPoints();
+      if (!inPoints || n == 0)
+      {
+        continue;
+      }
+      vtkNew<vtkPoints> moved;
+      moved->SetDataType(inPoints->GetDataType());
+      moved->SetNumberOfPoints(n);
+      vtkNew<vtkDoubleArray> displacement;
+      displacement->SetName("Displacement");
+      displacement->SetNumberOfComponents(3);
+      displacement->SetNumberOfTuples(n);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        const Vec3 di = d.row(offset + i).transpose();
+        const Vec3 x = points[offset + i] + di;
+        moved->SetPoint(i, x.data());
+        displacement->SetTuple(i, di.data());
+      }
+      offset += n;
+      outSets[s]->SetPoints(moved);
+      outSets[s]->GetPointData()->AddArray(displacement);
+    }
+    const double solveTime = secondsSince(solveStart);
+
+    const std::vector<double> residuals = model.regionResiduals(w, prescribed);
+    double handleResidual = 0, fixedResidual = 0;
+    for (std::size_t r = 0; r < regions.size(); ++r)
+    {
+      double& residual = regions[r].role == vtkConstraintRegion::Handle ? handleResidual : fixedResidual;
+      residual = std::max(residual, residuals[r]);
+    }
+    vtkFieldData* field = output->GetFieldData();
+    addField(field, "NumberOfSamples", static_cast<double>(model.basis().size()));
+    addField(field, "NumberOfIntegrationPoints", static_cast<double>(model.numberOfIntegrationPoints()));
+    addField(field, "SetupTime", cache.setupTime);
+    addField(field, "SolveTime", solveTime);
+    addField(field, "HandleResidual", handleResidual);
+    addField(field, "FixedResidual", fixedResidual);
+    addField(field, "ReciprocalCondition", model.reciprocalCondition());
+    addField(field, "Resampled", resampled ? 1 : 0);
+    addField(field, "Refactorized", refactorized ? 1 : 0);
+  }
+  catch (const std::exception& e)
+  {
+    copyInput(input, output); // leave the output as the unchanged input
+    vtkErrorMacro(<< "MLS deformation failed: " << e.what() << ". The output is the unchanged input.");
+    return 0;
+  }
+  return 1;
+}
+
+void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "StretchWeight: " << this->StretchWeight << "\n"
+     << indent << "BendWeight: " << this->BendWeight << "\n"
+     << indent << "FixWeight: " << this->FixWeight << "\n"
+     << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n"
+     << indent << "VolumeSampleFraction: " << this->VolumeSampleFraction << "\n"
+     << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"
+     << indent << "LloydIterations: " << this->LloydIterations << "\n"
+     << indent << "Cover: " << this->Cover << "\n"
+     << indent << "RandomSeed: " << this->RandomSeed << "\n";
+}

@@ -1,0 +1,139 @@
+/**
+ * @class vtkMLSDeformFilter
+ * @brief Moving-least-squares space deformation of point sets driven by handle and fixed regions.
+ *
+ * Paper sections 4 and 5: the displacement d(x) = sum_j w_j phi_j(x) of the MLS subspace minimizes
+ * StretchWeight * E_stretch + BendWeight * E_bend + FixWeight * E_fix (eq. 12-14), with the
+ * energies integrated at volumetric integration points and E_fix measuring how well the Regions
+ * inputs (vtkConstraintRegion outputs with role Handle or Fixed) reach their prescribed
+ * displacements. Every point of every block of the input is moved by the same d(x), so a surface
+ * and a volume mesh sharing points stay consistent.
+ *
+ * Energies are unit-free (lengths in bounding-box diagonals, volumes as fractions of the sampled
+ * volume) and each region's term is divided by its number of points (paper section 7), so the
+ * weights mean the same for any model. A stretching weight of at least 1e-6 * BendWeight is always
+ * used: it picks, among equally bent results, the least stretched one (pure bending alone does not
+ * determine motions normal to a flat configuration).
+ *
+ * Inputs: port 0 a vtkPointSet or composite of point sets; port 1 (repeatable) the regions;
+ * optional port 2 MLS samples and port 3 integration points from vtkMLSSampler (without them the
+ * filter samples its input with NumberOfSamples, VolumeSampleFraction, IntegrationPointRatio,
+ * LloydIterations, Cover and RandomSeed).
+ *
+ * Output: the input's structure and types, points moved by d(x), point array "Displacement", and
+ * field data NumberOfSamples (k), NumberOfIntegrationPoints (N), SetupTime and SolveTime (s),
+ * HandleResidual and FixedResidual (largest distance of a region point from its target),
+ * ReciprocalCondition, Resampled and Refactorized (whether this update redid those steps).
+ *
+ * Set-up is cached: when only a handle's motion changes, the update is a right-hand side, a
+ * back-substitution and a sparse product at the points.
+ */
+#ifndef vtkMLSDeformFilter_h
+#define vtkMLSDeformFilter_h
+
+#include "MLSDeformFiltersModule.h"
+#include "vtkPassInputTypeAlgorithm.h"
+
+class MLSDEFORMFILTERS_EXPORT vtkMLSDeformFilter : public vtkPassInputTypeAlgorithm
+{
+public:
+  static vtkMLSDeformFilter* New();
+  vtkTypeMacro(vtkMLSDeformFilter, vtkPassInputTypeAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// gamma_s, weight of the stretching energy (eq. 12; default 0).
+  vtkSetClampMacro(StretchWeight, double, 0.0, 1e9);
+  vtkGetMacro(StretchWeight, double);
+  ///@}
+
+  ///@{
+  /// gamma_b, weight of the bending energy (eq. 13; default 1).
+  vtkSetClampMacro(BendWeight, double, 0.0, 1e9);
+  vtkGetMacro(BendWeight, double);
+  ///@}
+
+  ///@{
+  /// gamma_f, weight of the handle and fixed targets (eq. 14; default 1000).
+  vtkSetClampMacro(FixWeight, double, 0.0, 1e12);
+  vtkGetMacro(FixWeight, double);
+  ///@}
+
+  ///@{
+  /// Internal sampling: number of MLS samples k (default 1000).
+  vtkSetClampMacro(NumberOfSamples, int, 4, 10000000);
+  vtkGetMacro(NumberOfSamples, int);
+  ///@}
+
+  ///@{
+  /// Internal sampling: fraction of the samples placed in the volume (default 0.25).
+  vtkSetClampMacro(VolumeSampleFraction, double, 0.0, 1.0);
+  vtkGetMacro(VolumeSampleFraction, double);
+  ///@}
+
+  ///@{
+  /// Internal sampling: integration points per sample, N / k (default 4).
+  vtkSetClampMacro(IntegrationPointRatio, double, 1.0, 100.0);
+  vtkGetMacro(IntegrationPointRatio, double);
+  ///@}
+
+  ///@{
+  /// Internal sampling: Lloyd relaxation steps (default 10).
+  vtkSetClampMacro(LloydIterations, int, 0, 1000);
+  vtkGetMacro(LloydIterations, int);
+  ///@}
+
+  ///@{
+  /// Internal sampling: cover s, the least number of supports covering a position (default 5).
+  vtkSetClampMacro(Cover, double, 4.0, 100.0);
+  vtkGetMacro(Cover, double);
+  ///@}
+
+  ///@{
+  /// Internal sampling: random seed (default 0).
+  vtkSetClampMacro(RandomSeed, int, 0, VTK_INT_MAX);
+  vtkGetMacro(RandomSeed, int);
+  ///@}
+
+  /// Connections of the optional inputs.
+  void AddRegionConnection(vtkAlgorithmOutput* region) { this->AddInputConnection(1, region); }
+  void SetSamplesConnection(vtkAlgorithmOutput* samples) { this->SetInputConnection(2, samples); }
+  void SetIntegrationPointsConnection(vtkAlgorithmOutput* points) { this->SetInputConnection(3, points); }
+
+  ///@{
+  /// How often the expensive steps ran (for tests of the cache).
+  vtkGetMacro(NumberOfSamplings, int);
+  vtkGetMacro(NumberOfFactorizations, int);
+  vtkGetMacro(NumberOfSolves, int);
+  ///@}
+
+protected:
+  vtkMLSDeformFilter();
+  ~vtkMLSDeformFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double StretchWeight = 0.0;
+  double BendWeight = 1.0;
+  double FixWeight = 1000.0;
+  int NumberOfSamples = 1000;
+  double VolumeSampleFraction = 0.25;
+  double IntegrationPointRatio = 4.0;
+  int LloydIterations = 10;
+  double Cover = 5.0;
+  int RandomSeed = 0;
+
+  int NumberOfSamplings = 0;
+  int NumberOfFactorizations = 0;
+  int NumberOfSolves = 0;
+
+private:
+  vtkMLSDeformFilter(const vtkMLSDeformFilter&) = delete;
+  void operator=(const vtkMLSDeformFilter&) = delete;
+
+  struct Cache;
+  Cache* Cached;
+};
+
+#endif

@@ -1,0 +1,73 @@
+#include "vtkMLSSampler.h"
+
+#include "MLSGeometry.h"
+
+#include <vtkDataObject.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+
+vtkStandardNewMacro(vtkMLSSampler);
+
+vtkMLSSampler::vtkMLSSampler()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkMLSSampler::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkPolyData* centersOut = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* integrationOut = vtkPolyData::GetData(outputVector, 1);
+
+  mlsdeform::SamplingParameters parameters;
+  parameters.numberOfSurfaceSamples = this->NumberOfSurfaceSamples;
+  parameters.numberOfVolumeSamples = this->NumberOfVolumeSamples;
+  parameters.integrationPointRatio = this->IntegrationPointRatio;
+  parameters.lloydIterations = this->LloydIterations;
+  parameters.cover = this->Cover;
+  parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+  parameters.surfaceWeight = this->SurfaceWeight;
+  parameters.denseSamplesPerSample = this->DenseSamplesPerSample;
+  parameters.boundsPadding = this->BoundsPadding;
+  try
+  {
+    const mlsdeform::SamplingDomain domain = mlsgeometry::samplingDomain(mlsgeometry::pointSets(input));
+    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsgeometry::reportProgress, this });
+    if (static_cast<int>(samples.centers.size()) < this->NumberOfSurfaceSamples + this->NumberOfVolumeSamples)
+    {
+      vtkWarningMacro(<< "Only " << samples.centers.size() << " distinct MLS samples could be placed.");
+    }
+    std::vector<double> onSurface(samples.centers.size(), 0.0);
+    std::fill(onSurface.begin(), onSurface.begin() + samples.numberOfSurfaceCenters, 1.0);
+    centersOut->ShallowCopy(mlsgeometry::pointCloud(samples.centers, { { "SupportRadius", &samples.supportRadius }, { "OnSurface", &onSurface } }));
+    integrationOut->ShallowCopy(mlsgeometry::pointCloud(samples.integrationPoints, { { "Volume", &samples.volume } }));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot sample the input: " << e.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkMLSSampler::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfSurfaceSamples: " << this->NumberOfSurfaceSamples << "\n"
+     << indent << "NumberOfVolumeSamples: " << this->NumberOfVolumeSamples << "\n"
+     << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"
+     << indent << "LloydIterations: " << this->LloydIterations << "\n"
+     << indent << "Cover: " << this->Cover << "\n"
+     << indent << "RandomSeed: " << this->RandomSeed << "\n"
+     << indent << "SurfaceWeight: " << this->SurfaceWeight << "\n"
+     << indent << "DenseSamplesPerSample: " << this->DenseSamplesPerSample << "\n"
+     << indent << "BoundsPadding: " << this->BoundsPadding << "\n";
+}

@@ -1,0 +1,181 @@
+// Fig. 2 / section 5: farthest points, Lloyd relaxation, cover radii, Voronoi volumes.
+#include "KdTree.h"
+#include "MLSBasis.h"
+#include "Sampling.h"
+#include "TestGeometry.h"
+#include "TestHarness.h"
+
+using namespace mlsdeform;
+using testgeometry::randomPoints;
+
+namespace
+{
+double minimumSpacing(const PointList& points)
+{
+  const KdTree tree(points);
+  std::vector<int> indices;
+  std::vector<double> d2;
+  double spacing = std::numeric_limits<double>::infinity();
+  for (const Vec3& p : points)
+  {
+    tree.kNearest(p, 2, indices, d2);
+    spacing = std::min(spacing, std::sqrt(d2[1]));
+  }
+  return spacing;
+}
+
+SamplingParameters smallParameters()
+{
+  SamplingParameters p;
+  p.numberOfSurfaceSamples = 150;
+  p.numberOfVolumeSamples = 50;
+  p.lloydIterations = 5;
+  p.randomSeed = 7;
+  return p;
+}
+}
+
+TEST(KdTreeQueriesMatchBruteForce)
+{
+  const PointList points = randomPoints(2000, Vec3(0, 0, 0), Vec3(1, 1, 1), 1);
+  std::vector<double> radii(points.size());
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    radii[i] = 0.02 + 0.1 * (i % 7) / 7.0;
+  KdTree tree(points);
+  tree.setRadii(radii);
+  std::vector<int> knn, within, containing;
+  std::vector<double> d2;
+  for (const Vec3& x : randomPoints(100, Vec3(-0.1, -0.1, -0.1), Vec3(1.1, 1.1, 1.1), 2))
+  {
+    tree.kNearest(x, 5, knn, d2);
+    tree.withinRadius(x, 0.1, within);
+    tree.containing(x, containing);
+    std::vector<std::pair<double, int>> all;
+    std::size_t withinCount = 0, containingCount = 0;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      const double d = (points[i] - x).norm();
+      all.emplace_back(d, static_cast<int>(i));
+      withinCount += d < 0.1;
+      containingCount += d < radii[i];
+    }
+    std::sort(all.begin(), all.end());
+    for (int a = 0; a < 5; ++a)
+      CHECK(knn[a] == all[a].second);
+    CHECK(within.size() == withinCount);
+    CHECK(containing.size() == containingCount);
+  }
+}
+
+TEST(FarthestPointSelectionSpreadsAndSkipsDuplicates)
+{
+  const PointList dense = randomPoints(5000, Vec3(0, 0, 0), Vec3(1, 1, 1), 3);
+  const std::vector<int> chosen = farthestPointSelection(dense, 100, {}, 1);
+  CHECK(chosen.size() == 100);
+  PointList selected;
+  for (int i : chosen)
+    selected.push_back(dense[i]);
+  const PointList random(dense.begin(), dense.begin() + 100);
+  std::printf("spacing: farthest points %g, random points %g\n", minimumSpacing(selected), minimumSpacing(random));
+  CHECK(minimumSpacing(selected) > 3 * minimumSpacing(random));
+  // Only three distinct positions: no more than three can be chosen.
+  PointList duplicates;
+  for (int i = 0; i < 30; ++i)
+    duplicates.push_back(Vec3(i % 3, 0, 0));
+  CHECK(farthestPointSelection(duplicates, 10, {}, 1).size() == 3);
+}
+
+TEST(LloydRelaxationMovesSitesToCentroids)
+{
+  // Two clusters and two sites placed badly: each site ends at its cluster's centroid.
+  PointList dense = randomPoints(500, Vec3(0, 0, 0), Vec3(1, 1, 1), 4);
+  const PointList second = randomPoints(500, Vec3(5, 0, 0), Vec3(6, 1, 1), 5);
+  dense.insert(dense.end(), second.begin(), second.end());
+  PointList sites = { Vec3(0, 0, 0), Vec3(6, 1, 1) };
+  lloydRelaxation(sites, dense, std::vector<double>(dense.size(), 1.0), 3);
+  Vec3 c0 = Vec3::Zero(), c1 = Vec3::Zero();
+  for (int i = 0; i < 500; ++i)
+  {
+    c0 += dense[i] / 500;
+    c1 += dense[500 + i] / 500;
+  }
+  CHECK((sites[0] - c0).norm() < 1e-12);
+  CHECK((sites[1] - c1).norm() < 1e-12);
+}
+
+TEST(VolumeSamplingCoversTheDomain)
+{
+  const SamplingDomain box = testgeometry::tetrahedralBox(4, Vec3(2, 1, 1));
+  const Samples samples = sampleDomain(box, smallParameters());
+  CHECK(samples.centers.size() == 200);
+  CHECK(samples.numberOfSurfaceCenters == 150);
+  CHECK(samples.integrationPoints.size() == 800);
+  CHECK_NEAR(samples.domainVolume, 2.0, 1e-12);
+  double total = 0;
+  for (double v : samples.volume)
+    total += v;
+  CHECK_NEAR(total, 2.0, 1e-9);
+  // every sampled position lies in at least s = 5 supports
+  const MLSBasis basis(samples.centers, samples.supportRadius);
+  ShapeFunctionValues phi;
+  std::size_t fewest = 1000;
+  for (const PointList* list : { &box.points, &samples.integrationPoints })
+    for (const Vec3& x : *list)
+    {
+      basis.evaluate(x, phi, false);
+      fewest = std::min(fewest, phi.index.size());
+    }
+  std::printf("fewest supports covering a position: %zu\n", fewest);
+  CHECK(fewest >= 5);
+  // surface samples are closer to the boundary than volume samples on average
+  auto boundaryDistance = [](const Vec3& p) { return std::min({ p.x(), 2 - p.x(), p.y(), 1 - p.y(), p.z(), 1 - p.z() }); };
+  double surface = 0, volume = 0;
+  for (int j = 0; j < 200; ++j)
+    (j < 150 ? surface : volume) += boundaryDistance(samples.centers[j]) / (j < 150 ? 150 : 50);
+  std::printf("mean distance to the boundary: surface samples %g, volume samples %g\n", surface, volume);
+  CHECK(surface < 0.5 * volume);
+}
+
+TEST(SurfaceOnlyInputSamplesPaddedBox)
+{
+  const SamplingDomain plane = testgeometry::triangulatedPlane(10, 10, 1, 1);
+  const Samples samples = sampleDomain(plane, smallParameters());
+  const double pad = 0.1 * std::sqrt(2.0);
+  CHECK_NEAR(samples.domainVolume, (1 + 2 * pad) * (1 + 2 * pad) * 2 * pad, 1e-12);
+  double maxHeight = 0;
+  for (const Vec3& c : samples.centers)
+    maxHeight = std::max(maxHeight, std::abs(c.z()));
+  CHECK(maxHeight > 0.3 * pad);     // volume samples fill the space around the plane
+  CHECK(maxHeight <= pad + 1e-12); // and stay in the padded box
+}
+
+TEST(SameSeedSameSamples)
+{
+  const SamplingDomain box = testgeometry::tetrahedralBox(3, Vec3(1, 1, 1));
+  SamplingParameters p = smallParameters();
+  const Samples a = sampleDomain(box, p), b = sampleDomain(box, p);
+  p.randomSeed = 8;
+  const Samples c = sampleDomain(box, p);
+  bool same = a.centers.size() == b.centers.size(), different = false;
+  for (std::size_t j = 0; same && j < a.centers.size(); ++j)
+  {
+    same = a.centers[j] == b.centers[j] && a.supportRadius[j] == b.supportRadius[j];
+    different = different || a.centers[j] != c.centers[j];
+  }
+  CHECK(same);
+  CHECK(different);
+}
+
+TEST(BadDomainsAreRejected)
+{
+  SamplingDomain empty;
+  CHECK_THROWS(sampleDomain(empty, smallParameters()), InvalidInputException);
+  SamplingDomain nan = testgeometry::triangulatedPlane(2, 2, 1, 1);
+  nan.points[3].y() = std::nan("");
+  CHECK_THROWS(sampleDomain(nan, smallParameters()), InvalidInputException);
+  SamplingDomain coincident;
+  coincident.points.assign(10, Vec3(1, 2, 3));
+  CHECK_THROWS(sampleDomain(coincident, smallParameters()), InvalidInputException);
+}
+
+TEST_MAIN
