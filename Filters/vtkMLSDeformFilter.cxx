@@ -326,7 +326,7 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     {
       prescribed.push_back(r.prescribed);
     }
-    const Displacements w = model.solve(prescribed);
+    const Displacements w = model.solve(prescribed, this->TargetCorrections);
     const Displacements d = cache.geometrySubspace * w;
     ++this->NumberOfSolves;
     if (!d.allFinite())
@@ -395,6 +395,7 @@ void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StretchWeight: " << this->StretchWeight << "\n"
      << indent << "BendWeight: " << this->BendWeight << "\n"
      << indent << "FixWeight: " << this->FixWeight << "\n"
+     << indent << "TargetCorrections: " << this->TargetCorrections << "\n"
      << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n"
      << indent << "VolumeSampleFraction: " << this->VolumeSampleFraction << "\n"
      << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"

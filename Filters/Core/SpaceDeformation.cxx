@@ -11,7 +11,7 @@ namespace
 // Below this estimate of 1/cond the Cholesky factor is numerically singular in double precision.
 constexpr double SingularReciprocalCondition = 1e-15;
 
-double diagonalOf(const PointList& a, const PointList& b)
+double largestSideOf(const PointList& a, const PointList& b)
 {
   Vec3 lower = a.front(), upper = a.front();
   for (const PointList* list : { &a, &b })
@@ -22,7 +22,7 @@ double diagonalOf(const PointList& a, const PointList& b)
       upper = upper.cwiseMax(p);
     }
   }
-  return (upper - lower).norm();
+  return (upper - lower).maxCoeff();
 }
 }
 
@@ -48,8 +48,8 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progr
   {
     throw InvalidInputException("the integration points have zero total volume");
   }
-  const double l = diagonalOf(samples.centers, samples.integrationPoints);
-  Energy = energyMatrix(Basis, samples.integrationPoints, samples.volume, l / std::sqrt(total), l * l / std::sqrt(total), progress);
+  const double l = largestSideOf(samples.centers, samples.integrationPoints);
+  Energy = energyMatrix(Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l), std::sqrt(l), progress);
 }
 
 void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
@@ -105,13 +105,13 @@ void SpaceDeformation::factorize(const EnergyWeights& weights)
   }
 }
 
-Eigen::VectorXd SpaceDeformation::stackPrescribed(const std::vector<Displacements>& prescribed, int column) const
+Displacements SpaceDeformation::stackPrescribed(const std::vector<Displacements>& prescribed) const
 {
   if (prescribed.size() != RegionSizes.size())
   {
     throw InvalidInputException("one prescribed displacement set per region is needed");
   }
-  Eigen::VectorXd out(RegionScale.size());
+  Displacements out(RegionScale.size(), 3);
   long offset = 0;
   for (std::size_t r = 0; r < prescribed.size(); ++r)
   {
@@ -119,26 +119,32 @@ Eigen::VectorXd SpaceDeformation::stackPrescribed(const std::vector<Displacement
     {
       throw InvalidInputException("region " + std::to_string(r) + ": prescribed displacements missing or not finite");
     }
-    out.segment(offset, RegionSizes[r]) = prescribed[r].col(column);
+    out.middleRows(offset, RegionSizes[r]) = prescribed[r];
     offset += RegionSizes[r];
   }
   return out;
 }
 
-Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescribed) const
+Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescribed, int corrections) const
 {
   if (!Factor)
   {
     throw SolverException("solve() before a successful factorize()");
   }
-  Displacements w(Basis.size(), 3);
-  for (int c = 0; c < 3; ++c)
-  {
-    const Eigen::VectorXd dbar = stackPrescribed(prescribed, c);
-    const Eigen::VectorXd rhs = Weights.fix * (RegionSubspace.transpose() * (RegionScale.cwiseProduct(RegionScale.cwiseProduct(dbar))));
-    Eigen::VectorXd x = Factor->solve(rhs);
+  const Displacements dbar = stackPrescribed(prescribed);
+  const Eigen::VectorXd F2 = RegionScale.cwiseProduct(RegionScale);
+  auto solveFor = [&](const Displacements& target) {
+    const Displacements rhs = Weights.fix * (RegionSubspace.transpose() * (F2.asDiagonal() * target));
+    Displacements x = Factor->solve(rhs);
     x += Factor->solve(rhs - System * x); // one step of iterative refinement
-    w.col(c) = x;
+    return x;
+  };
+  Displacements target = dbar;
+  Displacements w = solveFor(target);
+  for (int i = 0; i < corrections; ++i)
+  {
+    target += dbar - RegionSubspace * w;
+    w = solveFor(target);
   }
   if (!w.allFinite())
   {

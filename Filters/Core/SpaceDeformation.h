@@ -3,10 +3,12 @@
 // over the k x 3 coefficients w by the normal equations (eq. 14)
 //   (gamma_s G^T G + gamma_b L^T L + gamma_f Phi^T F^T F Phi) w = gamma_f Phi^T F^T F dbar,
 // factorized once (CHOLMOD) and solved again for every new dbar (a design variation).
-// Energies are normalized to be independent of the model's units: lengths are measured in
-// bounding-box diagonals l and volumes in fractions of the sampled volume V, i.e.
-// E_stretch = sum_i V_i/V l^2 |grad d(q_i)|^2 and E_bend = sum_i V_i/V l^4 |Lap d(q_i)|^2, while
-// each region r contributes weight_r / n_r sum_{i in r} |d(x_i) - dbar_i|^2 (section 7).
+// The energies are the paper's integrals made independent of the model's units with its length
+// l (the largest side of the sampled box): E_stretch = sum_i V_i / l |grad d(q_i)|^2 and
+// E_bend = sum_i V_i l |Lap d(q_i)|^2 both scale like a squared displacement, as does the fix
+// term, where each region r contributes weight_r / n_r sum_{i in r} |d(x_i) - dbar_i|^2
+// (weights normalized by the number of points, section 7). For a model of unit size these are
+// exactly the paper's energies.
 #pragma once
 
 #include "MLSBasis.h"
@@ -45,8 +47,11 @@ public:
   void factorize(const EnergyWeights& weights);
 
   /// Coefficients w (k x 3) of eq. 14 for the prescribed displacements of each region (one row
-  /// per region position, in the order given to setRegions).
-  Displacements solve(const std::vector<Displacements>& prescribed) const;
+  /// per region position, in the order given to setRegions). With corrections > 0, the targets
+  /// are then shifted by the remaining residual and eq. 14 solved again (a Bregman / augmented
+  /// Lagrangian iteration): each correction costs one back-substitution and brings the result
+  /// closer to min E subject to d(x_i) = dbar_i, beyond what the penalty gamma_f alone reaches.
+  Displacements solve(const std::vector<Displacements>& prescribed, int corrections = 0) const;
 
   /// max_i |d(x_i) - dbar_i| over each region's positions.
   std::vector<double> regionResiduals(const Displacements& w, const std::vector<Displacements>& prescribed) const;
@@ -56,7 +61,7 @@ public:
   double reciprocalCondition() const { return ReciprocalCondition; }
 
 private:
-  Eigen::VectorXd stackPrescribed(const std::vector<Displacements>& prescribed, int column) const;
+  Displacements stackPrescribed(const std::vector<Displacements>& prescribed) const;
 
   MLSBasis Basis;
   SparseRowMatrix Energy;          // D = [G; L] interleaved, see SubspaceOperators.h

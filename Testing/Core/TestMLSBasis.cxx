@@ -3,7 +3,7 @@
 #include "MLSBasis.h"
 #include "Sampling.h"
 #include "TestGeometry.h"
-#include "TestHarness.h"
+#include "../TestHarness.h"
 
 using namespace mlsdeform;
 using testgeometry::randomPoints;

@@ -2,7 +2,7 @@
 #include "SpaceDeformation.h"
 #include "SubspaceOperators.h"
 #include "TestGeometry.h"
-#include "TestHarness.h"
+#include "../TestHarness.h"
 
 using namespace mlsdeform;
 

@@ -1,0 +1,354 @@
+// vtkMLSDeformFilter end to end: the plane of Fig. 1/5, surface and volume deformed together,
+// the cached set-up, and bad input.
+#include "../TestHarness.h"
+#include "FilterTestUtilities.h"
+#include "vtkMLSSampler.h"
+
+#include <vtkCellArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkPartitionedDataSet.h>
+#include <vtkPartitionedDataSetCollection.h>
+#include <vtkPoints.h>
+#include <vtkTrivialProducer.h>
+
+#include <cmath>
+#include <map>
+
+namespace
+{
+const double FixedBox[6] = { -0.1, 0.1, -0.1, 1.1, -0.1, 0.1 };  // strip x <= 0.1
+const double HandleBox[6] = { 0.9, 1.1, -0.1, 1.1, -0.1, 0.1 };  // strip x >= 0.9
+const double Lift = 0.3;
+
+struct PlaneScene
+{
+  vtkNew<vtkTrivialProducer> source;
+  vtkSmartPointer<vtkConstraintRegion> fixed, handle;
+  vtkNew<vtkMLSDeformFilter> deform;
+  explicit PlaneScene(vtkDataObject* geometry)
+  {
+    source->SetOutput(geometry);
+    fixed = boxRegion(source->GetOutputPort(), vtkConstraintRegion::Fixed, FixedBox);
+    handle = boxRegion(source->GetOutputPort(), vtkConstraintRegion::Handle, HandleBox);
+    handle->SetTranslation(0, 0, Lift);
+    deform->SetInputConnection(source->GetOutputPort());
+    deform->AddRegionConnection(fixed->GetOutputPort());
+    deform->AddRegionConnection(handle->GetOutputPort());
+  }
+};
+
+// Largest distance of a region's points from their targets, measured on the output.
+double maxTargetError(vtkPointSet* input, vtkPointSet* output, const double box[6], double lift)
+{
+  double error = 0;
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    double x[3], y[3];
+    input->GetPoint(i, x);
+    output->GetPoint(i, y);
+    if (x[0] >= box[0] && x[0] <= box[1])
+      error = std::max(error, std::sqrt((y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) + (y[2] - x[2] - lift) * (y[2] - x[2] - lift)));
+  }
+  return error;
+}
+
+// Sum of squared second differences of the height along the middle row y = 0.5 (33 samples).
+double profileRoughness(vtkPointSet* output)
+{
+  std::vector<double> z;
+  for (vtkIdType i = 16 * 33; i < 17 * 33; ++i)
+    z.push_back(output->GetPoint(i)[2]);
+  double roughness = 0;
+  for (std::size_t i = 1; i + 1 < z.size(); ++i)
+    roughness += std::pow(z[i - 1] - 2 * z[i] + z[i + 1], 2);
+  return roughness;
+}
+}
+
+TEST(PlaneBendingStretchingAndMix)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  CHECK(plane->GetNumberOfPoints() == 1089);
+  struct Case
+  {
+    const char* name;
+    double stretch, bend;
+  };
+  std::map<std::string, double> roughness;
+  for (const Case& c : { Case{ "bending", 0, 1 }, Case{ "stretching", 1, 0 }, Case{ "mix", 1, 0.6 } })
+  {
+    PlaneScene scene(plane);
+    scene.deform->SetStretchWeight(c.stretch);
+    scene.deform->SetBendWeight(c.bend);
+    scene.deform->Update();
+    auto* out = vtkPolyData::SafeDownCast(scene.deform->GetOutput());
+    const double fixedError = maxTargetError(plane, out, FixedBox, 0.0);
+    const double handleError = maxTargetError(plane, out, HandleBox, Lift);
+    roughness[c.name] = profileRoughness(out);
+    std::printf("%s: fixed error %.3g, handle error %.3g (of %g), profile roughness %.3g, setup %.3f s\n", c.name, fixedError,
+      handleError, Lift, roughness[c.name], fieldValue(out, "SetupTime"));
+    CHECK(fixedError <= 0.01 * Lift);
+    CHECK(handleError <= 0.01 * Lift);
+    // between the strips the middle row rises monotonically (up to the quadrature noise of the
+    // stretching energy, 0.5% of the lift)
+    bool monotone = true;
+    for (vtkIdType i = 16 * 33 + 4; i <= 16 * 33 + 28; ++i)
+      monotone = monotone && out->GetPoint(i)[2] >= out->GetPoint(i - 1)[2] - 5e-3 * Lift;
+    CHECK(monotone);
+  }
+  CHECK(roughness["bending"] < 0.5 * roughness["stretching"]);
+  CHECK(roughness["mix"] < roughness["stretching"]);
+}
+
+TEST(SurfaceAndVolumeDeformedTogether)
+{
+  vtkSmartPointer<vtkUnstructuredGrid> volume = tetrahedralBox(6);
+  vtkNew<vtkDataSetSurfaceFilter> boundary;
+  boundary->SetInputData(volume);
+  boundary->PassThroughPointIdsOn();
+  boundary->Update();
+  vtkPolyData* surface = boundary->GetOutput();
+  auto* original = vtkIdTypeArray::SafeDownCast(surface->GetPointData()->GetArray("vtkOriginalPointIds"));
+  CHECK(original != nullptr);
+  const double diagonal = std::sqrt(6.0);
+
+  auto check = [&](vtkDataObject* composite, vtkDataObject* out, vtkPointSet* outVolume, vtkPointSet* outSurface) {
+    CHECK(out->IsA(composite->GetClassName()));
+    CHECK(vtkUnstructuredGrid::SafeDownCast(outVolume) && vtkPolyData::SafeDownCast(outSurface));
+    double mismatch = 0, moved = 0;
+    for (vtkIdType i = 0; i < outSurface->GetNumberOfPoints(); ++i)
+    {
+      const double* s = outSurface->GetPoint(i);
+      const double* v = outVolume->GetPoint(original->GetValue(i));
+      mismatch = std::max(mismatch, std::sqrt(std::pow(s[0] - v[0], 2) + std::pow(s[1] - v[1], 2) + std::pow(s[2] - v[2], 2)));
+      moved = std::max(moved, std::abs(s[2] - surface->GetPoint(i)[2]));
+    }
+    std::printf("%s: largest surface/volume mismatch %g of diagonal, largest motion %g\n", composite->GetClassName(), mismatch / diagonal, moved);
+    CHECK(mismatch <= 1e-9 * diagonal);
+    CHECK(moved > 0.2);
+    CHECK(outVolume->GetPointData()->GetArray("Displacement") && outSurface->GetPointData()->GetArray("Displacement"));
+    CHECK(volume->GetPointData()->GetArray("Displacement") == nullptr); // the input is untouched
+  };
+  const double bottom[6] = { -1, 3, -1, 2, -0.01, 0.01 }, top[6] = { -1, 3, -1, 2, 0.99, 1.01 };
+
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, volume);
+  blocks->SetBlock(1, surface);
+  {
+    PlaneScene scene(blocks);
+    scene.fixed->SetRegion(nullptr);
+    vtkNew<vtkBox> b, t;
+    b->SetBounds(bottom);
+    t->SetBounds(top);
+    scene.fixed->SetRegion(b);
+    scene.handle->SetRegion(t);
+    scene.handle->SetTranslation(0.1, 0, 0.3);
+    scene.deform->Update();
+    auto* out = vtkMultiBlockDataSet::SafeDownCast(scene.deform->GetOutputDataObject(0));
+    CHECK(out != nullptr);
+    check(blocks, out, vtkPointSet::SafeDownCast(out->GetBlock(0)), vtkPointSet::SafeDownCast(out->GetBlock(1)));
+  }
+  vtkNew<vtkPartitionedDataSetCollection> collection;
+  vtkNew<vtkPartitionedDataSet> p0, p1;
+  p0->SetPartition(0, volume);
+  p1->SetPartition(0, surface);
+  collection->SetPartitionedDataSet(0, p0);
+  collection->SetPartitionedDataSet(1, p1);
+  {
+    PlaneScene scene(collection);
+    vtkNew<vtkBox> b, t;
+    b->SetBounds(bottom);
+    t->SetBounds(top);
+    scene.fixed->SetRegion(b);
+    scene.handle->SetRegion(t);
+    scene.handle->SetTranslation(0.1, 0, 0.3);
+    scene.deform->Update();
+    auto* out = vtkPartitionedDataSetCollection::SafeDownCast(scene.deform->GetOutputDataObject(0));
+    CHECK(out != nullptr);
+    check(collection, out, vtkPointSet::SafeDownCast(out->GetPartition(0, 0)), vtkPointSet::SafeDownCast(out->GetPartition(1, 0)));
+  }
+}
+
+TEST(HandleMotionReusesTheSetUp)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  scene.deform->Update();
+  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 1);
+  for (double lift : { 0.1, -0.2, 0.25 })
+  {
+    scene.handle->SetTranslation(0.05, 0, lift);
+    scene.handle->SetRotation(0, 10 * lift, 0);
+    scene.deform->Update();
+  }
+  CHECK(scene.deform->GetNumberOfSamplings() == 1);
+  CHECK(scene.deform->GetNumberOfFactorizations() == 1);
+  CHECK(scene.deform->GetNumberOfSolves() == 4);
+  CHECK(fieldValue(scene.deform->GetOutputDataObject(0), "Resampled") == 0);
+  // the cached result equals a fresh set-up with the same motion
+  PlaneScene fresh(plane);
+  fresh.handle->SetTranslation(0.05, 0, 0.25);
+  fresh.handle->SetRotation(0, 2.5, 0);
+  fresh.deform->Update();
+  auto* a = vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0));
+  auto* b = vtkPointSet::SafeDownCast(fresh.deform->GetOutputDataObject(0));
+  double difference = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+    for (int d = 0; d < 3; ++d)
+      difference = std::max(difference, std::abs(a->GetPoint(i)[d] - b->GetPoint(i)[d]));
+  CHECK(difference <= 1e-12);
+  // a weight change refactorizes without resampling; a sampling change resamples
+  scene.deform->SetBendWeight(2);
+  scene.deform->Update();
+  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 2);
+  scene.deform->SetNumberOfSamples(600);
+  scene.deform->Update();
+  CHECK(scene.deform->GetNumberOfSamplings() == 2 && scene.deform->GetNumberOfFactorizations() == 3);
+}
+
+TEST(ExternalSamplesMatchInternalSampling)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene internal(plane);
+  internal.deform->Update();
+  PlaneScene external(plane);
+  vtkNew<vtkMLSSampler> sampler;
+  sampler->SetInputConnection(external.source->GetOutputPort());
+  sampler->SetNumberOfSurfaceSamples(750);
+  sampler->SetNumberOfVolumeSamples(250);
+  external.deform->SetSamplesConnection(sampler->GetOutputPort(0));
+  external.deform->SetIntegrationPointsConnection(sampler->GetOutputPort(1));
+  external.deform->Update();
+  auto* a = vtkPointSet::SafeDownCast(internal.deform->GetOutputDataObject(0));
+  auto* b = vtkPointSet::SafeDownCast(external.deform->GetOutputDataObject(0));
+  double difference = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+    difference = std::max(difference, std::abs(a->GetPoint(i)[2] - b->GetPoint(i)[2]));
+  CHECK(difference <= 1e-12);
+  CHECK(vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(0))->GetNumberOfPoints() == 1000);
+  CHECK(vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(1))->GetNumberOfPoints() == 4000);
+}
+
+// ---- bad input: a clear error, the output is the unchanged input, nothing crashes ----
+namespace
+{
+// Runs the scene and checks that it failed with the message and left the geometry unchanged.
+void expectFailure(PlaneScene& scene, vtkPointSet* input, const char* message)
+{
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  for (const auto& e : messages->Errors)
+    std::printf("error: %s\n", e.c_str());
+  CHECK(messages->errorContains(message));
+  auto* out = vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0));
+  CHECK(out && out->GetNumberOfPoints() == input->GetNumberOfPoints());
+  bool unchanged = out != nullptr;
+  for (vtkIdType i = 0; unchanged && i < input->GetNumberOfPoints(); ++i)
+    for (int d = 0; d < 3; ++d)
+      unchanged = unchanged && (out->GetPoint(i)[d] == input->GetPoint(i)[d] || (std::isnan(out->GetPoint(i)[d]) && std::isnan(input->GetPoint(i)[d])));
+  CHECK(unchanged);
+}
+}
+
+TEST(EmptyInput)
+{
+  vtkNew<vtkPolyData> empty;
+  PlaneScene scene(empty);
+  expectFailure(scene, empty, "has no points");
+}
+
+TEST(NaNCoordinates)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  vtkNew<vtkPolyData> broken;
+  broken->DeepCopy(plane);
+  broken->GetPoints()->SetPoint(500, std::nan(""), 0.5, 0);
+  PlaneScene scene(broken);
+  scene.fixed->SetInputData(plane); // regions from the intact geometry
+  scene.handle->SetInputData(plane);
+  expectFailure(scene, broken, "NaN");
+}
+
+TEST(RegionSelectingNoPoint)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  const double nowhere[6] = { 5, 6, 5, 6, 5, 6 };
+  vtkNew<vtkBox> box;
+  box->SetBounds(nowhere);
+  scene.fixed->SetRegion(box);
+  auto regionMessages = MessageCollector::watch(scene.fixed);
+  expectFailure(scene, plane, "selects no point");
+  CHECK(!regionMessages->Warnings.empty());
+}
+
+TEST(NoHandle)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  scene.handle->SetRole(vtkConstraintRegion::Fixed);
+  expectFailure(scene, plane, "no Handle region");
+}
+
+TEST(SingularSystem)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  scene.deform->SetStretchWeight(0);
+  scene.deform->SetBendWeight(0);
+  expectFailure(scene, plane, "singular");
+}
+
+TEST(PointsOutsideEverySupport)
+{
+  // Samples of the plane, geometry reaching far beyond it.
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  vtkNew<vtkPolyData> larger;
+  larger->DeepCopy(plane);
+  larger->GetPoints()->SetPoint(600, 0.5, 0.5, 10.0);
+  PlaneScene scene(larger);
+  vtkNew<vtkMLSSampler> sampler;
+  sampler->SetInputData(plane);
+  scene.deform->SetSamplesConnection(sampler->GetOutputPort(0));
+  scene.deform->SetIntegrationPointsConnection(sampler->GetOutputPort(1));
+  scene.fixed->SetInputData(plane);
+  scene.handle->SetInputData(plane);
+  expectFailure(scene, larger, "outside every MLS support");
+}
+
+TEST(DuplicatePoints)
+{
+  // Every point twice (an unmerged mesh): duplicates move together, nothing fails.
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  vtkNew<vtkPolyData> doubled;
+  vtkNew<vtkPoints> points;
+  for (int copy = 0; copy < 2; ++copy)
+    for (vtkIdType i = 0; i < plane->GetNumberOfPoints(); ++i)
+      points->InsertNextPoint(plane->GetPoint(i));
+  doubled->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  for (vtkIdType c = 0; c < plane->GetNumberOfCells(); ++c)
+  {
+    vtkCell* cell = plane->GetCell(c);
+    std::vector<vtkIdType> ids;
+    for (vtkIdType k = 0; k < cell->GetNumberOfPoints(); ++k)
+      ids.push_back(cell->GetPointId(k) + (c % 2) * plane->GetNumberOfPoints());
+    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  doubled->SetPolys(polys);
+  PlaneScene scene(doubled);
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  CHECK(messages->Errors.empty());
+  auto* out = vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0));
+  const vtkIdType n = plane->GetNumberOfPoints();
+  double difference = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      difference = std::max(difference, std::abs(out->GetPoint(i)[d] - out->GetPoint(i + n)[d]));
+  CHECK(difference == 0.0);
+  CHECK(maxTargetError(doubled, out, HandleBox, Lift) <= 0.01 * Lift);
+}
+
+TEST_MAIN
