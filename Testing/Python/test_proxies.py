@@ -1,0 +1,111 @@
+"""The plugin's proxies from pvpython / pvbatch: loading, the OFF reader, region selection and
+handle motion, sampling, deformation with the cached set-up.
+
+    pvpython test_proxies.py PLUGIN DATA_DIR
+"""
+import math
+import sys
+
+import numpy as np
+from paraview import servermanager as sm
+from paraview.simple import *
+from vtk.util.numpy_support import vtk_to_numpy
+
+plugin, data_dir = sys.argv[1:3]
+LoadPlugin(plugin, remote=False, ns=globals())
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what)
+    if not condition:
+        failures.append(what)
+
+
+def field(proxy, name):
+    return sm.Fetch(proxy).GetFieldData().GetArray(name).GetValue(0)
+
+
+# The proxies and their documented defaults.
+for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform')):
+    check(sm.ProxyManager().GetPrototypeProxy(group, name) is not None, 'proxy %s/%s is defined' % (group, name))
+deform_defaults = MLSDeform(Input=Sphere())
+check(deform_defaults.FixWeight == 1000 and deform_defaults.BendWeight == 1 and deform_defaults.StretchWeight == 0,
+      'FixWeight 1000, BendWeight 1, StretchWeight 0 by default')
+check(deform_defaults.Cover == 5 and deform_defaults.IntegrationPointRatio == 4, 'Cover 5 and IntegrationPointRatio 4 by default')
+Delete(deform_defaults)
+
+# OpenDataFile on .off goes to the plugin's reader.
+part = OpenDataFile(data_dir + '/fandisk.off')
+check(part is not None and part.GetXMLName() == 'OFFReader', 'OpenDataFile(fandisk.off) uses the OFF reader')
+part.UpdatePipeline()
+info = part.GetDataInformation()
+check(info.GetNumberOfPoints() == 6475 and info.GetNumberOfCells() == 12946, 'fandisk has 6475 points and 12946 faces')
+x = vtk_to_numpy(sm.Fetch(part).GetPoints().GetData())
+zmin, zmax = x[:, 2].min(), x[:, 2].max()
+height = zmax - zmin
+
+# Regions: a box selects exactly the points inside it; the handle motion is scale, rotation,
+# translation about the centroid.
+fixed = ConstraintRegion(Input=part, Role='Fixed')
+fixed.Region = 'Box'
+fixed.Region.Position = [-1, -1, zmin - 0.01]
+fixed.Region.Length = [2, 2, 0.1 * height + 0.01]
+selected = vtk_to_numpy(sm.Fetch(fixed).GetPoints().GetData())
+check(len(selected) == np.count_nonzero(x[:, 2] <= zmin + 0.1 * height), 'the Box region selects exactly the points inside (%d)' % len(selected))
+
+handle = ConstraintRegion(Input=part, Role='Handle')
+handle.Region = 'Sphere'
+handle.Region.Center = [0, 0, zmax]
+handle.Region.Radius = 0.3 * height
+handle.Rotation = [0, 0, 30]
+handle.Translation = [0.05, 0, 0]
+out = sm.Fetch(handle)
+p = vtk_to_numpy(out.GetPoints().GetData())
+d = vtk_to_numpy(out.GetPointData().GetArray('PrescribedDisplacement'))
+c = p.mean(axis=0)
+a = math.radians(30)
+R = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
+expected = (p - c) @ R.T + c + [0.05, 0, 0] - p
+check(np.abs(d - expected).max() < 1e-9, 'handle motion = rotation about the centroid + translation')
+check(out.GetFieldData().GetAbstractArray('RoleName').GetValue(0) == 'Handle', 'the region carries its role')
+
+elevation = Elevation(Input=part, LowPoint=[0, 0, zmin], HighPoint=[0, 0, zmax])
+by_array = ConstraintRegion(Input=elevation, Role='Fixed', SelectionMode='ArrayRange',
+                            SelectionArray=['POINTS', 'Elevation'], Range=[0.0, 0.1])
+check(sm.Fetch(by_array).GetNumberOfPoints() == np.count_nonzero((x[:, 2] - zmin) / height <= 0.1 + 1e-12),
+      'ArrayRange selects the points whose array value lies in Range')
+everything = ConstraintRegion(Input=part, Role='Fixed', SelectionMode='AllPoints')
+check(sm.Fetch(everything).GetNumberOfPoints() == 6475, 'AllPoints selects every point')
+
+# Sampling: two outputs with their arrays.
+sampler = MLSSampler(Input=part, NumberOfSurfaceSamples=300, NumberOfVolumeSamples=100)
+centers = sm.Fetch(sampler, idx=0)
+integration = sm.Fetch(sampler, idx=1)
+check(centers.GetNumberOfPoints() == 400 and centers.GetPointData().GetArray('SupportRadius') is not None,
+      'MLSSampler output 0: 400 samples with SupportRadius')
+volumes = vtk_to_numpy(integration.GetPointData().GetArray('Volume'))
+check(integration.GetNumberOfPoints() == 1600 and volumes.min() >= 0 and volumes.sum() > 0,
+      'MLSSampler output 1: 1600 integration points with Volume')
+
+# Deformation with internal and with external samples; the set-up is cached.
+handle.Rotation = [0, 0, 0]
+handle.Translation = [-0.1 * height, 0, 0]
+deformed = MLSDeform(Input=part, Regions=[fixed, handle])
+result = sm.Fetch(deformed)
+moved = vtk_to_numpy(result.GetPoints().GetData())
+displacement = vtk_to_numpy(result.GetPointData().GetArray('Displacement'))
+check(np.abs(moved - x - displacement).max() < 1e-6 * height, 'points moved by the Displacement array (float precision)')
+check(field(deformed, 'HandleResidual') < 0.05 * 0.1 * height, 'handle reaches its target within 5%%: %.3g' % field(deformed, 'HandleResidual'))
+check(np.abs(displacement[x[:, 2] <= zmin + 0.1 * height]).max() < 0.05 * 0.1 * height, 'fixed points stay within 5% of the motion')
+check(np.abs(vtk_to_numpy(sm.Fetch(part).GetPoints().GetData()) - x).max() == 0, 'the input is unchanged')
+handle.Translation = [0.1 * height, 0, 0]
+deformed.UpdatePipeline()
+check(field(deformed, 'Resampled') == 0 and field(deformed, 'Refactorized') == 0, 'a new handle motion reuses the set-up')
+check(field(deformed, 'SolveTime') < field(deformed, 'SetupTime'), 'a variation is cheaper than the set-up')
+
+external = MLSDeform(Input=part, Regions=[fixed, handle], Samples=OutputPort(sampler, 0), IntegrationPoints=OutputPort(sampler, 1))
+check(field(external, 'NumberOfSamples') == 400, 'MLSDeform uses connected MLSSampler samples')
+
+print('failed: %s' % failures if failures else 'all checks passed')
+sys.exit(1 if failures else 0)
