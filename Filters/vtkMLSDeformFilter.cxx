@@ -9,6 +9,7 @@
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
@@ -33,9 +34,6 @@ double secondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-// Below this, a tiny stretching term decides between equally bent results (see the header).
-constexpr double MinimumStretchPerBend = 1e-6;
 
 struct Region
 {
@@ -155,6 +153,27 @@ void copyInput(vtkDataObject* input, vtkDataObject* output)
   }
 }
 
+// x + d written straight into a float or double points array (false for other types).
+template <typename Array>
+bool writeMoved(vtkDataArray* data, const PointList& points, long offset, const double* d, vtkIdType n)
+{
+  auto* array = Array::SafeDownCast(data);
+  if (!array)
+  {
+    return false;
+  }
+  auto* out = array->GetPointer(0);
+#pragma omp parallel for schedule(static)
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out[3 * i + c] = static_cast<typename Array::ValueType>(points[offset + i][c] + d[3 * i + c]);
+    }
+  }
+  return true;
+}
+
 void addField(vtkFieldData* field, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
@@ -168,13 +187,25 @@ struct vtkMLSDeformFilter::Cache
 {
   std::string samplesKey;
   std::unique_ptr<SpaceDeformation> model;
-  std::string geometryKey;
+  std::string geometryKey;          // signature of the points below; empty when Phi is not valid
+  PointList points;                 // the input points, concatenated
   SparseRowMatrix geometrySubspace; // Phi at the input points
   std::vector<PointList> regionPositions;
   std::vector<double> regionWeights;
   bool factorized = false;
   EnergyWeights weights;
   double setupTime = 0;
+
+  /// Forgets everything that depends on the samples.
+  void reset()
+  {
+    model.reset();
+    geometryKey.clear();
+    geometrySubspace = SparseRowMatrix();
+    regionPositions.clear();
+    regionWeights.clear();
+    factorized = false;
+  }
 };
 
 vtkMLSDeformFilter::vtkMLSDeformFilter()
@@ -221,12 +252,18 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
   try
   {
     const auto setupStart = Clock::now();
-    const PointList points = mlsgeometry::points(inSets);
-    if (points.empty())
+    const std::string geometryKey = mlsgeometry::pointsSignature(inSets);
+    if (geometryKey != cache.geometryKey)
     {
-      throw InvalidInputException("the input has no points");
+      cache.geometryKey.clear();
+      cache.points = mlsgeometry::points(inSets);
+      if (cache.points.empty())
+      {
+        throw InvalidInputException("the input has no points");
+      }
+      requireFinite(cache.points, "input points");
     }
-    requireFinite(points, "input points");
+    const PointList& points = cache.points;
     const std::vector<Region> regions = readRegions(inputVector[1], this);
 
     // 1. Samples and the operators on them (paper section 4, 5).
@@ -245,7 +282,7 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     }
     if (!cache.model || key.str() != cache.samplesKey)
     {
-      cache = Cache{};
+      cache.reset();
       Samples samples;
       if (externalCenters)
       {
@@ -270,14 +307,12 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     SpaceDeformation& model = *cache.model;
 
     // 2. Phi at the points to deform.
-    const std::string geometryKey = mlsgeometry::pointsSignature(inSets);
-    if (geometryKey != cache.geometryKey)
+    if (cache.geometryKey.empty())
     {
       std::vector<int> outside;
       cache.geometrySubspace = subspaceMatrix(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
       if (!outside.empty())
       {
-        cache.geometryKey.clear();
         throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
           std::to_string(outside[0]) + "): the samples do not cover the input; sample this input or raise Cover");
       }
@@ -304,7 +339,7 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
       cache.regionPositions = positions;
       cache.regionWeights = regionWeights;
     }
-    const EnergyWeights weights{ std::max(this->StretchWeight, MinimumStretchPerBend * this->BendWeight), this->BendWeight, this->FixWeight };
+    const EnergyWeights weights{ this->StretchWeight, this->BendWeight, this->FixWeight };
     if (!cache.factorized || weights.stretch != cache.weights.stretch || weights.bend != cache.weights.bend || weights.fix != cache.weights.fix)
     {
       cache.factorized = false;
@@ -327,34 +362,35 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
       prescribed.push_back(r.prescribed);
     }
     const Displacements w = model.solve(prescribed, this->TargetCorrections);
-    const Displacements d = cache.geometrySubspace * w;
     ++this->NumberOfSolves;
-    if (!d.allFinite())
-    {
-      throw SolverException("the displacement is not finite");
-    }
     long offset = 0;
     for (std::size_t s = 0; s < inSets.size(); ++s)
     {
-      vtkPoints* inPoints = inSets[s]->GetPoints();
       const vtkIdType n = inSets[s]->GetNumberOfPoints();
-      if (!inPoints || n == 0)
+      if (n == 0)
       {
         continue;
       }
-      vtkNew<vtkPoints> moved;
-      moved->SetDataType(inPoints->GetDataType());
-      moved->SetNumberOfPoints(n);
       vtkNew<vtkDoubleArray> displacement;
       displacement->SetName("Displacement");
       displacement->SetNumberOfComponents(3);
       displacement->SetNumberOfTuples(n);
-      for (vtkIdType i = 0; i < n; ++i)
+      multiplyRows(cache.geometrySubspace, w, offset, offset + n, displacement->GetPointer(0));
+      vtkNew<vtkPoints> moved;
+      moved->SetDataType(inSets[s]->GetPoints()->GetDataType());
+      moved->SetNumberOfPoints(n);
+      if (!writeMoved<vtkFloatArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n) &&
+        !writeMoved<vtkDoubleArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n))
       {
-        const Vec3 di = d.row(offset + i).transpose();
-        const Vec3 x = points[offset + i] + di;
-        moved->SetPoint(i, x.data());
-        displacement->SetTuple(i, di.data());
+        for (vtkIdType i = 0; i < n; ++i)
+        {
+          const Vec3 x = points[offset + i] + Vec3(displacement->GetPointer(3 * i));
+          moved->SetPoint(i, x.data());
+        }
+      }
+      if (!std::isfinite(displacement->GetRange(-1)[1]))
+      {
+        throw SolverException("the displacement is not finite");
       }
       offset += n;
       outSets[s]->SetPoints(moved);

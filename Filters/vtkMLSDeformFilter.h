@@ -90,7 +90,7 @@ public:
   ///@}
 
   ///@{
-  /// Internal sampling: Lloyd relaxation steps (default 10).
+  /// Internal sampling: Lloyd relaxation steps (default 5).
   vtkSetClampMacro(LloydIterations, int, 0, 1000);
   vtkGetMacro(LloydIterations, int);
   ///@}
@@ -134,7 +134,7 @@ protected:
   int NumberOfSamples = 1000;
   double VolumeSampleFraction = 0.25;
   double IntegrationPointRatio = 4.0;
-  int LloydIterations = 10;
+  int LloydIterations = 5;
   double Cover = 5.0;
   int RandomSeed = 0;
 

@@ -50,7 +50,7 @@ public:
   ///@}
 
   ///@{
-  /// Lloyd relaxation steps (default 10).
+  /// Lloyd relaxation steps (default 5).
   vtkSetClampMacro(LloydIterations, int, 0, 1000);
   vtkGetMacro(LloydIterations, int);
   ///@}
@@ -96,7 +96,7 @@ protected:
   int NumberOfSurfaceSamples = 800;
   int NumberOfVolumeSamples = 200;
   double IntegrationPointRatio = 4.0;
-  int LloydIterations = 10;
+  int LloydIterations = 5;
   double Cover = 5.0;
   int RandomSeed = 0;
   double SurfaceWeight = 10.0;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <queue>
 
 namespace mlsdeform
 {
@@ -21,6 +20,22 @@ struct TraversalStack
   void pop_back() { --count; }
   bool empty() const { return count == 0; }
 };
+
+// Pushes both children, the one nearer to x last so that it is visited first.
+template <typename Node, typename Nodes>
+void pushChildrenOf(const Node& node, const Nodes& nodes, const Vec3& x, TraversalStack& stack, double (*distance)(const Node&, const Vec3&))
+{
+  if (distance(nodes[node.left], x) < distance(nodes[node.right], x))
+  {
+    stack.push_back(node.right);
+    stack.push_back(node.left);
+  }
+  else
+  {
+    stack.push_back(node.left);
+    stack.push_back(node.right);
+  }
+}
 }
 
 void KdTree::build(const PointList& points)
@@ -96,31 +111,53 @@ double KdTree::maxRadiusBelow(int index)
   return r;
 }
 
-double KdTree::squaredDistanceToBox(const Node& node, const Vec3& x)
-{
-  const Vec3 d = (node.lower - x).cwiseMax(x - node.upper).cwiseMax(0.0);
-  return d.squaredNorm();
-}
-
 int KdTree::nearest(const Vec3& x) const
 {
-  std::vector<int> indices;
-  std::vector<double> distances;
-  kNearest(x, 1, indices, distances);
-  return indices.empty() ? -1 : indices[0];
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  TraversalStack stack;
+  if (!Nodes.empty())
+  {
+    stack.push_back(0);
+  }
+  while (!stack.empty())
+  {
+    const Node& node = Nodes[stack.back()];
+    stack.pop_back();
+    if (squaredDistanceToBox(node, x) >= bestDistance)
+    {
+      continue;
+    }
+    if (node.left < 0)
+    {
+      for (int i = node.begin; i < node.end; ++i)
+      {
+        const double d2 = (Points[Order[i]] - x).squaredNorm();
+        if (d2 < bestDistance)
+        {
+          bestDistance = d2;
+          best = Order[i];
+        }
+      }
+    }
+    else
+    {
+      pushChildrenOf(node, Nodes, x, stack, &squaredDistanceToBox);
+    }
+  }
+  return best;
 }
 
 void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const
 {
+  // The best k so far, sorted by distance (k is small: insertion beats a heap).
   indices.clear();
   squaredDistances.clear();
   if (Nodes.empty() || k <= 0)
   {
     return;
   }
-  // max-heap of the best k candidates so far
-  std::priority_queue<std::pair<double, int>> best;
-  auto bound = [&]() { return static_cast<int>(best.size()) < k ? std::numeric_limits<double>::infinity() : best.top().first; };
+  auto bound = [&]() { return static_cast<int>(indices.size()) < k ? std::numeric_limits<double>::infinity() : squaredDistances.back(); };
   TraversalStack stack;
   stack.push_back(0);
   while (!stack.empty())
@@ -138,38 +175,21 @@ void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vect
         const double d2 = (Points[Order[i]] - x).squaredNorm();
         if (d2 < bound())
         {
-          best.emplace(d2, Order[i]);
-          if (static_cast<int>(best.size()) > k)
+          if (static_cast<int>(indices.size()) == k)
           {
-            best.pop();
+            indices.pop_back();
+            squaredDistances.pop_back();
           }
+          const auto at = std::upper_bound(squaredDistances.begin(), squaredDistances.end(), d2) - squaredDistances.begin();
+          squaredDistances.insert(squaredDistances.begin() + at, d2);
+          indices.insert(indices.begin() + at, Order[i]);
         }
       }
     }
     else
     {
-      // visit the nearer child first (pushed last)
-      const double dl = squaredDistanceToBox(Nodes[node.left], x);
-      const double dr = squaredDistanceToBox(Nodes[node.right], x);
-      if (dl < dr)
-      {
-        stack.push_back(node.right);
-        stack.push_back(node.left);
-      }
-      else
-      {
-        stack.push_back(node.left);
-        stack.push_back(node.right);
-      }
+      pushChildrenOf(node, Nodes, x, stack, &squaredDistanceToBox);
     }
-  }
-  indices.resize(best.size());
-  squaredDistances.resize(best.size());
-  for (int i = static_cast<int>(best.size()) - 1; i >= 0; --i)
-  {
-    squaredDistances[i] = best.top().first;
-    indices[i] = best.top().second;
-    best.pop();
   }
 }
 

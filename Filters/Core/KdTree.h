@@ -37,7 +37,11 @@ private:
   };
   int buildNode(int begin, int end);
   double maxRadiusBelow(int node);
-  static double squaredDistanceToBox(const Node& node, const Vec3& x);
+  static double squaredDistanceToBox(const Node& node, const Vec3& x)
+  {
+    const Vec3 d = (node.lower - x).cwiseMax(x - node.upper).cwiseMax(0.0);
+    return d.squaredNorm();
+  }
 
   PointList Points;
   std::vector<int> Order;

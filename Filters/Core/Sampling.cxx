@@ -275,39 +275,62 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
 
 std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover)
 {
-  std::vector<double> radius(centers.size(), 0.0);
+  // The reach r_j of a sample starts at the distance to its s-th nearest fellow sample, so that
+  // supports follow the local sample density (dense on the surface, coarse in the volume).
   const KdTree tree(centers);
   const int s = std::max(1, static_cast<int>(std::ceil(cover)));
+  const long k = static_cast<long>(centers.size());
+  std::vector<double> reach(centers.size(), 0.0);
+#pragma omp parallel
+  {
+    std::vector<int> indices;
+    std::vector<double> d2;
+#pragma omp for schedule(static)
+    for (long j = 0; j < k; ++j)
+    {
+      tree.kNearest(centers[j], s + 1, indices, d2); // the first is c_j itself
+      reach[j] = std::sqrt(d2.back());
+    }
+  }
+  // Then every position reached by fewer than s samples extends the reach of its s nearest.
+  KdTree reachTree(centers);
+  reachTree.setRadii(reach);
+  std::vector<double> extended = reach;
   for (const PointList* list : positions)
   {
     const long count = static_cast<long>(list->size());
 #pragma omp parallel
     {
       std::vector<double> local(centers.size(), 0.0);
-      std::vector<int> indices;
+      std::vector<int> indices, covering;
       std::vector<double> d2;
 #pragma omp for schedule(static)
       for (long i = 0; i < count; ++i)
       {
+        reachTree.containing((*list)[i], covering);
+        if (static_cast<int>(covering.size()) >= s)
+        {
+          continue;
+        }
         tree.kNearest((*list)[i], s, indices, d2);
         for (std::size_t a = 0; a < indices.size(); ++a)
         {
-          local[indices[a]] = std::max(local[indices[a]], std::sqrt(d2[a]));
+          local[indices[a]] = std::max(local[indices[a]], std::sqrt(d2[a]) * (1 + 1e-9));
         }
       }
 #pragma omp critical
       for (std::size_t j = 0; j < centers.size(); ++j)
       {
-        radius[j] = std::max(radius[j], local[j]);
+        extended[j] = std::max(extended[j], local[j]);
       }
     }
   }
-  const double largest = *std::max_element(radius.begin(), radius.end());
-  for (double& r : radius)
+  const double largest = *std::max_element(extended.begin(), extended.end());
+  for (double& r : extended)
   {
     r = SupportMargin * (r > 0 ? r : largest);
   }
-  return radius;
+  return extended;
 }
 
 Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress)
@@ -372,7 +395,7 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
     }
   }
   progress.report(0.8);
-  out.supportRadius = coverSupportRadii(out.centers, { &all, &out.integrationPoints, &domain.points, &out.centers }, parameters.cover);
+  out.supportRadius = coverSupportRadii(out.centers, { &out.integrationPoints, &domain.points }, parameters.cover);
   progress.report(1.0);
   return out;
 }

@@ -26,7 +26,7 @@ struct SamplingParameters
   int numberOfSurfaceSamples = 800; // k_s
   int numberOfVolumeSamples = 200;  // k_v
   double integrationPointRatio = 4;  // N / k
-  int lloydIterations = 10;
+  int lloydIterations = 5;
   double cover = 5;                  // s: every sampled position lies in at least s supports
   std::uint64_t randomSeed = 0;
   double surfaceWeight = 10;         // weight of a dense surface sample in the Lloyd step (volume: 1)
@@ -56,8 +56,9 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
 /// closest to it.
 void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations);
 
-/// Support radii such that each of the positions lies inside the supports of its s nearest
-/// centers, with a margin so that its weight there is at least w(1/margin).
+/// Support radii following the local sample density (the distance to the s-th nearest fellow
+/// sample), enlarged so that each of the positions lies within reach of at least s samples; a
+/// margin makes the weight at the reach w(1/margin) = 0.25.
 std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover);
 
 /// Throws InvalidInputException if a coordinate is NaN or infinite.

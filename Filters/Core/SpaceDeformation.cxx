@@ -9,7 +9,10 @@ namespace mlsdeform
 namespace
 {
 // Below this estimate of 1/cond the Cholesky factor is numerically singular in double precision.
-constexpr double SingularReciprocalCondition = 1e-15;
+constexpr double SingularReciprocalCondition = 1e-12;
+
+// Below this, a tiny stretching term decides between equally bent results (see the header).
+constexpr double MinimumStretchPerBend = 1e-6;
 
 double largestSideOf(const PointList& a, const PointList& b)
 {
@@ -81,8 +84,10 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
   Factor.reset();
 }
 
-void SpaceDeformation::factorize(const EnergyWeights& weights)
+void SpaceDeformation::factorize(const EnergyWeights& requested)
 {
+  EnergyWeights weights = requested;
+  weights.stretch = std::max(weights.stretch, MinimumStretchPerBend * weights.bend);
   Weights = weights;
   Eigen::VectorXd energyWeight(Energy.rows());
   for (long i = 0; i < energyWeight.size(); ++i)
@@ -90,8 +95,8 @@ void SpaceDeformation::factorize(const EnergyWeights& weights)
     energyWeight[i] = i % 4 == 3 ? weights.bend : weights.stretch;
   }
   const SparseRowMatrix FPhi = RegionScale.asDiagonal() * RegionSubspace;
-  System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy) +
-    SparseMatrix(weights.fix * (FPhi.transpose() * FPhi));
+  RegionNormal = SparseMatrix(FPhi.transpose() * FPhi);
+  System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy) + weights.fix * RegionNormal;
   Factor = std::make_unique<SparseCholesky>();
   Factor->compute(System);
   ReciprocalCondition = Factor->reciprocalCondition();
@@ -132,19 +137,15 @@ Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescrib
     throw SolverException("solve() before a successful factorize()");
   }
   const Displacements dbar = stackPrescribed(prescribed);
-  const Eigen::VectorXd F2 = RegionScale.cwiseProduct(RegionScale);
-  auto solveFor = [&](const Displacements& target) {
-    const Displacements rhs = Weights.fix * (RegionSubspace.transpose() * (F2.asDiagonal() * target));
-    Displacements x = Factor->solve(rhs);
-    x += Factor->solve(rhs - System * x); // one step of iterative refinement
-    return x;
-  };
-  Displacements target = dbar;
-  Displacements w = solveFor(target);
+  // b0 = gamma_f Phi^T F^T F dbar, the right-hand side of eq. 14: the only pass over the regions.
+  const Displacements b0 = Weights.fix * multiplyTransposed(RegionSubspace, RegionScale.cwiseProduct(RegionScale).asDiagonal() * dbar);
+  Displacements rhs = b0;
+  Displacements w = Factor->solve(rhs);
   for (int i = 0; i < corrections; ++i)
   {
-    target += dbar - RegionSubspace * w;
-    w = solveFor(target);
+    // targets += dbar - Phi w, i.e. rhs += gamma_f Phi^T F^T F (dbar - Phi w) = b0 - gamma_f A w
+    rhs += b0 - Weights.fix * (RegionNormal * w);
+    w = Factor->solve(rhs);
   }
   if (!w.allFinite())
   {
@@ -155,7 +156,8 @@ Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescrib
 
 std::vector<double> SpaceDeformation::regionResiduals(const Displacements& w, const std::vector<Displacements>& prescribed) const
 {
-  const Displacements d = RegionSubspace * w;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> d(RegionSubspace.rows(), 3);
+  multiplyRows(RegionSubspace, w, 0, RegionSubspace.rows(), d.data());
   std::vector<double> out;
   long offset = 0;
   for (std::size_t r = 0; r < RegionSizes.size(); ++r)

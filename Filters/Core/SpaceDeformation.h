@@ -43,7 +43,10 @@ public:
   /// position outside every support.
   void setRegions(const std::vector<DirichletRegion>& regions);
 
-  /// Factorizes the matrix of eq. 14; throws SolverException when it is singular.
+  /// Factorizes the matrix of eq. 14; throws SolverException when it is singular. A stretching
+  /// weight of at least 1e-6 * bend is always used: pure bending does not determine motions
+  /// that bend nothing, such as a shear normal to a flat configuration, and the tiny stretching
+  /// term picks the least stretched of the equally bent results.
   void factorize(const EnergyWeights& weights);
 
   /// Coefficients w (k x 3) of eq. 14 for the prescribed displacements of each region (one row
@@ -69,6 +72,7 @@ private:
   Eigen::VectorXd RegionScale;     // F_ii
   std::vector<int> RegionSizes;
   EnergyWeights Weights;
+  SparseMatrix RegionNormal;       // A = Phi^T F^T F Phi (k x k)
   SparseMatrix System;             // the matrix of eq. 14
   std::unique_ptr<SparseCholesky> Factor;
   double ReciprocalCondition = 0;

@@ -89,6 +89,53 @@ SparseRowMatrix assembleRows(const MLSBasis& basis, const PointList& positions, 
 }
 }
 
+void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out)
+{
+  const auto* outer = A.outerIndexPtr();
+  const auto* inner = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (long i = begin; i < end; ++i)
+  {
+    double x = 0, y = 0, z = 0;
+    for (auto a = outer[i]; a < outer[i + 1]; ++a)
+    {
+      const double v = value[a];
+      const auto j = inner[a];
+      x += v * X(j, 0);
+      y += v * X(j, 1);
+      z += v * X(j, 2);
+    }
+    double* o = out + 3 * (i - begin);
+    o[0] = x;
+    o[1] = y;
+    o[2] = z;
+  }
+}
+
+Displacements multiplyTransposed(const SparseRowMatrix& A, const Displacements& X)
+{
+  Displacements result = Displacements::Zero(A.cols(), 3);
+  const auto* outer = A.outerIndexPtr();
+  const auto* inner = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+#pragma omp parallel
+  {
+    Displacements local = Displacements::Zero(A.cols(), 3);
+#pragma omp for schedule(static)
+    for (long i = 0; i < A.rows(); ++i)
+    {
+      for (auto a = outer[i]; a < outer[i + 1]; ++a)
+      {
+        local.row(inner[a]) += value[a] * X.row(i);
+      }
+    }
+#pragma omp critical
+    result += local;
+  }
+  return result;
+}
+
 SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
   return assembleRows(

@@ -15,6 +15,13 @@ namespace mlsdeform
 /// their indices are appended to outside when given.
 SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
+/// Rows begin..end of A X for a dense X with three columns, written as (x, y, z) triples to out:
+/// one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at many points).
+void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out);
+
+/// A^T X for a dense X with three columns, in one parallel pass over the rows of A.
+Displacements multiplyTransposed(const SparseRowMatrix& A, const Displacements& X);
+
 /// D (4N x k) at the integration points q_i with volumes V_i; the gradient rows are multiplied by
 /// sqrt(V_i) * gradientScale, the Laplacian rows by sqrt(V_i) * laplacianScale.
 SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integrationPoints, const std::vector<double>& volume,

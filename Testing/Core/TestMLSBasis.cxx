@@ -78,10 +78,19 @@ TEST(DerivativesMatchFiniteDifferences)
   const MLSBasis basis = randomBasis(centers, evaluation);
   ShapeFunctionValues phi;
   double gradientError = 0, laplacianError = 0, gradientScale = 0, laplacianScale = 0;
+  const double h1 = 1e-6, h2 = 1e-4;
+  int compared = 0;
   for (const Vec3& x : evaluation)
   {
+    // w(r) = 1/2 cos(pi r/sigma) + 1/2 is C1 only at r = sigma: its second derivative jumps there,
+    // so finite differences across a support boundary do not approximate the Laplacian.
+    bool nearBoundary = false;
+    for (std::size_t j = 0; j < centers.size(); ++j)
+      nearBoundary = nearBoundary || std::abs((x - centers[j]).norm() - basis.supportRadii()[j]) < 10 * h2;
+    if (nearBoundary)
+      continue;
+    ++compared;
     basis.evaluate(x, phi, true);
-    const double h1 = 1e-6, h2 = 1e-4;
     const Eigen::VectorXd f0 = dense(basis, x);
     Eigen::VectorXd fdLaplacian = Eigen::VectorXd::Zero(basis.size());
     Eigen::MatrixXd fdGradient(basis.size(), 3);
@@ -100,7 +109,8 @@ TEST(DerivativesMatchFiniteDifferences)
       laplacianScale = std::max(laplacianScale, std::abs(phi.laplacian[a]));
     }
   }
-  std::printf("gradient error %g (scale %g), Laplacian error %g (scale %g)\n", gradientError, gradientScale, laplacianError, laplacianScale);
+  std::printf("%d points: gradient error %g (scale %g), Laplacian error %g (scale %g)\n", compared, gradientError, gradientScale, laplacianError, laplacianScale);
+  CHECK(compared >= 25);
   CHECK(gradientError <= 1e-6 * gradientScale);
   CHECK(laplacianError <= 1e-3 * laplacianScale);
 }

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The main job: sets up and builds if needed (Testing/setup.sh), then deforms the fandisk part
+# (fixed base, handle moved sideways) and writes out/fandisk_deformed.vtp and out/fandisk_deformed.png.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${MLSDEFORM_BUILD:-$root/build}
+bash "$root/Testing/setup.sh"
+xvfb-run -a pvbatch "$root/Examples/deform_fandisk.py" \
+  "$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so" "$build/data/fandisk.off" "${1:-$root/out}"
