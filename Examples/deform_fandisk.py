@@ -63,7 +63,11 @@ for source, colored in ((part, False), (deformed, True)):
         display.SetScalarBarVisibility(view, True)
         bar = GetScalarBar(GetColorTransferFunction('Displacement'), view)
         bar.WindowLocation = 'Any Location'
-        bar.Position = [0.8, 0.1]
+        bar.Position = [0.72, 0.1]
+        bar.ScalarBarLength = 0.5
+        bar.RangeLabelFormat = '%.3f'
+        bar.Title = '|Displacement|'
+        bar.ComponentTitle = ''
     views.append(view)
 # One camera for both views, so that the motion shows.
 center = [(xmin + xmax) / 2, (ymin + ymax) / 2, (zmin + zmax) / 2]

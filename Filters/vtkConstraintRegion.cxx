@@ -20,10 +20,58 @@
 #include <vtkStringArray.h>
 #include <vtkTransform.h>
 
+#include <sstream>
+
 vtkStandardNewMacro(vtkConstraintRegion);
+
+namespace
+{
+// The points of the sets inside the function (mode ImplicitFunction), with values[s] within range
+// (mode ArrayRange; sets without the array contribute nothing), or all (mode AllPoints).
+mlsdeform::PointList selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values, int mode,
+  vtkImplicitFunction* function, bool insideOut, const double range[2])
+{
+  mlsdeform::PointList selected;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    if (mode == vtkConstraintRegion::ArrayRange && !values[s])
+    {
+      continue;
+    }
+    for (vtkIdType i = 0; i < sets[s]->GetNumberOfPoints(); ++i)
+    {
+      mlsdeform::Vec3 x;
+      sets[s]->GetPoint(i, x.data());
+      bool take = true;
+      if (mode == vtkConstraintRegion::ImplicitFunction)
+      {
+        take = (function->FunctionValue(x.data()) <= 0) != insideOut;
+      }
+      else if (mode == vtkConstraintRegion::ArrayRange)
+      {
+        const double v = values[s]->GetComponent(i, 0);
+        take = v >= range[0] && v <= range[1];
+      }
+      if (take)
+      {
+        selected.push_back(x);
+      }
+    }
+  }
+  return selected;
+}
+}
 vtkCxxSetObjectMacro(vtkConstraintRegion, Region, vtkImplicitFunction);
 
+// The selected positions and what they were selected with.
+struct vtkConstraintRegion::Selection
+{
+  std::string key;
+  mlsdeform::PointList positions;
+};
+
 vtkConstraintRegion::vtkConstraintRegion()
+  : Selected(new Selection)
 {
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
@@ -31,6 +79,7 @@ vtkConstraintRegion::vtkConstraintRegion()
 vtkConstraintRegion::~vtkConstraintRegion()
 {
   this->SetRegion(nullptr);
+  delete this->Selected;
 }
 
 const char* vtkConstraintRegion::GetRoleName(int role)
@@ -65,45 +114,34 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   const std::vector<vtkPointSet*> sets = mlsgeometry::pointSets(input);
-
-  // Select positions.
-  mlsdeform::PointList selected;
   if (this->SelectionMode == ImplicitFunction && !this->Region)
   {
     vtkErrorMacro(<< "SelectionMode is ImplicitFunction but no Region function is set.");
     return 0;
   }
-  for (vtkPointSet* set : sets)
+
+  // Select positions, unless only the motion changed since the last selection.
+  std::ostringstream key;
+  key << mlsgeometry::pointsSignature(sets) << ' ' << input->GetMTime() << ' ' << this->SelectionMode << ' ' << this->InsideOut
+      << ' ' << this->Range[0] << ' ' << this->Range[1] << ' ' << (this->Region ? this->Region->GetMTime() : 0) << ' '
+      << this->Region;
+  if (vtkInformation* array = this->GetInputArrayInformation(0))
   {
-    vtkDataArray* values = nullptr;
-    if (this->SelectionMode == ArrayRange)
-    {
-      values = this->GetInputArrayToProcess(0, set);
-      if (!values)
-      {
-        continue; // this block lacks the array
-      }
-    }
-    for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
-    {
-      mlsdeform::Vec3 x;
-      set->GetPoint(i, x.data());
-      bool take = true;
-      if (this->SelectionMode == ImplicitFunction)
-      {
-        take = (this->Region->FunctionValue(x.data()) <= 0) != this->InsideOut;
-      }
-      else if (this->SelectionMode == ArrayRange)
-      {
-        const double v = values->GetComponent(i, 0);
-        take = v >= this->Range[0] && v <= this->Range[1];
-      }
-      if (take)
-      {
-        selected.push_back(x);
-      }
-    }
+    key << ' ' << (array->Has(vtkDataObject::FIELD_NAME()) ? array->Get(vtkDataObject::FIELD_NAME()) : "");
   }
+  if (key.str() != this->Selected->key)
+  {
+    this->Selected->key.clear();
+    std::vector<vtkDataArray*> values;
+    for (vtkPointSet* set : sets)
+    {
+      values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set) : nullptr);
+    }
+    this->Selected->positions = selectPositions(sets, values, this->SelectionMode, this->Region, this->InsideOut, this->Range);
+    this->Selected->key = key.str();
+    ++this->NumberOfSelections;
+  }
+  const mlsdeform::PointList& selected = this->Selected->positions;
   if (selected.empty())
   {
     vtkWarningMacro(<< GetRoleName(this->Role) << " region selects no point.");

@@ -107,6 +107,12 @@ public:
 
   vtkMTimeType GetMTime() override;
 
+  ///@{
+  /// The selection is kept while only the motion (Translation, Rotation, Scale, Center,
+  /// UseCentroid) or Weight changes; this counts how often the points were selected anew.
+  vtkGetMacro(NumberOfSelections, int);
+  ///@}
+
 protected:
   vtkConstraintRegion();
   ~vtkConstraintRegion() override;
@@ -125,10 +131,14 @@ protected:
   double Center[3] = { 0.0, 0.0, 0.0 };
   bool UseCentroid = true;
   double Weight = 1.0;
+  int NumberOfSelections = 0;
 
 private:
   vtkConstraintRegion(const vtkConstraintRegion&) = delete;
   void operator=(const vtkConstraintRegion&) = delete;
+
+  struct Selection;
+  Selection* Selected;
 };
 
 #endif

@@ -73,14 +73,20 @@ std::vector<Region> readRegions(vtkInformationVector* connections, vtkObject* se
                                       << " is not supported by this version and is ignored.");
       continue;
     }
-    region.positions.resize(n);
+    region.positions = mlsgeometry::points({ data });
     region.prescribed.resize(n, 3);
-    for (vtkIdType i = 0; i < n; ++i)
+    if (auto* values = vtkDoubleArray::SafeDownCast(displacement))
     {
-      data->GetPoint(i, region.positions[i].data());
-      for (int d = 0; d < 3; ++d)
+      region.prescribed = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(values->GetPointer(0), n, 3);
+    }
+    else
+    {
+      for (vtkIdType i = 0; i < n; ++i)
       {
-        region.prescribed(i, d) = displacement->GetComponent(i, d);
+        for (int d = 0; d < 3; ++d)
+        {
+          region.prescribed(i, d) = displacement->GetComponent(i, d);
+        }
       }
     }
     requireFinite(region.positions, (which + " positions").c_str());
@@ -320,24 +326,27 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     }
 
     // 3. Regions and the factorization of eq. 14.
-    std::vector<PointList> positions;
-    std::vector<double> regionWeights;
-    for (const Region& r : regions)
+    bool sameRegions = regions.size() == cache.regionPositions.size();
+    for (std::size_t r = 0; sameRegions && r < regions.size(); ++r)
     {
-      positions.push_back(r.positions);
-      regionWeights.push_back(r.weight);
+      sameRegions = regions[r].positions == cache.regionPositions[r] && regions[r].weight == cache.regionWeights[r];
     }
-    if (positions != cache.regionPositions || regionWeights != cache.regionWeights)
+    if (!sameRegions)
     {
       std::vector<DirichletRegion> dirichlet;
       for (const Region& r : regions)
       {
         dirichlet.push_back({ r.positions, r.weight });
       }
+      cache.regionPositions.clear();
       cache.factorized = false;
       model.setRegions(dirichlet);
-      cache.regionPositions = positions;
-      cache.regionWeights = regionWeights;
+      cache.regionWeights.clear();
+      for (const Region& r : regions)
+      {
+        cache.regionPositions.push_back(r.positions);
+        cache.regionWeights.push_back(r.weight);
+      }
     }
     const EnergyWeights weights{ this->StretchWeight, this->BendWeight, this->FixWeight };
     if (!cache.factorized || weights.stretch != cache.weights.stretch || weights.bend != cache.weights.bend || weights.fix != cache.weights.fix)
@@ -387,10 +396,6 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
           const Vec3 x = points[offset + i] + Vec3(displacement->GetPointer(3 * i));
           moved->SetPoint(i, x.data());
         }
-      }
-      if (!std::isfinite(displacement->GetRange(-1)[1]))
-      {
-        throw SolverException("the displacement is not finite");
       }
       offset += n;
       outSets[s]->SetPoints(moved);

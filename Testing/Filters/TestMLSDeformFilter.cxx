@@ -185,6 +185,7 @@ TEST(HandleMotionReusesTheSetUp)
   CHECK(scene.deform->GetNumberOfSamplings() == 1);
   CHECK(scene.deform->GetNumberOfFactorizations() == 1);
   CHECK(scene.deform->GetNumberOfSolves() == 4);
+  CHECK(scene.handle->GetNumberOfSelections() == 1); // the region kept its selection too
   CHECK(fieldValue(scene.deform->GetOutputDataObject(0), "Resampled") == 0);
   // the cached result equals a fresh set-up with the same motion
   PlaneScene fresh(plane);
@@ -198,13 +199,19 @@ TEST(HandleMotionReusesTheSetUp)
     for (int d = 0; d < 3; ++d)
       difference = std::max(difference, std::abs(a->GetPoint(i)[d] - b->GetPoint(i)[d]));
   CHECK(difference <= 1e-12);
+  // moving the region's box selects again (and refactorizes: other positions)
+  const double wider[6] = { 0.85, 1.1, -0.1, 1.1, -0.1, 0.1 };
+  vtkBox::SafeDownCast(scene.handle->GetRegion())->SetBounds(wider);
+  scene.deform->Update();
+  CHECK(scene.handle->GetNumberOfSelections() == 2);
+  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 2);
   // a weight change refactorizes without resampling; a sampling change resamples
   scene.deform->SetBendWeight(2);
   scene.deform->Update();
-  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 2);
+  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 3);
   scene.deform->SetNumberOfSamples(600);
   scene.deform->Update();
-  CHECK(scene.deform->GetNumberOfSamplings() == 2 && scene.deform->GetNumberOfFactorizations() == 3);
+  CHECK(scene.deform->GetNumberOfSamplings() == 2 && scene.deform->GetNumberOfFactorizations() == 4);
 }
 
 TEST(ExternalSamplesMatchInternalSampling)
