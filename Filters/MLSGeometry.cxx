@@ -129,10 +129,12 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)
         boundary->MergingOff();
         boundary->Update();
         vtkPolyData* faces = boundary->GetOutput();
+        // The faces refer to renumbered points with their original ids in an array, or (the fast
+        // path for unstructured grids) to the grid's own points.
         auto* ids = vtkIdTypeArray::SafeDownCast(faces->GetPointData()->GetArray("MLSOriginalPointIds"));
-        if (ids)
+        if (ids || faces->GetNumberOfPoints() == grid->GetNumberOfPoints())
         {
-          simplices<3>(faces, 2, ids->GetPointer(0), offset, domain.triangles);
+          simplices<3>(faces, 2, ids ? ids->GetPointer(0) : nullptr, offset, domain.triangles);
         }
       }
       offset += static_cast<int>(set->GetNumberOfPoints());

@@ -237,6 +237,47 @@ TEST(ExternalSamplesMatchInternalSampling)
   CHECK(vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(1))->GetNumberOfPoints() == 4000);
 }
 
+TEST(CommonTranslationMovesEveryPointByIt)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  const double t[3] = { 0.2, -0.1, 0.3 };
+  scene.handle->SetTranslation(t[0], t[1], t[2]);
+  scene.fixed->SetRole(vtkConstraintRegion::Handle);
+  scene.fixed->SetTranslation(t[0], t[1], t[2]);
+  scene.deform->Update();
+  vtkDataArray* d = vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0))->GetPointData()->GetArray("Displacement");
+  double error = 0;
+  for (vtkIdType i = 0; i < d->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < 3; ++c)
+      error = std::max(error, std::abs(d->GetComponent(i, c) - t[c]));
+  std::printf("largest deviation from the common translation: %g of %g\n", error, std::sqrt(0.14));
+  CHECK(error <= 1e-8 * std::sqrt(0.14));
+}
+
+TEST(VolumeMeshWithoutSurfaceCells)
+{
+  // The boundary of the tetrahedra is the surface: surface samples lie on it.
+  vtkSmartPointer<vtkUnstructuredGrid> volume = tetrahedralBox(4);
+  vtkNew<vtkMLSSampler> sampler;
+  sampler->SetInputData(volume);
+  sampler->SetNumberOfSurfaceSamples(200);
+  sampler->SetNumberOfVolumeSamples(50);
+  sampler->Update();
+  vtkPolyData* centers = vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(0));
+  vtkDataArray* onSurface = centers->GetPointData()->GetArray("OnSurface");
+  double surfaceDistance = 0, volumeDistance = 0;
+  for (vtkIdType j = 0; j < centers->GetNumberOfPoints(); ++j)
+  {
+    const double* c = centers->GetPoint(j);
+    const double toBoundary = std::min({ c[0], 2 - c[0], c[1], 1 - c[1], c[2], 1 - c[2] });
+    (onSurface->GetTuple1(j) > 0 ? surfaceDistance : volumeDistance) += toBoundary / (onSurface->GetTuple1(j) > 0 ? 200 : 50);
+  }
+  std::printf("mean distance to the boundary: surface samples %g, volume samples %g\n", surfaceDistance, volumeDistance);
+  CHECK(centers->GetNumberOfPoints() == 250);
+  CHECK(surfaceDistance < 0.02 && volumeDistance > 0.1);
+}
+
 // ---- bad input: a clear error, the output is the unchanged input, nothing crashes ----
 namespace
 {
@@ -356,6 +397,32 @@ TEST(DuplicatePoints)
       difference = std::max(difference, std::abs(out->GetPoint(i)[d] - out->GetPoint(i + n)[d]));
   CHECK(difference == 0.0);
   CHECK(maxTargetError(doubled, out, HandleBox, Lift) <= 0.01 * Lift);
+}
+
+TEST(SamplerAndRegionBadInput)
+{
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkMLSSampler> sampler;
+  sampler->SetInputData(empty);
+  auto messages = MessageCollector::watch(sampler);
+  sampler->Update();
+  CHECK(messages->errorContains("no points"));
+  CHECK(vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(0))->GetNumberOfPoints() == 0);
+
+  vtkNew<vtkPolyData> coincident;
+  vtkNew<vtkPoints> same;
+  for (int i = 0; i < 20; ++i)
+    same->InsertNextPoint(1, 2, 3);
+  coincident->SetPoints(same);
+  sampler->SetInputData(coincident);
+  sampler->Update();
+  CHECK(messages->errorContains("coincide"));
+
+  vtkNew<vtkConstraintRegion> region;
+  region->SetInputData(figurePlane());
+  auto regionMessages = MessageCollector::watch(region);
+  region->Update(); // ImplicitFunction mode without a Region function
+  CHECK(regionMessages->errorContains("no Region function"));
 }
 
 TEST_MAIN
