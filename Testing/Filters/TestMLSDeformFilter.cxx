@@ -130,14 +130,10 @@ TEST(SurfaceAndVolumeDeformedTogether)
     CHECK(outVolume->GetPointData()->GetArray("Displacement") && outSurface->GetPointData()->GetArray("Displacement"));
     CHECK(volume->GetPointData()->GetArray("Displacement") == nullptr); // the input is untouched
   };
-  const double bottom[6] = { -1, 3, -1, 2, -0.01, 0.01 }, top[6] = { -1, 3, -1, 2, 0.99, 1.01 };
-
-  vtkNew<vtkMultiBlockDataSet> blocks;
-  blocks->SetBlock(0, volume);
-  blocks->SetBlock(1, surface);
-  {
-    PlaneScene scene(blocks);
-    scene.fixed->SetRegion(nullptr);
+  // Bottom fixed, top moved; returns the output (kept alive beyond the scene).
+  auto deformTogether = [](vtkDataObject* composite) {
+    const double bottom[6] = { -1, 3, -1, 2, -0.01, 0.01 }, top[6] = { -1, 3, -1, 2, 0.99, 1.01 };
+    PlaneScene scene(composite);
     vtkNew<vtkBox> b, t;
     b->SetBounds(bottom);
     t->SetBounds(top);
@@ -145,29 +141,28 @@ TEST(SurfaceAndVolumeDeformedTogether)
     scene.handle->SetRegion(t);
     scene.handle->SetTranslation(0.1, 0, 0.3);
     scene.deform->Update();
-    auto* out = vtkMultiBlockDataSet::SafeDownCast(scene.deform->GetOutputDataObject(0));
-    CHECK(out != nullptr);
-    check(blocks, out, vtkPointSet::SafeDownCast(out->GetBlock(0)), vtkPointSet::SafeDownCast(out->GetBlock(1)));
-  }
+    return vtkSmartPointer<vtkDataObject>(scene.deform->GetOutputDataObject(0));
+  };
+
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, volume);
+  blocks->SetBlock(1, surface);
+  const vtkSmartPointer<vtkDataObject> deformedBlocks = deformTogether(blocks);
+  auto* outBlocks = vtkMultiBlockDataSet::SafeDownCast(deformedBlocks);
+  CHECK(outBlocks != nullptr);
+  check(blocks, outBlocks, vtkPointSet::SafeDownCast(outBlocks->GetBlock(0)), vtkPointSet::SafeDownCast(outBlocks->GetBlock(1)));
+
   vtkNew<vtkPartitionedDataSetCollection> collection;
   vtkNew<vtkPartitionedDataSet> p0, p1;
   p0->SetPartition(0, volume);
   p1->SetPartition(0, surface);
   collection->SetPartitionedDataSet(0, p0);
   collection->SetPartitionedDataSet(1, p1);
-  {
-    PlaneScene scene(collection);
-    vtkNew<vtkBox> b, t;
-    b->SetBounds(bottom);
-    t->SetBounds(top);
-    scene.fixed->SetRegion(b);
-    scene.handle->SetRegion(t);
-    scene.handle->SetTranslation(0.1, 0, 0.3);
-    scene.deform->Update();
-    auto* out = vtkPartitionedDataSetCollection::SafeDownCast(scene.deform->GetOutputDataObject(0));
-    CHECK(out != nullptr);
-    check(collection, out, vtkPointSet::SafeDownCast(out->GetPartition(0, 0)), vtkPointSet::SafeDownCast(out->GetPartition(1, 0)));
-  }
+  const vtkSmartPointer<vtkDataObject> deformedCollection = deformTogether(collection);
+  auto* outCollection = vtkPartitionedDataSetCollection::SafeDownCast(deformedCollection);
+  CHECK(outCollection != nullptr);
+  check(collection, outCollection, vtkPointSet::SafeDownCast(outCollection->GetPartition(0, 0)),
+    vtkPointSet::SafeDownCast(outCollection->GetPartition(1, 0)));
 }
 
 TEST(HandleMotionReusesTheSetUp)
