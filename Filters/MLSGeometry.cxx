@@ -6,6 +6,7 @@
 #include <vtkCompositeDataIterator.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
 #include <vtkGenericCell.h>
 #include <vtkGeometryFilter.h>
 #include <vtkIdList.h>
@@ -53,6 +54,26 @@ std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped)
   return sets;
 }
 
+namespace
+{
+// Copies the coordinates of a float or double array (false for other types).
+template <typename Array>
+bool copyCoordinates(vtkDataArray* data, mlsdeform::Vec3* out)
+{
+  auto* array = Array::SafeDownCast(data);
+  if (!array)
+  {
+    return false;
+  }
+  const auto* in = array->GetPointer(0);
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    out[i] = mlsdeform::Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]);
+  }
+  return true;
+}
+}
+
 mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
 {
   mlsdeform::PointList out;
@@ -61,9 +82,13 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
     const vtkIdType n = set->GetNumberOfPoints();
     const std::size_t offset = out.size();
     out.resize(offset + n);
-    for (vtkIdType i = 0; i < n; ++i)
+    vtkDataArray* data = n > 0 ? set->GetPoints()->GetData() : nullptr;
+    if (n > 0 && !copyCoordinates<vtkFloatArray>(data, &out[offset]) && !copyCoordinates<vtkDoubleArray>(data, &out[offset]))
     {
-      set->GetPoint(i, out[offset + i].data());
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        set->GetPoint(i, out[offset + i].data());
+      }
     }
   }
   return out;

@@ -370,7 +370,8 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     {
       prescribed.push_back(r.prescribed);
     }
-    const Displacements w = model.solve(prescribed, this->TargetCorrections);
+    const SpaceDeformation::Solution solution = model.solve(prescribed, this->TargetCorrections);
+    const Displacements& w = solution.w;
     ++this->NumberOfSolves;
     long offset = 0;
     for (std::size_t s = 0; s < inSets.size(); ++s)
@@ -403,7 +404,7 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     }
     const double solveTime = secondsSince(solveStart);
 
-    const std::vector<double> residuals = model.regionResiduals(w, prescribed);
+    const std::vector<double>& residuals = solution.rmsResidual;
     double handleResidual = 0, fixedResidual = 0;
     for (std::size_t r = 0; r < regions.size(); ++r)
     {

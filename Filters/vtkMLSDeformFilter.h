@@ -22,7 +22,8 @@
  *
  * Output: the input's structure and types, points moved by d(x), point array "Displacement", and
  * field data NumberOfSamples (k), NumberOfIntegrationPoints (N), SetupTime and SolveTime (s),
- * HandleResidual and FixedResidual (largest distance of a region point from its target),
+ * HandleResidual and FixedResidual (the largest, over the regions of that role, of the RMS
+ * distance of the region's points from their targets),
  * ReciprocalCondition, Resampled and Refactorized (whether this update redid those steps).
  *
  * TargetCorrections re-solves with targets shifted by the residual (same factorization), which

@@ -58,8 +58,8 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progr
 void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
 {
   PointList positions;
-  std::vector<double> scale;
-  RegionSizes.clear();
+  RegionScale.clear();
+  RegionBegin.assign(1, 0);
   for (std::size_t r = 0; r < regions.size(); ++r)
   {
     const DirichletRegion& region = regions[r];
@@ -69,8 +69,8 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
     }
     requireFinite(region.positions, "region positions");
     positions.insert(positions.end(), region.positions.begin(), region.positions.end());
-    scale.insert(scale.end(), region.positions.size(), std::sqrt(region.weight / region.positions.size()));
-    RegionSizes.push_back(static_cast<int>(region.positions.size()));
+    RegionScale.push_back(region.weight / region.positions.size());
+    RegionBegin.push_back(static_cast<long>(positions.size()));
   }
   std::vector<int> outside;
   RegionSubspace = subspaceMatrix(Basis, positions, &outside);
@@ -80,7 +80,14 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
       std::to_string(positions[outside[0]].x()) + ", " + std::to_string(positions[outside[0]].y()) + ", " +
       std::to_string(positions[outside[0]].z()) + "); resample on a geometry that contains the regions");
   }
-  RegionScale = Eigen::Map<Eigen::VectorXd>(scale.data(), static_cast<long>(scale.size()));
+  RegionNormals.clear();
+  RegionNormal = SparseMatrix(Basis.size(), Basis.size());
+  for (std::size_t r = 0; r < RegionScale.size(); ++r)
+  {
+    const SparseRowMatrix Phi = RegionSubspace.middleRows(RegionBegin[r], RegionBegin[r + 1] - RegionBegin[r]);
+    RegionNormals.push_back(SparseMatrix(RegionScale[r] * (Phi.transpose() * Phi)));
+    RegionNormal += RegionNormals.back();
+  }
   Factor.reset();
 }
 
@@ -94,8 +101,6 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   {
     energyWeight[i] = i % 4 == 3 ? weights.bend : weights.stretch;
   }
-  const SparseRowMatrix FPhi = RegionScale.asDiagonal() * RegionSubspace;
-  RegionNormal = SparseMatrix(FPhi.transpose() * FPhi);
   System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy) + weights.fix * RegionNormal;
   Factor = std::make_unique<SparseCholesky>();
   Factor->compute(System);
@@ -110,37 +115,40 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   }
 }
 
-Displacements SpaceDeformation::stackPrescribed(const std::vector<Displacements>& prescribed) const
+void SpaceDeformation::checkPrescribed(const std::vector<Displacements>& prescribed) const
 {
-  if (prescribed.size() != RegionSizes.size())
+  if (prescribed.size() != RegionScale.size())
   {
     throw InvalidInputException("one prescribed displacement set per region is needed");
   }
-  Displacements out(RegionScale.size(), 3);
-  long offset = 0;
   for (std::size_t r = 0; r < prescribed.size(); ++r)
   {
-    if (prescribed[r].rows() != RegionSizes[r] || !prescribed[r].allFinite())
+    if (prescribed[r].rows() != RegionBegin[r + 1] - RegionBegin[r] || !prescribed[r].allFinite())
     {
       throw InvalidInputException("region " + std::to_string(r) + ": prescribed displacements missing or not finite");
     }
-    out.middleRows(offset, RegionSizes[r]) = prescribed[r];
-    offset += RegionSizes[r];
   }
-  return out;
 }
 
-Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescribed, int corrections) const
+SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacements>& prescribed, int corrections) const
 {
   if (!Factor)
   {
     throw SolverException("solve() before a successful factorize()");
   }
-  const Displacements dbar = stackPrescribed(prescribed);
-  // b0 = gamma_f Phi^T F^T F dbar, the right-hand side of eq. 14: the only pass over the regions.
-  const Displacements b0 = Weights.fix * multiplyTransposed(RegionSubspace, RegionScale.cwiseProduct(RegionScale).asDiagonal() * dbar);
+  checkPrescribed(prescribed);
+  // b_r = Phi_r^T F_r^2 dbar_r; the right-hand side of eq. 14 is gamma_f sum_r b_r.
+  std::vector<Displacements> b;
+  Displacements b0 = Displacements::Zero(Basis.size(), 3);
+  for (std::size_t r = 0; r < prescribed.size(); ++r)
+  {
+    b.push_back(RegionScale[r] * multiplyTransposed(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], prescribed[r]));
+    b0 += Weights.fix * b.back();
+  }
   Displacements rhs = b0;
-  Displacements w = Factor->solve(rhs);
+  Solution solution;
+  Displacements& w = solution.w;
+  w = Factor->solve(rhs);
   for (int i = 0; i < corrections; ++i)
   {
     // targets += dbar - Phi w, i.e. rhs += gamma_f Phi^T F^T F (dbar - Phi w) = b0 - gamma_f A w
@@ -151,20 +159,14 @@ Displacements SpaceDeformation::solve(const std::vector<Displacements>& prescrib
   {
     throw SolverException("the solution of eq. 14 is not finite");
   }
-  return w;
+  for (std::size_t r = 0; r < prescribed.size(); ++r)
+  {
+    const double squared = (w.transpose() * (RegionNormals[r] * w)).trace() - 2 * (w.transpose() * b[r]).trace() +
+      RegionScale[r] * prescribed[r].squaredNorm();
+    const double weight = RegionScale[r] * (RegionBegin[r + 1] - RegionBegin[r]);
+    solution.rmsResidual.push_back(weight > 0 ? std::sqrt(std::max(0.0, squared) / weight) : 0.0);
+  }
+  return solution;
 }
 
-std::vector<double> SpaceDeformation::regionResiduals(const Displacements& w, const std::vector<Displacements>& prescribed) const
-{
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> d(RegionSubspace.rows(), 3);
-  multiplyRows(RegionSubspace, w, 0, RegionSubspace.rows(), d.data());
-  std::vector<double> out;
-  long offset = 0;
-  for (std::size_t r = 0; r < RegionSizes.size(); ++r)
-  {
-    out.push_back((d.middleRows(offset, RegionSizes[r]) - prescribed[r]).rowwise().norm().maxCoeff());
-    offset += RegionSizes[r];
-  }
-  return out;
-}
 } // namespace mlsdeform

@@ -49,30 +49,36 @@ public:
   /// term picks the least stretched of the equally bent results.
   void factorize(const EnergyWeights& weights);
 
-  /// Coefficients w (k x 3) of eq. 14 for the prescribed displacements of each region (one row
-  /// per region position, in the order given to setRegions). With corrections > 0, the targets
-  /// are then shifted by the remaining residual and eq. 14 solved again (a Bregman / augmented
-  /// Lagrangian iteration): each correction costs one back-substitution and brings the result
-  /// closer to min E subject to d(x_i) = dbar_i, beyond what the penalty gamma_f alone reaches.
-  Displacements solve(const std::vector<Displacements>& prescribed, int corrections = 0) const;
+  struct Solution
+  {
+    Displacements w;                 // the MLS coefficients, k x 3
+    std::vector<double> rmsResidual; // per region: sqrt(mean_i |d(x_i) - dbar_i|^2)
+  };
 
-  /// max_i |d(x_i) - dbar_i| over each region's positions.
-  std::vector<double> regionResiduals(const Displacements& w, const std::vector<Displacements>& prescribed) const;
+  /// Solves eq. 14 for the prescribed displacements of each region (one row per region
+  /// position, in the order given to setRegions). With corrections > 0, the targets are then
+  /// shifted by the remaining residual and eq. 14 solved again (a Bregman / augmented Lagrangian
+  /// iteration): each correction costs one back-substitution and k-sized products, and brings
+  /// the result closer to min E subject to d(x_i) = dbar_i than the penalty gamma_f alone.
+  /// The only passes over the region points are the right-hand sides b_r = Phi_r^T F_r^2 dbar_r;
+  /// residuals come from |F_r(Phi_r w - dbar_r)|^2 = w^T A_r w - 2 w^T b_r + |F_r dbar_r|^2.
+  Solution solve(const std::vector<Displacements>& prescribed, int corrections = 0) const;
 
   const MLSBasis& basis() const { return Basis; }
   std::size_t numberOfIntegrationPoints() const { return Energy.rows() / 4; }
   double reciprocalCondition() const { return ReciprocalCondition; }
 
 private:
-  Displacements stackPrescribed(const std::vector<Displacements>& prescribed) const;
+  void checkPrescribed(const std::vector<Displacements>& prescribed) const;
 
   MLSBasis Basis;
   SparseRowMatrix Energy;          // D = [G; L] interleaved, see SubspaceOperators.h
   SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
-  Eigen::VectorXd RegionScale;     // F_ii
-  std::vector<int> RegionSizes;
+  std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
+  std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end
   EnergyWeights Weights;
-  SparseMatrix RegionNormal;       // A = Phi^T F^T F Phi (k x k)
+  std::vector<SparseMatrix> RegionNormals; // A_r = Phi_r^T F_r^2 Phi_r (k x k) per region
+  SparseMatrix RegionNormal;       // A = sum_r A_r
   SparseMatrix System;             // the matrix of eq. 14
   std::unique_ptr<SparseCholesky> Factor;
   double ReciprocalCondition = 0;

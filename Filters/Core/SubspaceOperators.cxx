@@ -113,7 +113,7 @@ void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, 
   }
 }
 
-Displacements multiplyTransposed(const SparseRowMatrix& A, const Displacements& X)
+Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X)
 {
   Displacements result = Displacements::Zero(A.cols(), 3);
   const auto* outer = A.outerIndexPtr();
@@ -123,11 +123,11 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, const Displacements& 
   {
     Displacements local = Displacements::Zero(A.cols(), 3);
 #pragma omp for schedule(static)
-    for (long i = 0; i < A.rows(); ++i)
+    for (long i = begin; i < end; ++i)
     {
       for (auto a = outer[i]; a < outer[i + 1]; ++a)
       {
-        local.row(inner[a]) += value[a] * X.row(i);
+        local.row(inner[a]) += value[a] * X.row(i - begin);
       }
     }
 #pragma omp critical

@@ -19,8 +19,9 @@ SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions
 /// one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at many points).
 void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out);
 
-/// A^T X for a dense X with three columns, in one parallel pass over the rows of A.
-Displacements multiplyTransposed(const SparseRowMatrix& A, const Displacements& X);
+/// A(begin:end, :)^T X for a dense X with three columns (one row per row of that range), in one
+/// parallel pass over those rows of A.
+Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X);
 
 /// D (4N x k) at the integration points q_i with volumes V_i; the gradient rows are multiplied by
 /// sqrt(V_i) * gradientScale, the Laplacian rows by sqrt(V_i) * laplacianScale.
