@@ -232,6 +232,23 @@ void KdTree::withinRadius(const Vec3& x, double radius, std::vector<int>& indice
 void KdTree::containing(const Vec3& x, std::vector<int>& indices) const
 {
   indices.clear();
+  visitContaining(x, [&](int j) {
+    indices.push_back(j);
+    return true;
+  });
+  std::sort(indices.begin(), indices.end());
+}
+
+bool KdTree::containedInAtLeast(const Vec3& x, int count) const
+{
+  int found = 0;
+  visitContaining(x, [&](int) { return ++found < count; });
+  return found >= count;
+}
+
+template <typename Visit>
+void KdTree::visitContaining(const Vec3& x, Visit visit) const
+{
   if (Nodes.empty() || Radii.size() != Points.size())
   {
     return;
@@ -251,9 +268,9 @@ void KdTree::containing(const Vec3& x, std::vector<int>& indices) const
       for (int i = node.begin; i < node.end; ++i)
       {
         const int j = Order[i];
-        if ((Points[j] - x).squaredNorm() < Radii[j] * Radii[j])
+        if ((Points[j] - x).squaredNorm() < Radii[j] * Radii[j] && !visit(j))
         {
-          indices.push_back(j);
+          return;
         }
       }
     }
@@ -263,6 +280,5 @@ void KdTree::containing(const Vec3& x, std::vector<int>& indices) const
       stack.push_back(node.right);
     }
   }
-  std::sort(indices.begin(), indices.end());
 }
 } // namespace mlsdeform

@@ -22,8 +22,10 @@ public:
   void kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const;
   /// All points with |p - x| < radius.
   void withinRadius(const Vec3& x, double radius, std::vector<int>& indices) const;
-  /// All points i with |p_i - x| < radius_i (requires setRadii).
+  /// All points i with |p_i - x| < radius_i (requires setRadii), in increasing order.
   void containing(const Vec3& x, std::vector<int>& indices) const;
+  /// Whether at least count balls contain x (stops as soon as it knows; requires setRadii).
+  bool containedInAtLeast(const Vec3& x, int count) const;
 
   std::size_t size() const { return Points.size(); }
 
@@ -36,6 +38,9 @@ private:
     int left = -1, right = -1;
   };
   int buildNode(int begin, int end);
+  /// Calls visit(j) for every ball j containing x until visit returns false.
+  template <typename Visit>
+  void visitContaining(const Vec3& x, Visit visit) const;
   double maxRadiusBelow(int node);
   static double squaredDistanceToBox(const Node& node, const Vec3& x)
   {

@@ -302,13 +302,12 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
 #pragma omp parallel
     {
       std::vector<double> local(centers.size(), 0.0);
-      std::vector<int> indices, covering;
+      std::vector<int> indices;
       std::vector<double> d2;
 #pragma omp for schedule(static)
       for (long i = 0; i < count; ++i)
       {
-        reachTree.containing((*list)[i], covering);
-        if (static_cast<int>(covering.size()) >= s)
+        if (reachTree.containedInAtLeast((*list)[i], s))
         {
           continue;
         }
