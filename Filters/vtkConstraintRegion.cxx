@@ -142,7 +142,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     ++this->NumberOfSelections;
   }
   const mlsdeform::PointList& selected = this->Selected->positions;
-  if (selected.empty())
+  if (selected.empty() && input->GetNumberOfElements(vtkDataObject::POINT) > 0)
   {
     vtkWarningMacro(<< GetRoleName(this->Role) << " region selects no point.");
   }

@@ -13,6 +13,7 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
+#include <vtkMultiProcessController.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
@@ -252,6 +253,17 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
   if (skipped > 0)
   {
     vtkWarningMacro(<< skipped << " block(s) are not point sets and are passed through unchanged.");
+  }
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    if (input->GetNumberOfElements(vtkDataObject::POINT) == 0)
+    {
+      return 1; // this process holds no piece
+    }
+    vtkWarningMacro(<< "Running on " << controller->GetNumberOfProcesses()
+                    << " processes: each deforms its own piece with its own samples and regions, so pieces may not "
+                       "match at their boundaries. Run on one process for a consistent deformation.");
   }
   Cache& cache = *this->Cached;
   bool resampled = false, refactorized = false;
