@@ -179,6 +179,29 @@ std::string pointsSignature(const std::vector<vtkPointSet*>& sets)
   return s.str();
 }
 
+std::string cellsSignature(const std::vector<vtkPointSet*>& sets)
+{
+  std::ostringstream s;
+  auto add = [&s](vtkObject* cells) { s << cells << ':' << (cells ? cells->GetMTime() : 0) << ' '; };
+  for (vtkPointSet* set : sets)
+  {
+    if (auto* poly = vtkPolyData::SafeDownCast(set))
+    {
+      add(poly->GetVerts());
+      add(poly->GetLines());
+      add(poly->GetPolys());
+      add(poly->GetStrips());
+    }
+    else if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
+    {
+      add(grid->GetCells());
+      add(grid->GetCellTypesArray());
+    }
+    s << set->GetNumberOfCells() << ';';
+  }
+  return s.str();
+}
+
 vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& positions,
   const std::vector<std::pair<std::string, const std::vector<double>*>>& arrays)
 {

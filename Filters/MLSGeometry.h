@@ -31,6 +31,10 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets);
 /// whenever the points do.
 std::string pointsSignature(const std::vector<vtkPointSet*>& sets);
 
+/// A signature of the cells (array identity and modification time) that changes whenever the
+/// connectivity does.
+std::string cellsSignature(const std::vector<vtkPointSet*>& sets);
+
 /// Points (with vertices) carrying the given point arrays, one value per point.
 vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& points,
   const std::vector<std::pair<std::string, const std::vector<double>*>>& arrays);

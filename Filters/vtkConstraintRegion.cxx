@@ -121,22 +121,21 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   }
 
   // Select positions, unless only the motion changed since the last selection.
-  std::ostringstream key;
-  key << mlsgeometry::pointsSignature(sets) << ' ' << input->GetMTime() << ' ' << this->SelectionMode << ' ' << this->InsideOut
-      << ' ' << this->Range[0] << ' ' << this->Range[1] << ' ' << (this->Region ? this->Region->GetMTime() : 0) << ' '
-      << this->Region;
-  if (vtkInformation* array = this->GetInputArrayInformation(0))
+  std::vector<vtkDataArray*> values;
+  for (vtkPointSet* set : sets)
   {
-    key << ' ' << (array->Has(vtkDataObject::FIELD_NAME()) ? array->Get(vtkDataObject::FIELD_NAME()) : "");
+    values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set) : nullptr);
+  }
+  std::ostringstream key;
+  key << mlsgeometry::pointsSignature(sets) << ' ' << this->SelectionMode << ' ' << this->InsideOut << ' ' << this->Range[0] << ' '
+      << this->Range[1] << ' ' << this->Region << ' ' << (this->Region ? this->Region->GetMTime() : 0);
+  for (vtkDataArray* array : values)
+  {
+    key << ' ' << array << ':' << (array ? array->GetMTime() : 0);
   }
   if (key.str() != this->Selected->key)
   {
     this->Selected->key.clear();
-    std::vector<vtkDataArray*> values;
-    for (vtkPointSet* set : sets)
-    {
-      values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set) : nullptr);
-    }
     this->Selected->positions = selectPositions(sets, values, this->SelectionMode, this->Region, this->InsideOut, this->Range);
     this->Selected->key = key.str();
     ++this->NumberOfSelections;

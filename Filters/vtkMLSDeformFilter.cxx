@@ -295,7 +295,7 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     }
     else
     {
-      key << "internal " << mlsgeometry::pointsSignature(inSets) << this->NumberOfSamples << ' ' << this->VolumeSampleFraction << ' '
+      key << "internal " << mlsgeometry::pointsSignature(inSets) << mlsgeometry::cellsSignature(inSets) << this->NumberOfSamples << ' ' << this->VolumeSampleFraction << ' '
           << this->IntegrationPointRatio << ' ' << this->LloydIterations << ' ' << this->Cover << ' ' << this->RandomSeed;
     }
     if (!cache.model || key.str() != cache.samplesKey)

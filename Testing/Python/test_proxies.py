@@ -102,6 +102,9 @@ check(np.abs(vtk_to_numpy(sm.Fetch(part).GetPoints().GetData()) - x).max() == 0,
 handle.Translation = [0.1 * height, 0, 0]
 deformed.UpdatePipeline()
 check(field(deformed, 'Resampled') == 0 and field(deformed, 'Refactorized') == 0, 'a new handle motion reuses the set-up')
+fixed.Region.Length = [2, 2, 0.12 * height + 0.01]
+deformed.UpdatePipeline()
+check(field(deformed, 'Resampled') == 0 and field(deformed, 'Refactorized') == 1, 'a changed region refactorizes without resampling')
 check(field(deformed, 'SolveTime') < field(deformed, 'SetupTime'), 'a variation is cheaper than the set-up')
 
 external = MLSDeform(Input=part, Regions=[fixed, handle], Samples=OutputPort(sampler, 0), IntegrationPoints=OutputPort(sampler, 1))
