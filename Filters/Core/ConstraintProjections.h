@@ -1,0 +1,30 @@
+// Shape-Up projections (Bouaziz et al. [21], paper section 6.2): for the current positions of a
+// constrained point set, the closest positions (in the least-squares sense) that satisfy the
+// constraint. The alternating optimization pulls the deformation towards them (eq. 15-17).
+#pragma once
+
+#include "CoreTypes.h"
+
+namespace mlsdeform
+{
+/// Onto the least-squares plane (normal: the covariance's smallest principal direction).
+PointList projectToPlane(const PointList& x);
+
+/// Onto the least-squares plane, then onto the least-squares circle in it (algebraic fit of
+/// Kasa, refined by Gauss-Newton on the geometric distances).
+PointList projectToCircle(const PointList& x);
+
+/// Onto the least-squares cylinder of Eberly, "Least Squares Fitting of Data by Linear or
+/// Quadratic Structures" (Geometric Tools, 2019), section "Fitting a Cylinder" [36]: for an axis
+/// direction W the center and radius have closed forms, and W minimizes the remaining error.
+/// axis is the search's start and returns the fitted direction (zero: search all directions).
+PointList projectToCylinder(const PointList& x, Vec3& axis);
+
+/// The best similarity transform (rotation, translation, uniform scale) of the rest positions
+/// onto x, applied to the rest positions (Umeyama 1991): the feature-line constraint.
+PointList projectToSimilarity(const PointList& rest, const PointList& x);
+
+/// The best rigid transform (rotation, translation) of the rest positions onto x, applied to the
+/// rest positions (Kabsch / Umeyama without scale): the rigid constraint.
+PointList projectToRigid(const PointList& rest, const PointList& x);
+} // namespace mlsdeform

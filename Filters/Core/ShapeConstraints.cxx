@@ -1,0 +1,222 @@
+#include "ShapeConstraints.h"
+
+#include "ConstraintProjections.h"
+#include "Sampling.h"
+#include "SubspaceOperators.h"
+
+namespace mlsdeform
+{
+namespace
+{
+std::size_t minimumPoints(ConstraintType type)
+{
+  switch (type)
+  {
+    case ConstraintType::Cylinder:
+      return 6;
+    case ConstraintType::FeatureLine:
+    case ConstraintType::Rigid:
+      return 2;
+    default:
+      return 3;
+  }
+}
+}
+
+const char* constraintName(ConstraintType type)
+{
+  static const char* names[] = { "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid" };
+  return names[static_cast<int>(type)];
+}
+
+ShapeConstraints::ShapeConstraints(const MLSBasis& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
+  : Formulation(formulation)
+  , Normal(basis.size(), basis.size())
+{
+  for (std::size_t t = 0; t < constraints.size(); ++t)
+  {
+    const ShapeConstraint& c = constraints[t];
+    const std::string which = std::string(constraintName(c.type)) + " constraint " + std::to_string(t);
+    if (c.positions.size() < minimumPoints(c.type))
+    {
+      throw InvalidInputException(which + " has " + std::to_string(c.positions.size()) + " point(s); it needs at least " +
+        std::to_string(minimumPoints(c.type)));
+    }
+    requireFinite(c.positions, (which + " positions").c_str());
+    Set set;
+    set.constraint = c;
+    std::vector<int> outside;
+    set.subspace = subspaceMatrix(basis, c.positions, &outside);
+    if (!outside.empty())
+    {
+      throw InvalidInputException(which + ": " + std::to_string(outside.size()) + " position(s) lie outside every MLS support");
+    }
+    const long n = static_cast<long>(c.positions.size());
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& p : c.positions)
+    {
+      mean += p / static_cast<double>(n);
+    }
+    for (long i = 1; i < n; ++i)
+    {
+      if ((c.positions[i] - mean).squaredNorm() < (c.positions[set.pivot] - mean).squaredNorm())
+      {
+        set.pivot = static_cast<int>(i);
+      }
+    }
+    // C_t Phi_t, row by row.
+    std::vector<Eigen::Triplet<double>> entries;
+    const auto& Phi = set.subspace;
+    auto addRow = [&](long row, long i, double scale) {
+      for (SparseRowMatrix::InnerIterator it(Phi, i); it; ++it)
+      {
+        entries.emplace_back(row, it.col(), scale * it.value());
+      }
+    };
+    // 1^T Phi_t / n, the mean row of the mean-centered formulation: dense over the set's samples.
+    Eigen::SparseVector<double> meanRow(Phi.cols());
+    if (formulation == ConstraintFormulation::MeanCentered)
+    {
+      const Eigen::VectorXd dense = Phi.transpose() * Eigen::VectorXd::Constant(n, 1.0 / n);
+      meanRow = dense.sparseView();
+    }
+    long rows = 0;
+    for (long i = 0; i < n; ++i)
+    {
+      if (formulation == ConstraintFormulation::Sparse)
+      {
+        if (i == set.pivot)
+        {
+          continue;
+        }
+        addRow(rows, i, 1.0); // x_i - x_p (section 6.1)
+        addRow(rows, set.pivot, -1.0);
+      }
+      else
+      {
+        addRow(rows, i, 1.0); // x_i - mean (eq. 16)
+        for (Eigen::SparseVector<double>::InnerIterator it(meanRow); it; ++it)
+        {
+          entries.emplace_back(rows, it.index(), -it.value());
+        }
+      }
+      ++rows;
+    }
+    set.centeredSubspace.resize(rows, static_cast<long>(basis.size()));
+    set.centeredSubspace.setFromTriplets(entries.begin(), entries.end());
+    set.scale = c.weight / n;
+    Normal += SparseMatrix(set.scale * (set.centeredSubspace.transpose() * set.centeredSubspace));
+    Sets.push_back(std::move(set));
+  }
+}
+
+PointList ShapeConstraints::positionsOf(const Set& set, const Displacements& w) const
+{
+  const long n = set.subspace.rows();
+  std::vector<double> d(3 * n);
+  multiplyRows(set.subspace, w, 0, n, d.data());
+  PointList y = set.constraint.positions;
+  for (long i = 0; i < n; ++i)
+  {
+    y[i] += Vec3(d[3 * i], d[3 * i + 1], d[3 * i + 2]);
+  }
+  return y;
+}
+
+Displacements ShapeConstraints::centered(const Set& set, const PointList& v) const
+{
+  const long n = static_cast<long>(v.size());
+  Displacements out(set.centeredSubspace.rows(), 3);
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : v)
+  {
+    mean += p / static_cast<double>(n);
+  }
+  long row = 0;
+  for (long i = 0; i < n; ++i)
+  {
+    if (Formulation == ConstraintFormulation::Sparse && i == set.pivot)
+    {
+      continue;
+    }
+    out.row(row++) = (v[i] - (Formulation == ConstraintFormulation::Sparse ? v[set.pivot] : mean)).transpose();
+  }
+  return out;
+}
+
+std::vector<PointList> ShapeConstraints::project(const Displacements& w) const
+{
+  std::vector<PointList> projections;
+  for (const Set& set : Sets)
+  {
+    const PointList y = positionsOf(set, w);
+    const PointList& rest = set.constraint.positions;
+    switch (set.constraint.type)
+    {
+      case ConstraintType::Planarity:
+        projections.push_back(projectToPlane(y));
+        break;
+      case ConstraintType::Circularity:
+        projections.push_back(projectToCircle(y));
+        break;
+      case ConstraintType::Cylinder:
+        projections.push_back(projectToCylinder(y, set.axis));
+        break;
+      case ConstraintType::FeatureLine:
+        projections.push_back(projectToSimilarity(rest, y));
+        break;
+      case ConstraintType::Rigid:
+        projections.push_back(projectToRigid(rest, y));
+        break;
+    }
+  }
+  return projections;
+}
+
+Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& projections) const
+{
+  Displacements rhs = Displacements::Zero(Normal.rows(), 3);
+  for (std::size_t t = 0; t < Sets.size(); ++t)
+  {
+    const Set& set = Sets[t];
+    PointList offset = projections[t]; // P_t - x_t: the displacement the projection asks for
+    for (std::size_t i = 0; i < offset.size(); ++i)
+    {
+      offset[i] -= set.constraint.positions[i];
+    }
+    rhs += set.scale * multiplyTransposed(set.centeredSubspace, 0, set.centeredSubspace.rows(), centered(set, offset));
+  }
+  return rhs;
+}
+
+std::vector<double> ShapeConstraints::residuals(const Displacements& w, const std::vector<PointList>& projections) const
+{
+  std::vector<double> out;
+  for (std::size_t t = 0; t < Sets.size(); ++t)
+  {
+    const PointList y = positionsOf(Sets[t], w);
+    double largest = 0;
+    for (std::size_t i = 0; i < y.size(); ++i)
+    {
+      largest = std::max(largest, (y[i] - projections[t][i]).norm());
+    }
+    out.push_back(largest);
+  }
+  return out;
+}
+
+double ShapeConstraints::energy(const Displacements& w, const std::vector<PointList>& projections) const
+{
+  double e = 0;
+  for (std::size_t t = 0; t < Sets.size(); ++t)
+  {
+    PointList difference = positionsOf(Sets[t], w);
+    for (std::size_t i = 0; i < difference.size(); ++i)
+    {
+      difference[i] -= projections[t][i];
+    }
+    e += Sets[t].scale * centered(Sets[t], difference).squaredNorm();
+  }
+  return e;
+}
+} // namespace mlsdeform
