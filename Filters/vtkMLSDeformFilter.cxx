@@ -382,7 +382,7 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     {
       prescribed.push_back(r.prescribed);
     }
-    const SpaceDeformation::Solution solution = model.solve(prescribed, this->TargetCorrections);
+    const SpaceDeformation::Solution solution = model.solve(prescribed);
     const Displacements& w = solution.w;
     ++this->NumberOfSolves;
     long offset = 0;
@@ -449,7 +449,6 @@ void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StretchWeight: " << this->StretchWeight << "\n"
      << indent << "BendWeight: " << this->BendWeight << "\n"
      << indent << "FixWeight: " << this->FixWeight << "\n"
-     << indent << "TargetCorrections: " << this->TargetCorrections << "\n"
      << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n"
      << indent << "VolumeSampleFraction: " << this->VolumeSampleFraction << "\n"
      << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"

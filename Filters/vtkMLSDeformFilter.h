@@ -9,9 +9,9 @@
  * displacements. Every point of every block of the input is moved by the same d(x), so a surface
  * and a volume mesh sharing points stay consistent.
  *
- * Energies are unit-free (lengths in bounding-box diagonals, volumes as fractions of the sampled
- * volume) and each region's term is divided by its number of points (paper section 7), so the
- * weights mean the same for any model. A stretching weight of at least 1e-6 * BendWeight is always
+ * Each term is divided by its number of points (regions) or integration points (energies), as
+ * section 7 prescribes, and scaled by the model's length so that the weights mean the same for
+ * any model size: targets (FixWeight ~ 1000) come first, smoothness (~ 1) last. A stretching weight of at least 1e-6 * BendWeight is always
  * used: it picks, among equally bent results, the least stretched one (pure bending alone does not
  * determine motions normal to a flat configuration).
  *
@@ -25,9 +25,6 @@
  * HandleResidual and FixedResidual (the largest, over the regions of that role, of the RMS
  * distance of the region's points from their targets),
  * ReciprocalCondition, Resampled and Refactorized (whether this update redid those steps).
- *
- * TargetCorrections re-solves with targets shifted by the residual (same factorization), which
- * brings the regions onto their targets closely at the default FixWeight.
  *
  * Set-up is cached: when only a handle's motion changes, the update is a right-hand side, a
  * back-substitution and a sparse product at the points.
@@ -61,15 +58,6 @@ public:
   /// gamma_f, weight of the handle and fixed targets (eq. 14; default 1000).
   vtkSetClampMacro(FixWeight, double, 0.0, 1e12);
   vtkGetMacro(FixWeight, double);
-  ///@}
-
-  ///@{
-  /// Target corrections per solve (default 5): after solving eq. 14 the targets are shifted by
-  /// the residual and the system solved again, each time with the same factorization, so that
-  /// handle and fixed regions are met closely without an ill-conditioning FixWeight. 0 gives the
-  /// plain penalty solution of eq. 14.
-  vtkSetClampMacro(TargetCorrections, int, 0, 100);
-  vtkGetMacro(TargetCorrections, int);
   ///@}
 
   ///@{
@@ -131,7 +119,6 @@ protected:
   double StretchWeight = 0.0;
   double BendWeight = 1.0;
   double FixWeight = 1000.0;
-  int TargetCorrections = 5;
   int NumberOfSamples = 1000;
   double VolumeSampleFraction = 0.25;
   double IntegrationPointRatio = 4.0;

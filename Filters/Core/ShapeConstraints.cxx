@@ -205,6 +205,22 @@ std::vector<double> ShapeConstraints::residuals(const Displacements& w, const st
   return out;
 }
 
+double ShapeConstraints::largestMotion(const Displacements& dw) const
+{
+  double largest = 0;
+  for (const Set& set : Sets)
+  {
+    const long n = set.subspace.rows();
+    std::vector<double> d(3 * n);
+    multiplyRows(set.subspace, dw, 0, n, d.data());
+    for (long i = 0; i < n; ++i)
+    {
+      largest = std::max(largest, Vec3(d[3 * i], d[3 * i + 1], d[3 * i + 2]).norm());
+    }
+  }
+  return largest;
+}
+
 double ShapeConstraints::energy(const Displacements& w, const std::vector<PointList>& projections) const
 {
   double e = 0;

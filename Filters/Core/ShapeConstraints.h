@@ -54,6 +54,10 @@ public:
   /// Per set: the largest distance of the current positions from their projections.
   std::vector<double> residuals(const Displacements& w, const std::vector<PointList>& projections) const;
 
+  /// The largest |Phi_t dw| over all constrained points: how far a change dw of the
+  /// coefficients moves them.
+  double largestMotion(const Displacements& dw) const;
+
   /// Constraint energy sum_t weight_t / n_t |C_t (y_t - P_t)|^2 of the current positions y_t.
   double energy(const Displacements& w, const std::vector<PointList>& projections) const;
 

@@ -52,7 +52,9 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progr
     throw InvalidInputException("the integration points have zero total volume");
   }
   const double l = largestSideOf(samples.centers, samples.integrationPoints);
-  Energy = energyMatrix(Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l), std::sqrt(l), progress);
+  Length = l;
+  const double N = static_cast<double>(samples.integrationPoints.size());
+  Energy = energyMatrix(Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);
 }
 
 void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
@@ -81,13 +83,17 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
       std::to_string(positions[outside[0]].z()) + "); resample on a geometry that contains the regions");
   }
   RegionNormals.clear();
-  RegionNormal = SparseMatrix(Basis.size(), Basis.size());
   for (std::size_t r = 0; r < RegionScale.size(); ++r)
   {
     const SparseRowMatrix Phi = RegionSubspace.middleRows(RegionBegin[r], RegionBegin[r + 1] - RegionBegin[r]);
     RegionNormals.push_back(SparseMatrix(RegionScale[r] * (Phi.transpose() * Phi)));
-    RegionNormal += RegionNormals.back();
   }
+  Factor.reset();
+}
+
+void SpaceDeformation::setConstraints(const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
+{
+  Constraints = constraints.empty() ? nullptr : std::make_unique<ShapeConstraints>(Basis, constraints, formulation);
   Factor.reset();
 }
 
@@ -101,7 +107,15 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   {
     energyWeight[i] = i % 4 == 3 ? weights.bend : weights.stretch;
   }
-  System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy) + weights.fix * RegionNormal;
+  System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy);
+  for (const SparseMatrix& A : RegionNormals)
+  {
+    System += weights.fix * A;
+  }
+  if (Constraints)
+  {
+    System += weights.constraint * Constraints->normalMatrix();
+  }
   Factor = std::make_unique<SparseCholesky>();
   Factor->compute(System);
   ReciprocalCondition = Factor->reciprocalCondition();
@@ -130,7 +144,7 @@ void SpaceDeformation::checkPrescribed(const std::vector<Displacements>& prescri
   }
 }
 
-SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacements>& prescribed, int corrections) const
+SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacements>& prescribed, const IterationSettings& settings) const
 {
   if (!Factor)
   {
@@ -145,15 +159,29 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
     b.push_back(RegionScale[r] * multiplyTransposed(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], prescribed[r]));
     b0 += Weights.fix * b.back();
   }
-  Displacements rhs = b0;
   Solution solution;
   Displacements& w = solution.w;
-  w = Factor->solve(rhs);
-  for (int i = 0; i < corrections; ++i)
+  if (!Constraints)
   {
-    // targets += dbar - Phi w, i.e. rhs += gamma_f Phi^T F^T F (dbar - Phi w) = b0 - gamma_f A w
-    rhs += b0 - Weights.fix * (RegionNormal * w);
-    w = Factor->solve(rhs);
+    w = Factor->solve(b0);
+  }
+  else
+  {
+    // Section 6: local step (projections of the current positions; the rest shape first), then
+    // the global step (eq. 17) with them.
+    w = Displacements::Zero(Basis.size(), 3);
+    std::vector<PointList> projections = Constraints->project(w);
+    solution.converged = false;
+    for (int i = 0; i < settings.maxIterations && !solution.converged; ++i)
+    {
+      const Displacements next = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(projections));
+      const double moved = Constraints->largestMotion(next - w);
+      w = next;
+      projections = Constraints->project(w);
+      solution.iterations = i + 1;
+      solution.converged = moved <= settings.tolerance * Length;
+    }
+    solution.constraintResidual = Constraints->residuals(w, projections);
   }
   if (!w.allFinite())
   {

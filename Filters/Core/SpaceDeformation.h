@@ -3,16 +3,18 @@
 // over the k x 3 coefficients w by the normal equations (eq. 14)
 //   (gamma_s G^T G + gamma_b L^T L + gamma_f Phi^T F^T F Phi) w = gamma_f Phi^T F^T F dbar,
 // factorized once (CHOLMOD) and solved again for every new dbar (a design variation).
-// The energies are the paper's integrals made independent of the model's units with its length
-// l (the largest side of the sampled box): E_stretch = sum_i V_i / l |grad d(q_i)|^2 and
-// E_bend = sum_i V_i l |Lap d(q_i)|^2 both scale like a squared displacement, as does the fix
-// term, where each region r contributes weight_r / n_r sum_{i in r} |d(x_i) - dbar_i|^2
-// (weights normalized by the number of points, section 7). For a model of unit size these are
-// exactly the paper's energies.
+// Every term is normalized by its number of rows, as section 7 prescribes for the weights
+// ("normalized by the number of constraints prescribed for a given type and region"): each region
+// r contributes weight_r / n_r sum_{i in r} |d(x_i) - dbar_i|^2, and the N integration points
+// E_stretch = 1/N sum_i V_i / l |grad d(q_i)|^2 and E_bend = 1/N sum_i V_i l |Lap d(q_i)|^2, where
+// the model's length l (the largest side of the sampled box) makes them scale like a squared
+// displacement, independent of the model's units. With this the paper's weights keep its order
+// of priority: targets (gamma_f ~ 1000) before constraints (gamma_c ~ 10) before smoothness (~ 1).
 #pragma once
 
 #include "MLSBasis.h"
 #include "Sampling.h"
+#include "ShapeConstraints.h"
 #include "SparseCholesky.h"
 
 #include <memory>
@@ -21,9 +23,17 @@ namespace mlsdeform
 {
 struct EnergyWeights
 {
-  double stretch = 0.0; // gamma_s
-  double bend = 1.0;    // gamma_b
-  double fix = 1000.0;  // gamma_f
+  double stretch = 0.0;     // gamma_s
+  double bend = 1.0;        // gamma_b
+  double fix = 1000.0;      // gamma_f
+  double constraint = 10.0; // gamma_c (eq. 17)
+};
+
+/// The alternating (local/global) optimization of section 6.
+struct IterationSettings
+{
+  int maxIterations = 1000;
+  double tolerance = 1e-7; // stop when no constrained point moved more than this (x length scale)
 };
 
 /// Positions whose displacement is prescribed (a handle or a fixed region).
@@ -43,7 +53,12 @@ public:
   /// position outside every support.
   void setRegions(const std::vector<DirichletRegion>& regions);
 
-  /// Factorizes the matrix of eq. 14; throws SolverException when it is singular. A stretching
+  /// Geometric constraints (section 6); none by default. Throws InvalidInputException for a set
+  /// with too few points or outside every support.
+  void setConstraints(const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation);
+
+  /// Factorizes the matrix of eq. 14 (eq. 17 with constraints); throws SolverException when it
+  /// is singular. A stretching
   /// weight of at least 1e-6 * bend is always used: pure bending does not determine motions
   /// that bend nothing, such as a shear normal to a flat configuration, and the tiny stretching
   /// term picks the least stretched of the equally bent results.
@@ -51,18 +66,23 @@ public:
 
   struct Solution
   {
-    Displacements w;                 // the MLS coefficients, k x 3
-    std::vector<double> rmsResidual; // per region: sqrt(mean_i |d(x_i) - dbar_i|^2)
+    Displacements w;                        // the MLS coefficients, k x 3
+    std::vector<double> rmsResidual;        // per region: sqrt(mean_i |d(x_i) - dbar_i|^2)
+    std::vector<double> constraintResidual; // per constraint: max distance to its projection
+    int iterations = 0;                     // local/global iterations (0 without constraints)
+    bool converged = true;
   };
 
   /// Solves eq. 14 for the prescribed displacements of each region (one row per region
-  /// position, in the order given to setRegions). With corrections > 0, the targets are then
-  /// shifted by the remaining residual and eq. 14 solved again (a Bregman / augmented Lagrangian
-  /// iteration): each correction costs one back-substitution and k-sized products, and brings
-  /// the result closer to min E subject to d(x_i) = dbar_i than the penalty gamma_f alone.
-  /// The only passes over the region points are the right-hand sides b_r = Phi_r^T F_r^2 dbar_r;
-  /// residuals come from |F_r(Phi_r w - dbar_r)|^2 = w^T A_r w - 2 w^T b_r + |F_r dbar_r|^2.
-  Solution solve(const std::vector<Displacements>& prescribed, int corrections = 0) const;
+  /// position, in the order given to setRegions). The only passes over the region points are
+  /// the right-hand sides b_r = Phi_r^T F_r^2 dbar_r; residuals come from |F_r(Phi_r w - dbar_r)|^2 = w^T A_r w - 2 w^T b_r + |F_r dbar_r|^2.
+  /// With constraints, the local/global iteration of section 6 follows: projections of the
+  /// current constrained positions, then eq. 17 with them, until no constrained point moves more
+  /// than tolerance * lengthScale() or maxIterations.
+  Solution solve(const std::vector<Displacements>& prescribed, const IterationSettings& settings = {}) const;
+
+  /// The largest side of the sampled box (the model's length l).
+  double lengthScale() const { return Length; }
 
   const MLSBasis& basis() const { return Basis; }
   std::size_t numberOfIntegrationPoints() const { return Energy.rows() / 4; }
@@ -78,8 +98,9 @@ private:
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end
   EnergyWeights Weights;
   std::vector<SparseMatrix> RegionNormals; // A_r = Phi_r^T F_r^2 Phi_r (k x k) per region
-  SparseMatrix RegionNormal;       // A = sum_r A_r
-  SparseMatrix System;             // the matrix of eq. 14
+  std::unique_ptr<ShapeConstraints> Constraints;
+  double Length = 1;
+  SparseMatrix System;             // the matrix of eq. 14 (17)
   std::unique_ptr<SparseCholesky> Factor;
   double ReciprocalCondition = 0;
 };
