@@ -3,6 +3,8 @@
 #include <vtkAlgorithm.h>
 #include <vtkCell.h>
 #include <vtkCellArray.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
 #include <vtkCompositeDataIterator.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
@@ -96,33 +98,45 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
 
 namespace
 {
-// Splits every cell of the given dimension into simplices (triangles or tetrahedra).
+// Splits every cell of the given dimension into simplices (triangles or tetrahedra): simplices
+// are taken as they are, other cells are triangulated.
 template <std::size_t N>
 void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
 {
+  const int simplexType = N == 3 ? VTK_TRIANGLE : VTK_TETRA;
   vtkNew<vtkGenericCell> cell;
   vtkNew<vtkIdList> ids;
   vtkNew<vtkPoints> pts;
+  auto add = [&](vtkIdType first) {
+    std::array<int, N> simplex;
+    for (std::size_t v = 0; v < N; ++v)
+    {
+      const vtkIdType id = ids->GetId(first + v);
+      simplex[v] = offset + static_cast<int>(pointMap ? pointMap[id] : id);
+    }
+    out.push_back(simplex);
+  };
   for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
   {
-    set->GetCell(c, cell);
-    if (cell->GetCellDimension() != dimension)
+    const int type = set->GetCellType(c);
+    if (type == simplexType)
+    {
+      set->GetCellPoints(c, ids);
+      add(0);
+      continue;
+    }
+    if (vtkCellTypes::GetDimension(type) != dimension)
     {
       continue;
     }
+    set->GetCell(c, cell);
     if (!cell->Triangulate(0, ids, pts))
     {
       continue;
     }
     for (vtkIdType s = 0; s + static_cast<vtkIdType>(N) <= ids->GetNumberOfIds(); s += N)
     {
-      std::array<int, N> simplex;
-      for (std::size_t v = 0; v < N; ++v)
-      {
-        const vtkIdType id = ids->GetId(s + v);
-        simplex[v] = offset + static_cast<int>(pointMap ? pointMap[id] : id);
-      }
-      out.push_back(simplex);
+      add(s);
     }
   }
 }

@@ -14,20 +14,27 @@ using Mat4 = Eigen::Matrix4d;
 // Singular values below this fraction of the largest are treated as zero in M^+.
 constexpr double PseudoInverseTolerance = 1e-8;
 
-// M^+ = V Sigma^+ U^T from the SVD M = U Sigma V^T [33, 34].
+// M^+ = V Sigma^+ U^T from the SVD M = U Sigma V^T [33, 34]. In the basis shifted to the weighted
+// centroid, M = [W 0; 0 S] is block diagonal and symmetric positive semi-definite, so its SVD is
+// the eigen-decomposition of the blocks: M^+ = [1/W 0; 0 S^+] with S^+ from the 3 x 3 S.
 Mat4 pseudoInverse(const Mat4& M)
 {
-  Eigen::JacobiSVD<Mat4> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vec4& s = svd.singularValues();
-  Vec4 inverse = Vec4::Zero();
-  for (int i = 0; i < 4; ++i)
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(M.bottomRightCorner<3, 3>());
+  const Eigen::Vector3d& s = eigen.eigenvalues();
+  const double largest = std::max(M(0, 0), s.cwiseAbs().maxCoeff());
+  Eigen::Vector3d inverse = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i)
   {
-    if (s[i] > PseudoInverseTolerance * s[0])
+    if (s[i] > PseudoInverseTolerance * largest)
     {
       inverse[i] = 1.0 / s[i];
     }
   }
-  return svd.matrixV() * inverse.asDiagonal() * svd.matrixU().transpose();
+  Mat4 Minv = Mat4::Zero();
+  Minv(0, 0) = M(0, 0) > PseudoInverseTolerance * largest ? 1.0 / M(0, 0) : 0.0;
+  Minv.bottomRightCorner<3, 3>() = eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
+  return Minv;
 }
 }
 

@@ -85,8 +85,8 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
   RegionNormals.clear();
   for (std::size_t r = 0; r < RegionScale.size(); ++r)
   {
-    const SparseRowMatrix Phi = RegionSubspace.middleRows(RegionBegin[r], RegionBegin[r + 1] - RegionBegin[r]);
-    RegionNormals.push_back(SparseMatrix(RegionScale[r] * (Phi.transpose() * Phi)));
+    const long n = RegionBegin[r + 1] - RegionBegin[r];
+    RegionNormals.push_back(weightedGram(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], Eigen::VectorXd::Constant(n, RegionScale[r])));
   }
   Factor.reset();
 }
@@ -107,7 +107,7 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   {
     energyWeight[i] = i % 4 == 3 ? weights.bend : weights.stretch;
   }
-  System = SparseMatrix(Energy.transpose() * energyWeight.asDiagonal() * Energy);
+  System = weightedGram(Energy, 0, Energy.rows(), energyWeight);
   for (const SparseMatrix& A : RegionNormals)
   {
     System += weights.fix * A;

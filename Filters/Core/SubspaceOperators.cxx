@@ -136,6 +136,25 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end,
   return result;
 }
 
+SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  const int chunks = std::max(1, omp_get_max_threads());
+  std::vector<SparseMatrix> parts(chunks);
+#pragma omp parallel for schedule(static, 1)
+  for (int c = 0; c < chunks; ++c)
+  {
+    const long first = begin + (end - begin) * c / chunks, last = begin + (end - begin) * (c + 1) / chunks;
+    const SparseRowMatrix rows = A.middleRows(first, last - first);
+    parts[c] = SparseMatrix(rows.transpose() * rowWeight.segment(first - begin, last - first).asDiagonal() * rows);
+  }
+  SparseMatrix sum = parts[0];
+  for (int c = 1; c < chunks; ++c)
+  {
+    sum += parts[c];
+  }
+  return sum;
+}
+
 SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
   return assembleRows(

@@ -23,6 +23,10 @@ void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, 
 /// parallel pass over those rows of A.
 Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X);
 
+/// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one weight per row of the
+/// range), the k x k Gram matrix of a row range, summed over row chunks in parallel.
+SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+
 /// D (4N x k) at the integration points q_i with volumes V_i; the gradient rows are multiplied by
 /// sqrt(V_i) * gradientScale, the Laplacian rows by sqrt(V_i) * laplacianScale.
 SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integrationPoints, const std::vector<double>& volume,
