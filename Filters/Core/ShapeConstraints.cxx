@@ -221,18 +221,4 @@ double ShapeConstraints::largestMotion(const Displacements& dw) const
   return largest;
 }
 
-double ShapeConstraints::energy(const Displacements& w, const std::vector<PointList>& projections) const
-{
-  double e = 0;
-  for (std::size_t t = 0; t < Sets.size(); ++t)
-  {
-    PointList difference = positionsOf(Sets[t], w);
-    for (std::size_t i = 0; i < difference.size(); ++i)
-    {
-      difference[i] -= projections[t][i];
-    }
-    e += Sets[t].scale * centered(Sets[t], difference).squaredNorm();
-  }
-  return e;
-}
 } // namespace mlsdeform

@@ -58,9 +58,6 @@ public:
   /// coefficients moves them.
   double largestMotion(const Displacements& dw) const;
 
-  /// Constraint energy sum_t weight_t / n_t |C_t (y_t - P_t)|^2 of the current positions y_t.
-  double energy(const Displacements& w, const std::vector<PointList>& projections) const;
-
   std::size_t size() const { return Sets.size(); }
   bool empty() const { return Sets.empty(); }
   const ShapeConstraint& constraint(std::size_t t) const { return Sets[t].constraint; }

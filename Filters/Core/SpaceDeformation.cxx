@@ -168,17 +168,63 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
   else
   {
     // Section 6: local step (projections of the current positions; the rest shape first), then
-    // the global step (eq. 17) with them.
+    // the global step (eq. 17) with them: w -> G(w), optionally Anderson-accelerated.
+    using Vector = Eigen::VectorXd;
+    const long size = 3 * static_cast<long>(Basis.size());
+    auto flat = [size](Displacements& m) { return Eigen::Map<Vector>(m.data(), size); };
     w = Displacements::Zero(Basis.size(), 3);
     std::vector<PointList> projections = Constraints->project(w);
+    std::vector<Vector> previousG, previousF; // the last G(w) and G(w) - w
+    Displacements fallback;                   // G of the iterate before an accelerated step
+    double previousResidual = std::numeric_limits<double>::infinity();
+    bool accelerated = false;
     solution.converged = false;
     for (int i = 0; i < settings.maxIterations && !solution.converged; ++i)
     {
-      const Displacements next = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(projections));
+      Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(projections));
+      const Vector f = flat(g) - flat(w);
+      solution.iterations = i + 1;
+      if (accelerated && f.norm() > previousResidual)
+      {
+        // Safeguard: the accelerated step did not reduce the fixed-point residual; take the
+        // plain step from the previous iterate instead and restart the history.
+        w = fallback;
+        projections = Constraints->project(w);
+        previousF.clear();
+        previousG.clear();
+        accelerated = false;
+        previousResidual = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      Displacements next = g;
+      if (settings.andersonDepth > 0 && !previousF.empty())
+      {
+        // min |f - dF gamma| over the differences of the last residuals, next = g - dG gamma
+        const long m = static_cast<long>(previousF.size());
+        Eigen::MatrixXd dF(size, m), dG(size, m);
+        for (long j = 0; j < m; ++j)
+        {
+          dF.col(j) = f - previousF[j];
+          dG.col(j) = flat(g) - previousG[j];
+        }
+        flat(next) = flat(g) - dG * dF.colPivHouseholderQr().solve(f);
+      }
+      if (settings.andersonDepth > 0)
+      {
+        previousF.push_back(f);
+        previousG.push_back(flat(g));
+        if (static_cast<int>(previousF.size()) > settings.andersonDepth)
+        {
+          previousF.erase(previousF.begin());
+          previousG.erase(previousG.begin());
+        }
+      }
+      accelerated = settings.andersonDepth > 0 && previousF.size() > 1;
+      fallback = g;
+      previousResidual = f.norm();
       const double moved = Constraints->largestMotion(next - w);
       w = next;
       projections = Constraints->project(w);
-      solution.iterations = i + 1;
       solution.converged = moved <= settings.tolerance * Length;
     }
     solution.constraintResidual = Constraints->residuals(w, projections);

@@ -53,14 +53,17 @@ struct Result
   SpaceDeformation::Solution solution;
 };
 
-Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
+Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation,
+  int andersonDepth = 5, double constraintWeight = 10)
 {
   SpaceDeformation model(bar.samples);
   model.setRegions(bar.regions);
   model.setConstraints(constraints, formulation);
-  model.factorize(EnergyWeights{}); // the paper's weights: gamma_b = 1, gamma_c = 10, gamma_f = 1000
+  model.factorize(EnergyWeights{ 0, 1, 1000, constraintWeight }); // the paper's weights by default
   Result result;
-  result.solution = model.solve(bar.prescribed);
+  IterationSettings settings;
+  settings.andersonDepth = andersonDepth;
+  result.solution = model.solve(bar.prescribed, settings);
   const PointList& set = constraints.empty() ? PointList() : constraints[0].positions;
   auto moved = [&](const PointList& x) {
     const Displacements d = subspaceMatrix(model.basis(), x) * result.solution.w;
@@ -103,20 +106,43 @@ TEST(PlanarityIsKept)
     bent[i] += d.row(i).transpose();
   const double unconstrained = maxDistance(bent, projectToPlane(bent));
 
-  for (ConstraintFormulation formulation : { ConstraintFormulation::Sparse, ConstraintFormulation::MeanCentered })
+  std::vector<Result> results; // plain sparse, plain mean-centered, accelerated sparse, accelerated mean-centered
+  for (int depth : { 0, 5 })
+    for (ConstraintFormulation formulation : { ConstraintFormulation::Sparse, ConstraintFormulation::MeanCentered })
+    {
+      const auto start = std::chrono::steady_clock::now();
+      results.push_back(deform(bar, planarity, formulation, depth));
+      const Result& r = results.back();
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double residual = maxDistance(r.constrained, projectToPlane(r.constrained));
+      std::printf("%s, %s: planarity residual %.3g (unconstrained %.3g), %d iterations (%s, %.2f s), handle error %.3g, "
+                  "fixed error %.3g\n",
+        depth ? "Anderson" : "plain", formulation == ConstraintFormulation::Sparse ? "sparse" : "mean-centered", residual / diagonal,
+        unconstrained / diagonal, r.solution.iterations, r.solution.converged ? "converged" : "not converged", seconds, r.handleError,
+        r.fixedError);
+      CHECK(r.solution.converged);
+      CHECK(residual <= 1e-3 * diagonal);
+      CHECK(residual <= 0.1 * unconstrained);
+      CHECK(r.handleError <= 0.02 * 0.5 && r.fixedError <= 0.02 * 0.5);
+    }
+  // the accelerated iteration reaches the plain one's answer
+  for (int f = 0; f < 2; ++f)
   {
-    const auto start = std::chrono::steady_clock::now();
-    const Result r = deform(bar, planarity, formulation);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double residual = maxDistance(r.constrained, projectToPlane(r.constrained));
-    std::printf("%s: planarity residual %.3g (unconstrained %.3g), %d iterations (%s, %.2f s), handle error %.3g, fixed error %.3g\n",
-      formulation == ConstraintFormulation::Sparse ? "sparse" : "mean-centered", residual / diagonal, unconstrained / diagonal,
-      r.solution.iterations, r.solution.converged ? "converged" : "not converged", seconds, r.handleError, r.fixedError);
-    CHECK(residual <= 1e-3 * diagonal);
-    CHECK(residual <= 0.1 * unconstrained);
-    CHECK(r.solution.converged);
-    CHECK(r.handleError <= 0.02 * 0.5 && r.fixedError <= 0.02 * 0.5);
+    const double accelerated = maxDistance(results[2 + f].constrained, results[f].constrained) / diagonal;
+    std::printf("accelerated vs plain: positions differ by %.2g of the diagonal\n", accelerated);
+    CHECK(accelerated <= 1e-4);
   }
+  // The soft constraint is measured about the mean (eq. 16) or about one point (section 6.1),
+  // so at a finite gamma_c the formulations settle slightly differently (e.g. the plane's tilt);
+  // the difference shrinks as gamma_c grows (measured: 1.8e-3 at 10, 8.7e-4 at 100).
+  const double atTen = maxDistance(results[2].constrained, results[3].constrained) / diagonal;
+  const double atHundred = maxDistance(deform(bar, planarity, ConstraintFormulation::Sparse, 5, 100).constrained,
+                             deform(bar, planarity, ConstraintFormulation::MeanCentered, 5, 100).constrained) / diagonal;
+  std::printf("sparse vs mean-centered: positions differ by %.2g (gamma_c = 10), %.2g (gamma_c = 100) of the diagonal\n", atTen, atHundred);
+  CHECK(atTen <= 2.5e-3);
+  CHECK(atHundred <= 0.6 * atTen);
+  for (int f = 0; f < 2; ++f)
+    CHECK(5 * results[2 + f].solution.iterations <= results[f].solution.iterations);
 }
 
 TEST_MAIN
