@@ -19,6 +19,7 @@
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 
 #include <chrono>
 #include <memory>
@@ -44,9 +45,17 @@ struct Region
   Displacements prescribed;
 };
 
-std::vector<Region> readRegions(vtkInformationVector* connections, vtkObject* self)
+// The Regions inputs: handle and fixed regions, and geometric constraints (section 6).
+struct RegionInputs
 {
-  std::vector<Region> regions;
+  std::vector<Region> dirichlet;
+  std::vector<ShapeConstraint> constraints;
+};
+
+RegionInputs readRegions(vtkInformationVector* connections)
+{
+  RegionInputs inputs;
+  std::vector<Region>& regions = inputs.dirichlet;
   for (int c = 0; c < connections->GetNumberOfInformationObjects(); ++c)
   {
     vtkPolyData* data = vtkPolyData::GetData(connections, c);
@@ -68,13 +77,15 @@ std::vector<Region> readRegions(vtkInformationVector* connections, vtkObject* se
     {
       throw InvalidInputException(which + " (" + vtkConstraintRegion::GetRoleName(region.role) + ") selects no point");
     }
-    if (region.role != vtkConstraintRegion::Handle && region.role != vtkConstraintRegion::Fixed)
+    region.positions = mlsgeometry::points({ data });
+    requireFinite(region.positions, (which + " positions").c_str());
+    if (region.role >= vtkConstraintRegion::Planarity && region.role <= vtkConstraintRegion::Rigid)
     {
-      vtkWarningWithObjectMacro(self, << which << ": role " << vtkConstraintRegion::GetRoleName(region.role)
-                                      << " is not supported by this version and is ignored.");
+      // the roles Planarity ... Rigid follow the order of ConstraintType
+      inputs.constraints.push_back(
+        { static_cast<ConstraintType>(region.role - vtkConstraintRegion::Planarity), std::move(region.positions), region.weight });
       continue;
     }
-    region.positions = mlsgeometry::points({ data });
     region.prescribed.resize(n, 3);
     if (auto* values = vtkDoubleArray::SafeDownCast(displacement))
     {
@@ -90,7 +101,6 @@ std::vector<Region> readRegions(vtkInformationVector* connections, vtkObject* se
         }
       }
     }
-    requireFinite(region.positions, (which + " positions").c_str());
     if (!region.prescribed.allFinite())
     {
       throw InvalidInputException(which + ": prescribed displacements are not finite");
@@ -106,7 +116,17 @@ std::vector<Region> readRegions(vtkInformationVector* connections, vtkObject* se
   {
     throw InvalidInputException("no Handle region among the Regions inputs: nothing would move");
   }
-  return regions;
+  return inputs;
+}
+
+bool sameConstraints(const std::vector<ShapeConstraint>& a, const std::vector<ShapeConstraint>& b)
+{
+  bool same = a.size() == b.size();
+  for (std::size_t t = 0; same && t < a.size(); ++t)
+  {
+    same = a[t].type == b[t].type && a[t].weight == b[t].weight && a[t].positions == b[t].positions;
+  }
+  return same;
 }
 
 Samples readSamples(vtkPolyData* centers, vtkPolyData* integration)
@@ -181,6 +201,46 @@ bool writeMoved(vtkDataArray* data, const PointList& points, long offset, const 
   return true;
 }
 
+// Field data with one tuple per constraint region: type, points, residual (largest distance to
+// the projection, relative to the bounding-box diagonal), iterations, converged. Returns the
+// largest relative residual.
+double reportConstraints(
+  vtkFieldData* field, const std::vector<ShapeConstraint>& constraints, const SpaceDeformation::Solution& solution, const PointList& points)
+{
+  if (constraints.empty())
+  {
+    return 0;
+  }
+  Vec3 lower = points.front(), upper = points.front();
+  for (const Vec3& p : points)
+  {
+    lower = lower.cwiseMin(p);
+    upper = upper.cwiseMax(p);
+  }
+  const double diagonal = (upper - lower).norm();
+  vtkNew<vtkStringArray> type;
+  type->SetName("ConstraintType");
+  vtkNew<vtkIntArray> count, iterations, converged;
+  count->SetName("ConstraintPoints");
+  iterations->SetName("ConstraintIterations");
+  converged->SetName("ConstraintConverged");
+  vtkNew<vtkDoubleArray> residual;
+  residual->SetName("ConstraintResidual");
+  for (std::size_t t = 0; t < constraints.size(); ++t)
+  {
+    type->InsertNextValue(constraintName(constraints[t].type));
+    count->InsertNextValue(static_cast<int>(constraints[t].positions.size()));
+    residual->InsertNextValue(solution.constraintResidual[t] / diagonal);
+    iterations->InsertNextValue(solution.iterations);
+    converged->InsertNextValue(solution.converged ? 1 : 0);
+  }
+  for (vtkAbstractArray* array : std::initializer_list<vtkAbstractArray*>{ type, count, residual, iterations, converged })
+  {
+    field->AddArray(array);
+  }
+  return residual->GetRange()[1];
+}
+
 void addField(vtkFieldData* field, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
@@ -199,6 +259,8 @@ struct vtkMLSDeformFilter::Cache
   SparseRowMatrix geometrySubspace; // Phi at the input points
   std::vector<PointList> regionPositions;
   std::vector<double> regionWeights;
+  std::vector<ShapeConstraint> constraints;
+  int formulation = 0;
   bool factorized = false;
   EnergyWeights weights;
   double setupTime = 0;
@@ -211,6 +273,7 @@ struct vtkMLSDeformFilter::Cache
     geometrySubspace = SparseRowMatrix();
     regionPositions.clear();
     regionWeights.clear();
+    constraints.clear();
     factorized = false;
   }
 };
@@ -282,7 +345,8 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
       requireFinite(cache.points, "input points");
     }
     const PointList& points = cache.points;
-    const std::vector<Region> regions = readRegions(inputVector[1], this);
+    const RegionInputs inputs = readRegions(inputVector[1]);
+    const std::vector<Region>& regions = inputs.dirichlet;
 
     // 1. Samples and the operators on them (paper section 4, 5).
     vtkPolyData* externalCenters = vtkPolyData::GetData(inputVector[2], 0);
@@ -360,8 +424,17 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
         cache.regionWeights.push_back(r.weight);
       }
     }
-    const EnergyWeights weights{ this->StretchWeight, this->BendWeight, this->FixWeight };
-    if (!cache.factorized || weights.stretch != cache.weights.stretch || weights.bend != cache.weights.bend || weights.fix != cache.weights.fix)
+    if (!sameConstraints(inputs.constraints, cache.constraints) || this->ConstraintFormulation != cache.formulation)
+    {
+      cache.constraints.clear();
+      cache.factorized = false;
+      model.setConstraints(inputs.constraints, static_cast<mlsdeform::ConstraintFormulation>(this->ConstraintFormulation));
+      cache.constraints = inputs.constraints;
+      cache.formulation = this->ConstraintFormulation;
+    }
+    const EnergyWeights weights{ this->StretchWeight, this->BendWeight, this->FixWeight, this->ConstraintWeight };
+    if (!cache.factorized || weights.stretch != cache.weights.stretch || weights.bend != cache.weights.bend ||
+      weights.fix != cache.weights.fix || weights.constraint != cache.weights.constraint)
     {
       cache.factorized = false;
       model.factorize(weights);
@@ -382,7 +455,11 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     {
       prescribed.push_back(r.prescribed);
     }
-    const SpaceDeformation::Solution solution = model.solve(prescribed);
+    IterationSettings settings;
+    settings.maxIterations = this->MaxIterations;
+    settings.tolerance = this->Tolerance;
+    settings.andersonDepth = this->Acceleration == Anderson ? 5 : 0;
+    const SpaceDeformation::Solution solution = model.solve(prescribed, settings);
     const Displacements& w = solution.w;
     ++this->NumberOfSolves;
     long offset = 0;
@@ -433,6 +510,14 @@ int vtkMLSDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inpu
     addField(field, "ReciprocalCondition", model.reciprocalCondition());
     addField(field, "Resampled", resampled ? 1 : 0);
     addField(field, "Refactorized", refactorized ? 1 : 0);
+    const double constraintResidual = reportConstraints(field, inputs.constraints, solution, points);
+    if (!solution.converged)
+    {
+      vtkWarningMacro(<< "The constraints did not converge in MaxIterations = " << this->MaxIterations
+                      << " iterations (largest residual " << constraintResidual
+                      << " of the bounding-box diagonal): they may conflict with each other or with the targets. "
+                         "The output is the last iterate.");
+    }
   }
   catch (const std::exception& e)
   {
@@ -449,6 +534,11 @@ void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StretchWeight: " << this->StretchWeight << "\n"
      << indent << "BendWeight: " << this->BendWeight << "\n"
      << indent << "FixWeight: " << this->FixWeight << "\n"
+     << indent << "ConstraintWeight: " << this->ConstraintWeight << "\n"
+     << indent << "ConstraintFormulation: " << this->ConstraintFormulation << "\n"
+     << indent << "MaxIterations: " << this->MaxIterations << "\n"
+     << indent << "Tolerance: " << this->Tolerance << "\n"
+     << indent << "Acceleration: " << this->Acceleration << "\n"
      << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n"
      << indent << "VolumeSampleFraction: " << this->VolumeSampleFraction << "\n"
      << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"

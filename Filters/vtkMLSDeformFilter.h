@@ -61,6 +61,47 @@ public:
   ///@}
 
   ///@{
+  /// gamma_c, weight of the geometric constraints of the Regions inputs (eq. 17; default 10).
+  vtkSetClampMacro(ConstraintWeight, double, 0.0, 1e9);
+  vtkGetMacro(ConstraintWeight, double);
+  ///@}
+
+  enum ConstraintFormulations
+  {
+    Sparse = 0,  // section 6.1: rows x_i - x_p, sparse for any region size
+    MeanCentered // eq. 16: rows x_i - mean, dense over a region's samples
+  };
+  ///@{
+  /// How a constraint measures its points (default Sparse).
+  vtkSetClampMacro(ConstraintFormulation, int, Sparse, MeanCentered);
+  vtkGetMacro(ConstraintFormulation, int);
+  ///@}
+
+  ///@{
+  /// Local/global iterations at most (default 5000).
+  vtkSetClampMacro(MaxIterations, int, 1, 1000000);
+  vtkGetMacro(MaxIterations, int);
+  ///@}
+
+  ///@{
+  /// The iteration stops when no constrained point moved more than Tolerance times the model's
+  /// length in one iteration (default 1e-7).
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  enum Accelerations
+  {
+    None = 0, // the plain alternating iteration of the paper
+    Anderson  // Anderson acceleration (depth 5) with a residual safeguard
+  };
+  ///@{
+  /// Acceleration of the local/global iteration (default Anderson).
+  vtkSetClampMacro(Acceleration, int, None, Anderson);
+  vtkGetMacro(Acceleration, int);
+  ///@}
+
+  ///@{
   /// Internal sampling: number of MLS samples k (default 1000).
   vtkSetClampMacro(NumberOfSamples, int, 4, 10000000);
   vtkGetMacro(NumberOfSamples, int);
@@ -119,6 +160,11 @@ protected:
   double StretchWeight = 0.0;
   double BendWeight = 1.0;
   double FixWeight = 1000.0;
+  double ConstraintWeight = 10.0;
+  int ConstraintFormulation = Sparse;
+  int MaxIterations = 5000;
+  double Tolerance = 1e-7;
+  int Acceleration = Anderson;
   int NumberOfSamples = 1000;
   double VolumeSampleFraction = 0.25;
   double IntegrationPointRatio = 4.0;
