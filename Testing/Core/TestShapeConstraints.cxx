@@ -147,6 +147,28 @@ TEST(PlanarityIsKept)
     CHECK(5 * results[2 + f].solution.iterations <= results[f].solution.iterations);
 }
 
+TEST(SparseFormulationStaysSparseForTheWholeMesh)
+{
+  // A planarity constraint on every point of a plane (section 6.1): mean-centering couples all
+  // samples of the plane, the sparse formulation only neighbours and the pivot's samples (a
+  // bounded number per row, about 270 here, whatever k is).
+  const SamplingDomain plane = testgeometry::triangulatedPlane(40, 40, 1, 1);
+  SamplingParameters p;
+  p.numberOfSurfaceSamples = 750;
+  p.numberOfVolumeSamples = 250;
+  const Samples samples = sampleDomain(plane, p);
+  const MLSBasis basis(samples.centers, samples.supportRadius);
+  const std::vector<ShapeConstraint> whole = { { ConstraintType::Planarity, plane.points, 1.0 } };
+  const ShapeConstraints sparse(basis, whole, ConstraintFormulation::Sparse);
+  const ShapeConstraints centered(basis, whole, ConstraintFormulation::MeanCentered);
+  const double k = static_cast<double>(basis.size());
+  const double sparseFill = sparse.normalMatrix().nonZeros() / (k * k), centeredFill = centered.normalMatrix().nonZeros() / (k * k);
+  std::printf("fill of the k x k constraint matrix: sparse %.3f, mean-centered %.3f\n", sparseFill, centeredFill);
+  CHECK(centeredFill > 0.3);               // dense over the plane's samples
+  CHECK(sparseFill < 0.3 * centeredFill);  // sparse stays sparse
+  CHECK(sparse.normalMatrix().nonZeros() / k < 300);
+}
+
 namespace
 {
 // Fig. 6 for one constraint type: the unconstrained deformation violates the constraint, the

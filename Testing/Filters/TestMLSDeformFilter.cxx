@@ -10,7 +10,10 @@
 #include <vtkPartitionedDataSet.h>
 #include <vtkPartitionedDataSetCollection.h>
 #include <vtkPoints.h>
+#include <vtkStringArray.h>
 #include <vtkTrivialProducer.h>
+
+#include "ConstraintProjections.h"
 
 #include <cmath>
 #include <map>
@@ -262,6 +265,76 @@ TEST(CommonTranslationMovesEveryPointByIt)
       error = std::max(error, std::abs(d->GetComponent(i, c) - t[c]));
   std::printf("largest deviation from the common translation: %g of %g\n", error, std::sqrt(0.14));
   CHECK(error <= 1e-8 * std::sqrt(0.14));
+}
+
+TEST(ConstraintRegionsInThePipeline)
+{
+  // Fig. 6 on the Fig. 1 plane: a planar patch in the bent middle stays planar.
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  const double middle[6] = { 0.35, 0.65, -0.1, 1.1, -0.1, 0.1 };
+  auto flatness = [&](vtkPointSet* out) {
+    // largest distance of the patch's deformed points from their least-squares plane
+    mlsdeform::PointList patch;
+    for (vtkIdType i = 0; i < plane->GetNumberOfPoints(); ++i)
+      if (plane->GetPoint(i)[0] >= middle[0] && plane->GetPoint(i)[0] <= middle[1])
+        patch.push_back(mlsdeform::Vec3(out->GetPoint(i)));
+    const mlsdeform::PointList flat = mlsdeform::projectToPlane(patch);
+    double largest = 0;
+    for (std::size_t i = 0; i < patch.size(); ++i)
+      largest = std::max(largest, (patch[i] - flat[i]).norm());
+    return largest;
+  };
+  PlaneScene free(plane);
+  free.deform->Update();
+  const double unconstrained = flatness(vtkPointSet::SafeDownCast(free.deform->GetOutputDataObject(0)));
+
+  PlaneScene scene(plane);
+  auto planar = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Planarity, middle);
+  scene.deform->AddRegionConnection(planar->GetOutputPort());
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+  const double constrained = flatness(vtkPointSet::SafeDownCast(out));
+  vtkFieldData* field = out->GetFieldData();
+  auto* type = vtkStringArray::SafeDownCast(field->GetAbstractArray("ConstraintType"));
+  std::printf("planar patch: %.3g of the diagonal off a plane (unconstrained %.3g), %g iterations, reported residual %.3g\n",
+    constrained / std::sqrt(2.0), unconstrained / std::sqrt(2.0), fieldValue(out, "ConstraintIterations"), fieldValue(out, "ConstraintResidual"));
+  CHECK(type && type->GetValue(0) == "Planarity");
+  int inside = 0;
+  for (vtkIdType i = 0; i < plane->GetNumberOfPoints(); ++i)
+    inside += plane->GetPoint(i)[0] >= middle[0] && plane->GetPoint(i)[0] <= middle[1];
+  CHECK(fieldValue(out, "ConstraintPoints") == inside);
+  CHECK(fieldValue(out, "ConstraintConverged") == 1);
+  CHECK(fieldValue(out, "ConstraintResidual") <= 1e-3);
+  CHECK(constrained <= 1e-3 * std::sqrt(2.0) && constrained <= 0.1 * unconstrained);
+  CHECK(targetError(plane, vtkPointSet::SafeDownCast(out), HandleBox, Lift).max <= 0.02 * Lift);
+  CHECK(messages->Errors.empty() && messages->Warnings.empty());
+}
+
+TEST(ConflictingConstraintsEndWithAWarning)
+{
+  // The whole plane planar, yet clamped flat at one end and lifted at the other: the targets and
+  // the constraint conflict. The iteration stops at MaxIterations with a warning and finite output.
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  auto planar = vtkSmartPointer<vtkConstraintRegion>::New();
+  planar->SetInputConnection(scene.source->GetOutputPort());
+  planar->SetRole(vtkConstraintRegion::Planarity);
+  planar->SetSelectionMode(vtkConstraintRegion::AllPoints);
+  scene.handle->SetRotation(20, 0, 0); // a twist: no plane contains both strips
+  scene.deform->AddRegionConnection(planar->GetOutputPort());
+  scene.deform->SetMaxIterations(20);
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+  CHECK(messages->Errors.empty());
+  CHECK(!messages->Warnings.empty() && messages->Warnings[0].find("did not converge") != std::string::npos);
+  CHECK(fieldValue(out, "ConstraintConverged") == 0 && fieldValue(out, "ConstraintIterations") == 20);
+  vtkDataArray* d = vtkPointSet::SafeDownCast(out)->GetPointData()->GetArray("Displacement");
+  bool finite = d != nullptr;
+  for (vtkIdType i = 0; finite && i < d->GetNumberOfTuples(); ++i)
+    finite = std::isfinite(d->GetComponent(i, 0)) && std::isfinite(d->GetComponent(i, 1)) && std::isfinite(d->GetComponent(i, 2));
+  CHECK(finite);
 }
 
 TEST(VolumeMeshWithoutSurfaceCells)
