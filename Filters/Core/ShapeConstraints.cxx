@@ -144,12 +144,23 @@ Displacements ShapeConstraints::centered(const Set& set, const PointList& v) con
   return out;
 }
 
-std::vector<PointList> ShapeConstraints::project(const Displacements& w) const
+std::vector<PointList> ShapeConstraints::positions(const Displacements& w) const
 {
-  std::vector<PointList> projections;
+  std::vector<PointList> out;
   for (const Set& set : Sets)
   {
-    const PointList y = positionsOf(set, w);
+    out.push_back(positionsOf(set, w));
+  }
+  return out;
+}
+
+std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& positions) const
+{
+  std::vector<PointList> projections;
+  for (std::size_t t = 0; t < Sets.size(); ++t)
+  {
+    const Set& set = Sets[t];
+    const PointList& y = positions[t];
     const PointList& rest = set.constraint.positions;
     switch (set.constraint.type)
     {
@@ -189,36 +200,18 @@ Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& proj
   return rhs;
 }
 
-std::vector<double> ShapeConstraints::residuals(const Displacements& w, const std::vector<PointList>& projections) const
+std::vector<double> ShapeConstraints::largestDistances(const std::vector<PointList>& a, const std::vector<PointList>& b)
 {
   std::vector<double> out;
-  for (std::size_t t = 0; t < Sets.size(); ++t)
+  for (std::size_t t = 0; t < a.size(); ++t)
   {
-    const PointList y = positionsOf(Sets[t], w);
     double largest = 0;
-    for (std::size_t i = 0; i < y.size(); ++i)
+    for (std::size_t i = 0; i < a[t].size(); ++i)
     {
-      largest = std::max(largest, (y[i] - projections[t][i]).norm());
+      largest = std::max(largest, (a[t][i] - b[t][i]).norm());
     }
     out.push_back(largest);
   }
   return out;
 }
-
-double ShapeConstraints::largestMotion(const Displacements& dw) const
-{
-  double largest = 0;
-  for (const Set& set : Sets)
-  {
-    const long n = set.subspace.rows();
-    std::vector<double> d(3 * n);
-    multiplyRows(set.subspace, dw, 0, n, d.data());
-    for (long i = 0; i < n; ++i)
-    {
-      largest = std::max(largest, Vec3(d[3 * i], d[3 * i + 1], d[3 * i + 2]).norm());
-    }
-  }
-  return largest;
-}
-
 } // namespace mlsdeform

@@ -44,19 +44,18 @@ public:
   /// sum_t weight_t / n_t (C_t Phi_t)^T (C_t Phi_t), the constraint part of eq. 17 (k x k).
   const SparseMatrix& normalMatrix() const { return Normal; }
 
-  /// The local step for coefficients w: every set's projection of its current positions.
-  std::vector<PointList> project(const Displacements& w) const;
+  /// Every set's current positions y_t = x_t + Phi_t w.
+  std::vector<PointList> positions(const Displacements& w) const;
+
+  /// The local step: every set's projection of its current positions.
+  std::vector<PointList> project(const std::vector<PointList>& positions) const;
 
   /// The constraint part of the right-hand side of eq. 17 for the projections:
   /// sum_t weight_t / n_t (C_t Phi_t)^T C_t (P_t - x_t).
   Displacements rightHandSide(const std::vector<PointList>& projections) const;
 
-  /// Per set: the largest distance of the current positions from their projections.
-  std::vector<double> residuals(const Displacements& w, const std::vector<PointList>& projections) const;
-
-  /// The largest |Phi_t dw| over all constrained points: how far a change dw of the
-  /// coefficients moves them.
-  double largestMotion(const Displacements& dw) const;
+  /// Per set: the largest distance between two lists of positions (e.g. from the projections).
+  static std::vector<double> largestDistances(const std::vector<PointList>& a, const std::vector<PointList>& b);
 
   std::size_t size() const { return Sets.size(); }
   bool empty() const { return Sets.empty(); }

@@ -2,6 +2,7 @@
 
 #include "SubspaceOperators.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mlsdeform
@@ -173,7 +174,8 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
     const long size = 3 * static_cast<long>(Basis.size());
     auto flat = [size](Displacements& m) { return Eigen::Map<Vector>(m.data(), size); };
     w = Displacements::Zero(Basis.size(), 3);
-    std::vector<PointList> projections = Constraints->project(w);
+    std::vector<PointList> positions = Constraints->positions(w);
+    std::vector<PointList> projections = Constraints->project(positions);
     std::vector<Vector> previousG, previousF; // the last G(w) and G(w) - w
     Displacements fallback;                   // G of the iterate before an accelerated step
     double previousResidual = std::numeric_limits<double>::infinity();
@@ -189,7 +191,8 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
         // Safeguard: the accelerated step did not reduce the fixed-point residual; take the
         // plain step from the previous iterate instead and restart the history.
         w = fallback;
-        projections = Constraints->project(w);
+        positions = Constraints->positions(w);
+        projections = Constraints->project(positions);
         previousF.clear();
         previousG.clear();
         accelerated = false;
@@ -222,12 +225,14 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
       accelerated = settings.andersonDepth > 0 && previousF.size() > 1;
       fallback = g;
       previousResidual = f.norm();
-      const double moved = Constraints->largestMotion(next - w);
+      std::vector<PointList> nextPositions = Constraints->positions(next);
+      const std::vector<double> moved = ShapeConstraints::largestDistances(nextPositions, positions);
       w = next;
-      projections = Constraints->project(w);
-      solution.converged = moved <= settings.tolerance * Length;
+      positions = std::move(nextPositions);
+      projections = Constraints->project(positions);
+      solution.converged = *std::max_element(moved.begin(), moved.end()) <= settings.tolerance * Length;
     }
-    solution.constraintResidual = Constraints->residuals(w, projections);
+    solution.constraintResidual = ShapeConstraints::largestDistances(positions, projections);
   }
   if (!w.allFinite())
   {
