@@ -7,10 +7,11 @@ moved to the side, and the result is written as a .vtp file and a before/after p
 import os
 import sys
 
-from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateView,
-                             GetColorTransferFunction, GetScalarBar, LoadPlugin, OpenDataFile,
-                             SaveData, SaveScreenshot, Show)
+from paraview.simple import LoadPlugin, OpenDataFile, SaveData
 from paraview import servermanager
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from views import save_side_by_side  # noqa: E402
 
 plugin, mesh, out_dir = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -51,32 +52,6 @@ SaveData(result, proxy=deformed)
 print('wrote', result)
 
 # Before (left) and after (right), colored by the displacement magnitude.
-layout = CreateLayout('fandisk')
-views = []
-for source, colored in ((part, False), (deformed, True)):
-    view = CreateView('RenderView')
-    AssignViewToLayout(view=view, layout=layout)
-    view.OrientationAxesVisibility = 0
-    display = Show(source, view)
-    if colored:
-        ColorBy(display, ('POINTS', 'Displacement', 'Magnitude'))
-        display.SetScalarBarVisibility(view, True)
-        bar = GetScalarBar(GetColorTransferFunction('Displacement'), view)
-        bar.WindowLocation = 'Any Location'
-        bar.Position = [0.72, 0.1]
-        bar.ScalarBarLength = 0.5
-        bar.RangeLabelFormat = '%.3f'
-        bar.Title = '|Displacement|'
-        bar.ComponentTitle = ''
-    views.append(view)
-# One camera for both views, so that the motion shows.
-center = [(xmin + xmax) / 2, (ymin + ymax) / 2, (zmin + zmax) / 2]
-for view in views:
-    view.CameraFocalPoint = center
-    view.CameraPosition = [center[0], center[1] - 4 * height, center[2]]
-    view.CameraViewUp = [0.0, 0.0, 1.0]
-    view.CameraParallelProjection = 1
-    view.CameraParallelScale = 0.75 * height
 picture = os.path.join(out_dir, 'fandisk_deformed.png')
-SaveScreenshot(picture, layout, ImageResolution=[1200, 600])
+save_side_by_side([part, deformed], [False, True], (xmin, xmax, ymin, ymax, zmin, zmax), picture)
 print('wrote', picture)
