@@ -2,12 +2,14 @@
 // perturbed data onto the constraint set.
 #include "../TestHarness.h"
 #include "ConstraintProjections.h"
+#include "TestGeometry.h"
 
 #include <Eigen/Geometry>
 
 #include <random>
 
 using namespace mlsdeform;
+using testgeometry::maxDistance;
 
 namespace
 {
@@ -21,13 +23,6 @@ PointList perturbed(const PointList& x, double amount, unsigned seed)
   return out;
 }
 
-double maxDistance(const PointList& a, const PointList& b)
-{
-  double d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    d = std::max(d, (a[i] - b[i]).norm());
-  return d;
-}
 
 const Eigen::Matrix3d Tilt = (Eigen::AngleAxisd(0.4, Vec3(1, 2, 0).normalized()) * Eigen::AngleAxisd(0.3, Vec3::UnitZ())).toRotationMatrix();
 const Vec3 Offset(0.5, -1, 2);

@@ -65,6 +65,15 @@ inline SamplingDomain triangulatedPlane(int nx, int ny, double lx, double ly)
   return plane;
 }
 
+/// The largest distance between corresponding points of two lists.
+inline double maxDistance(const PointList& a, const PointList& b)
+{
+  double d = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    d = std::max(d, (a[i] - b[i]).norm());
+  return d;
+}
+
 inline PointList randomPoints(int count, const Vec3& lower, const Vec3& upper, unsigned seed)
 {
   std::mt19937 random(seed);

@@ -8,6 +8,7 @@
 #include <chrono>
 
 using namespace mlsdeform;
+using testgeometry::maxDistance;
 
 namespace
 {
@@ -83,13 +84,6 @@ Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraint
   return result;
 }
 
-double maxDistance(const PointList& a, const PointList& b)
-{
-  double d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    d = std::max(d, (a[i] - b[i]).norm());
-  return d;
-}
 }
 
 TEST(PlanarityIsKept)
