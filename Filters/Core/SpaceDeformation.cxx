@@ -15,6 +15,12 @@ constexpr double SingularReciprocalCondition = 1e-12;
 // Below this, a tiny stretching term decides between equally bent results (see the header).
 constexpr double MinimumStretchPerBend = 1e-6;
 
+// An accelerated step is rejected when the fixed-point residual exceeds this multiple of the
+// smallest residual since the last restart: Anderson iterates are not monotone, and a strict
+// decrease rejected good steps (rigid scene: 3.9x instead of 10x fewer iterations), while the
+// bound keeps the residual from creeping upward.
+constexpr double SafeguardGrowth = 3.0;
+
 double largestSideOf(const PointList& a, const PointList& b)
 {
   Vec3 lower = a.front(), upper = a.front();
@@ -178,7 +184,7 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
     std::vector<PointList> projections = Constraints->project(positions);
     std::vector<Vector> previousG, previousF; // the last G(w) and G(w) - w
     Displacements fallback;                   // G of the iterate before an accelerated step
-    double previousResidual = std::numeric_limits<double>::infinity();
+    double bestResidual = std::numeric_limits<double>::infinity(); // since the last restart
     bool accelerated = false;
     solution.converged = false;
     for (int i = 0; i < settings.maxIterations && !solution.converged; ++i)
@@ -186,17 +192,17 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
       Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(projections));
       const Vector f = flat(g) - flat(w);
       solution.iterations = i + 1;
-      if (accelerated && f.norm() > previousResidual)
+      if (accelerated && f.norm() > SafeguardGrowth * bestResidual)
       {
-        // Safeguard: the accelerated step did not reduce the fixed-point residual; take the
-        // plain step from the previous iterate instead and restart the history.
+        // Safeguard: the accelerated step let the fixed-point residual grow; take the plain step
+        // from the previous iterate instead and restart the history.
         w = fallback;
         positions = Constraints->positions(w);
         projections = Constraints->project(positions);
         previousF.clear();
         previousG.clear();
         accelerated = false;
-        previousResidual = std::numeric_limits<double>::infinity();
+        bestResidual = std::numeric_limits<double>::infinity();
         continue;
       }
       Displacements next = g;
@@ -224,7 +230,7 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
       }
       accelerated = settings.andersonDepth > 0 && previousF.size() > 1;
       fallback = g;
-      previousResidual = f.norm();
+      bestResidual = std::min(bestResidual, f.norm());
       std::vector<PointList> nextPositions = Constraints->positions(next);
       const std::vector<double> moved = ShapeConstraints::largestDistances(nextPositions, positions);
       w = next;

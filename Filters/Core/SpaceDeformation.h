@@ -35,10 +35,11 @@ struct IterationSettings
   int maxIterations = 5000;
   double tolerance = 1e-7; // stop when no constrained point moved more than this (x length scale)
   /// Anderson acceleration of the fixed point w -> G(w) over the last andersonDepth steps
-  /// (Walker & Ni 2011), safeguarded: an accelerated step that does not reduce the fixed-point
-  /// residual |G(w) - w| is replaced by the plain step and the history restarts (in the spirit of
-  /// Peng et al. 2018, with the residual instead of the energy, which the local step of the
-  /// sparse formulation does not decrease). 0 = the plain iteration of the paper.
+  /// (Walker & Ni 2011), safeguarded: an accelerated step after which the fixed-point residual
+  /// |G(w) - w| exceeds 3x its smallest value since the last restart is replaced by the plain
+  /// step and the history restarts (in the spirit of Peng et al. 2018, with the residual
+  /// instead of the energy, which the local step of the sparse formulation does not decrease).
+  /// 0 = the plain iteration of the paper.
   int andersonDepth = 5;
 };
 
