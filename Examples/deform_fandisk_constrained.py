@@ -3,7 +3,7 @@ constraints, then keeping the sharp feature lines of the bent band (similarity) 
 of its planar left face (planarity). Prints the constraint residuals and writes
 fandisk_constraints.png (original, unconstrained, constrained) and the constrained mesh.
 
-    xvfb-run -a pvbatch deform_fandisk_constrained.py PLUGIN FANDISK.off OUTPUT_DIR
+    xvfb-run -a -s "-noreset" pvbatch deform_fandisk_constrained.py PLUGIN FANDISK.off OUTPUT_DIR
 """
 import os
 import sys
