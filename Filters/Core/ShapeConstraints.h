@@ -57,9 +57,6 @@ public:
   /// Per set: the largest distance between two lists of positions (e.g. from the projections).
   static std::vector<double> largestDistances(const std::vector<PointList>& a, const std::vector<PointList>& b);
 
-  std::size_t size() const { return Sets.size(); }
-  bool empty() const { return Sets.empty(); }
-  const ShapeConstraint& constraint(std::size_t t) const { return Sets[t].constraint; }
 
 private:
   struct Set
