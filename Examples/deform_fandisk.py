@@ -7,35 +7,17 @@ moved to the side, and the result is written as a .vtp file and a before/after p
 import os
 import sys
 
-from paraview.simple import LoadPlugin, OpenDataFile, SaveData
+from paraview.simple import SaveData
 from paraview import servermanager
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from views import save_side_by_side  # noqa: E402
+import fandisk_scene as scene  # noqa: E402
 
-plugin, mesh, out_dir = sys.argv[1:4]
-LoadPlugin(plugin, remote=False, ns=globals())
-os.makedirs(out_dir, exist_ok=True)
+part, bounds, out_dir = scene.open_fandisk()
+height = bounds[5] - bounds[4]
+fixed, handle = scene.fixed_and_handle(part, bounds)
 
-part = OpenDataFile(mesh)
-part.UpdatePipeline()
-xmin, xmax, ymin, ymax, zmin, zmax = part.GetDataInformation().GetBounds()
-height = zmax - zmin
-margin = 0.01 * height
-
-# Fixed: the bottom 10% of the part. Handle: the top 25%, moved along -x by 15% of the height.
-fixed = ConstraintRegion(Input=part, Role='Fixed')
-fixed.Region = 'Box'
-fixed.Region.Position = [xmin - margin, ymin - margin, zmin - margin]
-fixed.Region.Length = [xmax - xmin + 2 * margin, ymax - ymin + 2 * margin, 0.1 * height + margin]
-
-handle = ConstraintRegion(Input=part, Role='Handle')
-handle.Region = 'Box'
-handle.Region.Position = [xmin - margin, ymin - margin, zmax - 0.25 * height]
-handle.Region.Length = [xmax - xmin + 2 * margin, ymax - ymin + 2 * margin, 0.25 * height + margin]
-handle.Translation = [-0.15 * height, 0.0, 0.0]
-
-deformed = MLSDeform(Input=part, Regions=[fixed, handle])
+deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle])
 deformed.UpdatePipeline()
 field = servermanager.Fetch(deformed).GetFieldData()
 summary = {name: field.GetArray(name).GetValue(0) for name in
@@ -53,5 +35,5 @@ print('wrote', result)
 
 # Before (left) and after (right), colored by the displacement magnitude.
 picture = os.path.join(out_dir, 'fandisk_deformed.png')
-save_side_by_side([part, deformed], [False, True], (xmin, xmax, ymin, ymax, zmin, zmax), picture)
+scene.save_side_by_side([part, deformed], [False, True], bounds, picture)
 print('wrote', picture)

@@ -8,36 +8,17 @@ fandisk_constraints.png (original, unconstrained, constrained) and the constrain
 import os
 import sys
 
-from paraview.simple import FeatureEdges, LoadPlugin, OpenDataFile, ProgrammableFilter, SaveData
+from paraview.simple import FeatureEdges, ProgrammableFilter, SaveData
 from paraview import servermanager
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from views import save_side_by_side  # noqa: E402
+import fandisk_scene as scene  # noqa: E402
 
-plugin, mesh, out_dir = sys.argv[1:4]
-LoadPlugin(plugin, remote=False, ns=globals())
-os.makedirs(out_dir, exist_ok=True)
-
-part = OpenDataFile(mesh)
-part.UpdatePipeline()
-bounds = part.GetDataInformation().GetBounds()
+part, bounds, out_dir = scene.open_fandisk()
 xmin, xmax, ymin, ymax, zmin, zmax = bounds
 height = zmax - zmin
 margin = 0.01 * height
-
-
-def box_region(source, role, lower, upper):
-    region = ConstraintRegion(Input=source, Role=role)
-    region.Region = 'Box'
-    region.Region.Position = lower
-    region.Region.Length = [u - l for u, l in zip(upper, lower)]
-    return region
-
-
-wide = [xmin - margin, ymin - margin], [xmax + margin, ymax + margin]
-fixed = box_region(part, 'Fixed', wide[0] + [zmin - margin], wide[1] + [zmin + 0.1 * height])
-handle = box_region(part, 'Handle', wide[0] + [zmax - 0.25 * height], wide[1] + [zmax + margin])
-handle.Translation = [-0.15 * height, 0.0, 0.0]
+fixed, handle = scene.fixed_and_handle(part, bounds)
 
 # Feature lines: the sharp edges (feature angle 30 degrees), split into lines at their junctions
 # (a point array LineId, -1 at junctions), and every line lying in the band that bends.
@@ -80,15 +61,16 @@ z_of = {}
 for i in range(lines.GetNumberOfPoints()):
     z_of.setdefault(int(line_id.GetValue(i)), []).append(lines.GetPoint(i)[2])
 band = (zmin + 0.15 * height, zmax - 0.3 * height)
-features = [ConstraintRegion(Input=edges, Role='FeatureLine', SelectionMode='ArrayRange',
+features = [scene.ConstraintRegion(Input=edges, Role='FeatureLine', SelectionMode='ArrayRange',
                              SelectionArray=['POINTS', 'LineId'], Range=[line, line])
             for line, zs in sorted(z_of.items())
             if line >= 0 and len(zs) >= 8 and band[0] <= min(zs) and max(zs) <= band[1]]
 # Planarity: the upper half of the planar face at x = xmin.
-planar = box_region(part, 'Planarity', [xmin - margin, ymin - margin, (zmin + zmax) / 2], [xmin + 1e-3 * height, ymax + margin, zmax - 0.25 * height])
+planar = scene.box_region(part, 'Planarity', [xmin - margin, ymin - margin, (zmin + zmax) / 2],
+                          [xmin + 1e-3 * height, ymax + margin, zmax - 0.25 * height])
 
-free = MLSDeform(Input=part, Regions=[fixed, handle])
-kept = MLSDeform(Input=part, Regions=[fixed, handle, planar] + features)
+free = scene.MLSDeform(Input=part, Regions=[fixed, handle])
+kept = scene.MLSDeform(Input=part, Regions=[fixed, handle, planar] + features)
 kept.UpdatePipeline()
 field = servermanager.Fetch(kept).GetFieldData()
 types = field.GetAbstractArray('ConstraintType')
@@ -104,5 +86,5 @@ result = os.path.join(out_dir, 'fandisk_constrained.vtp')
 SaveData(result, proxy=kept)
 print('wrote', result)
 picture = os.path.join(out_dir, 'fandisk_constraints.png')
-save_side_by_side([part, free, kept], [False, True, True], bounds, picture, resolution=(1500, 500))
+scene.save_side_by_side([part, free, kept], [False, True, True], bounds, picture, resolution=(1500, 500))
 print('wrote', picture)

@@ -1,6 +1,42 @@
-"""Side-by-side pictures of pipeline outputs with one camera, shared by the example scripts."""
+"""The fandisk scene of the example scripts (paper Fig. 8) and their side-by-side pictures.
+After open_fandisk() the plugin's proxies are attributes of this module (scene.MLSDeform)."""
+import os
+import sys
+
 from paraview.simple import (ColorBy, CreateLayout, CreateView, GetColorTransferFunction,
-                             GetScalarBar, SaveScreenshot, Show)
+                             GetScalarBar, LoadPlugin, OpenDataFile, SaveScreenshot, Show)
+
+
+def open_fandisk():
+    """From the command line PLUGIN FANDISK.off OUTPUT_DIR: loads the plugin, opens the part and
+    creates the output folder. Returns the part, its bounds and the folder."""
+    plugin, mesh, out_dir = sys.argv[1:4]
+    LoadPlugin(plugin, remote=False, ns=globals())
+    os.makedirs(out_dir, exist_ok=True)
+    part = OpenDataFile(mesh)
+    part.UpdatePipeline()
+    return part, part.GetDataInformation().GetBounds(), out_dir
+
+
+def box_region(source, role, lower, upper, **properties):
+    """A Constraint Region of the given role: the points of source inside the box lower-upper."""
+    region = ConstraintRegion(Input=source, Role=role, **properties)  # noqa: F821 (from the plugin)
+    region.Region = 'Box'
+    region.Region.Position = list(lower)
+    region.Region.Length = [u - l for u, l in zip(upper, lower)]
+    return region
+
+
+def fixed_and_handle(part, bounds):
+    """Fixed: the bottom 10% of the part. Handle: the top 25%, moved along -x by 15% of the height."""
+    xmin, xmax, ymin, ymax, zmin, zmax = bounds
+    height = zmax - zmin
+    margin = 0.01 * height
+    lower, upper = [xmin - margin, ymin - margin], [xmax + margin, ymax + margin]
+    fixed = box_region(part, 'Fixed', lower + [zmin - margin], upper + [zmin + 0.1 * height])
+    handle = box_region(part, 'Handle', lower + [zmax - 0.25 * height], upper + [zmax + margin],
+                        Translation=[-0.15 * height, 0.0, 0.0])
+    return fixed, handle
 
 
 def save_side_by_side(sources, colored, bounds, path, resolution=(1200, 600)):
