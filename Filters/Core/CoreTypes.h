@@ -44,10 +44,7 @@ struct Progress
       callback(client, begin + (end - begin) * fraction);
     }
   }
-  /// The part [a,b] of this progress range.
-  Progress sub(double a, double b) const
-  {
-    return Progress{ callback, client, begin + (end - begin) * a, begin + (end - begin) * b };
+};
   }
 };
 } // namespace mlsdeform
