@@ -45,6 +45,4 @@ struct Progress
     }
   }
 };
-  }
-};
 } // namespace mlsdeform
