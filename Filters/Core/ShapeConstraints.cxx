@@ -64,7 +64,7 @@ ShapeConstraints::ShapeConstraints(const MLSBasis& basis, const std::vector<Shap
         set.pivot = static_cast<int>(i);
       }
     }
-    // C_t Phi_t, row by row.
+    // C_t Phi_t, row by row, for the normal matrix.
     std::vector<Eigen::Triplet<double>> entries;
     const auto& Phi = set.subspace;
     auto addRow = [&](long row, long i, double scale) {
@@ -102,10 +102,11 @@ ShapeConstraints::ShapeConstraints(const MLSBasis& basis, const std::vector<Shap
       }
       ++rows;
     }
-    set.centeredSubspace.resize(rows, static_cast<long>(basis.size()));
-    set.centeredSubspace.setFromTriplets(entries.begin(), entries.end());
+    set.transposedSubspace = Phi.transpose();
+    SparseRowMatrix centeredSubspace(rows, static_cast<long>(basis.size()));
+    centeredSubspace.setFromTriplets(entries.begin(), entries.end());
     set.scale = c.weight / n;
-    Normal += SparseMatrix(set.scale * (set.centeredSubspace.transpose() * set.centeredSubspace));
+    Normal += SparseMatrix(set.scale * (centeredSubspace.transpose() * centeredSubspace));
     Sets.push_back(std::move(set));
   }
 }
@@ -121,27 +122,6 @@ PointList ShapeConstraints::positionsOf(const Set& set, const Displacements& w) 
     y[i] += Vec3(d[3 * i], d[3 * i + 1], d[3 * i + 2]);
   }
   return y;
-}
-
-Displacements ShapeConstraints::centered(const Set& set, const PointList& v) const
-{
-  const long n = static_cast<long>(v.size());
-  Displacements out(set.centeredSubspace.rows(), 3);
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& p : v)
-  {
-    mean += p / static_cast<double>(n);
-  }
-  long row = 0;
-  for (long i = 0; i < n; ++i)
-  {
-    if (Formulation == ConstraintFormulation::Sparse && i == set.pivot)
-    {
-      continue;
-    }
-    out.row(row++) = (v[i] - (Formulation == ConstraintFormulation::Sparse ? v[set.pivot] : mean)).transpose();
-  }
-  return out;
 }
 
 std::vector<PointList> ShapeConstraints::positions(const Displacements& w) const
@@ -184,18 +164,36 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
   return projections;
 }
 
-Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& projections) const
+Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& positions, const std::vector<PointList>& projections) const
 {
   Displacements rhs = Displacements::Zero(Normal.rows(), 3);
   for (std::size_t t = 0; t < Sets.size(); ++t)
   {
     const Set& set = Sets[t];
-    PointList offset = projections[t]; // P_t - x_t: the displacement the projection asks for
-    for (std::size_t i = 0; i < offset.size(); ++i)
+    const PointList& rest = set.constraint.positions;
+    const long n = static_cast<long>(rest.size());
+    // v = C_m^T C_m d with d = P_t - x_t, the displacement the projection asks for: d - mean(d).
+    // (C^T C d computed on points, then one product with Phi_t^T: cheaper than (C Phi)^T C d.)
+    Displacements v(n, 3);
+    for (long i = 0; i < n; ++i)
     {
-      offset[i] -= set.constraint.positions[i];
+      v.row(i) = (projections[t][i] - rest[i]).transpose();
     }
-    rhs += set.scale * multiplyTransposed(set.centeredSubspace, 0, set.centeredSubspace.rows(), centered(set, offset));
+    v.rowwise() -= v.colwise().mean();
+    if (Formulation == ConstraintFormulation::Sparse)
+    {
+      // + n u u^T (y - x): -delta on every point and n delta on the pivot, with delta the pivot's
+      // displacement relative to the mean displacement
+      Vec3 meanDisplacement = Vec3::Zero();
+      for (long i = 0; i < n; ++i)
+      {
+        meanDisplacement += (positions[t][i] - rest[i]) / static_cast<double>(n);
+      }
+      const Vec3 delta = positions[t][set.pivot] - rest[set.pivot] - meanDisplacement;
+      v.rowwise() -= delta.transpose();
+      v.row(set.pivot) += n * delta.transpose();
+    }
+    rhs += set.scale * multiplyRows(set.transposedSubspace, v);
   }
   return rhs;
 }

@@ -189,7 +189,7 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
     solution.converged = false;
     for (int i = 0; i < settings.maxIterations && !solution.converged; ++i)
     {
-      Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(projections));
+      Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(positions, projections));
       const Vector f = flat(g) - flat(w);
       solution.iterations = i + 1;
       if (accelerated && f.norm() > SafeguardGrowth * bestResidual)

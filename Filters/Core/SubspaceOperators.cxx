@@ -113,27 +113,16 @@ void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, 
   }
 }
 
+Displacements multiplyRows(const SparseRowMatrix& A, const Displacements& X)
+{
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> out(A.rows(), 3);
+  multiplyRows(A, X, 0, A.rows(), out.data());
+  return out;
+}
+
 Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X)
 {
-  Displacements result = Displacements::Zero(A.cols(), 3);
-  const auto* outer = A.outerIndexPtr();
-  const auto* inner = A.innerIndexPtr();
-  const double* value = A.valuePtr();
-#pragma omp parallel
-  {
-    Displacements local = Displacements::Zero(A.cols(), 3);
-#pragma omp for schedule(static)
-    for (long i = begin; i < end; ++i)
-    {
-      for (auto a = outer[i]; a < outer[i + 1]; ++a)
-      {
-        local.row(inner[a]) += value[a] * X.row(i - begin);
-      }
-    }
-#pragma omp critical
-    result += local;
-  }
-  return result;
+  return multiplyRows(SparseRowMatrix(A.middleRows(begin, end - begin).transpose()), X);
 }
 
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)

@@ -19,8 +19,12 @@ SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions
 /// one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at many points).
 void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out);
 
-/// A(begin:end, :)^T X for a dense X with three columns (one row per row of that range), in one
-/// parallel pass over those rows of A.
+/// A X for a dense X with three columns (multiplyRows over all rows).
+Displacements multiplyRows(const SparseRowMatrix& A, const Displacements& X);
+
+/// A(begin:end, :)^T X for a dense X with three columns (one row per row of that range): a
+/// transposed copy of the range, then multiplyRows, so that every entry of the result is summed
+/// by one thread in a fixed order (the same result whatever the number of threads).
 Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X);
 
 /// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one weight per row of the
