@@ -5,32 +5,23 @@
 #pragma once
 
 #include "KdTree.h"
+#include "ShapeFunctions.h"
 
 namespace mlsdeform
 {
-/// The shape functions that do not vanish at one position, and optionally their derivatives.
-struct ShapeFunctionValues
-{
-  std::vector<int> index;       // sample j
-  std::vector<double> value;    // phi_j(x)
-  std::vector<Vec3> gradient;   // grad phi_j(x)   (when derivatives were asked for)
-  std::vector<double> laplacian; // Laplacian phi_j(x) (when derivatives were asked for)
-  bool empty() const { return index.empty(); }
-};
-
-class MLSBasis
+class MLSBasis : public ShapeFunctions
 {
 public:
   /// Samples c_j with support radii sigma_j > 0.
   MLSBasis(const PointList& centers, const std::vector<double>& supportRadii);
 
   /// Evaluates at x; the result is empty when x lies outside every support.
-  void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const;
+  void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const override;
 
   /// w(r) = 1/2 cos(pi r / sigma) + 1/2 for r < sigma, else 0.
   static double weight(double r, double sigma);
 
-  std::size_t size() const { return Centers.size(); }
+  std::size_t size() const override { return Centers.size(); }
   const PointList& centers() const { return Centers; }
   const std::vector<double>& supportRadii() const { return Radii; }
 

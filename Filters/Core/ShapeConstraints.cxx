@@ -29,7 +29,7 @@ const char* constraintName(ConstraintType type)
   return names[static_cast<int>(type)];
 }
 
-ShapeConstraints::ShapeConstraints(const MLSBasis& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
+ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
   : Formulation(formulation)
   , Normal(basis.size(), basis.size())
 {

@@ -14,7 +14,7 @@
 // iteration is exactly the mean-centered one.
 #pragma once
 
-#include "MLSBasis.h"
+#include "ShapeFunctions.h"
 
 namespace mlsdeform
 {
@@ -47,7 +47,7 @@ class ShapeConstraints
 public:
   /// Phi and C Phi at each set's positions. Throws InvalidInputException for a set with too
   /// few points for its type or positions outside every support.
-  ShapeConstraints(const MLSBasis& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation);
+  ShapeConstraints(const ShapeFunctions& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation);
 
   /// sum_t weight_t / n_t (C_t Phi_t)^T (C_t Phi_t), the constraint part of eq. 17 (k x k).
   const SparseMatrix& normalMatrix() const { return Normal; }

@@ -1,6 +1,6 @@
 #include "SpaceDeformation.h"
 
-#include "SubspaceOperators.h"
+#include "MLSBasis.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,8 +36,20 @@ double largestSideOf(const PointList& a, const PointList& b)
 }
 }
 
+SpaceDeformation::SpaceDeformation(std::shared_ptr<const ShapeFunctions> basis, DeformationEnergy energy, double length)
+  : Basis(std::move(basis))
+  , Energy(std::move(energy))
+  , Length(length)
+{
+  if (!Basis || Basis->size() == 0 || Energy.stretch.cols() != static_cast<long>(Basis->size()) ||
+    Energy.bend.cols() != static_cast<long>(Basis->size()) || !(length > 0))
+  {
+    throw InvalidInputException("a subspace needs shape functions, energies on them and a positive length");
+  }
+}
+
 SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progress)
-  : Basis(samples.centers, samples.supportRadius)
+  : Basis(std::make_shared<MLSBasis>(samples.centers, samples.supportRadius))
 {
   if (samples.integrationPoints.empty() || samples.integrationPoints.size() != samples.volume.size())
   {
@@ -61,7 +73,7 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progr
   const double l = largestSideOf(samples.centers, samples.integrationPoints);
   Length = l;
   const double N = static_cast<double>(samples.integrationPoints.size());
-  Energy = energyMatrix(Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);
+  Energy = volumetricEnergy(*Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);
 }
 
 void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
@@ -82,7 +94,7 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
     RegionBegin.push_back(static_cast<long>(positions.size()));
   }
   std::vector<int> outside;
-  RegionSubspace = subspaceMatrix(Basis, positions, &outside);
+  RegionSubspace = subspaceMatrix(*Basis, positions, &outside);
   if (!outside.empty())
   {
     throw InvalidInputException(std::to_string(outside.size()) + " region position(s) lie outside every MLS support, e.g. (" +
@@ -100,7 +112,7 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
 
 void SpaceDeformation::setConstraints(const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
 {
-  Constraints = constraints.empty() ? nullptr : std::make_unique<ShapeConstraints>(Basis, constraints, formulation);
+  Constraints = constraints.empty() ? nullptr : std::make_unique<ShapeConstraints>(*Basis, constraints, formulation);
   Factor.reset();
 }
 
@@ -109,12 +121,10 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   EnergyWeights weights = requested;
   weights.stretch = std::max(weights.stretch, MinimumStretchPerBend * weights.bend);
   Weights = weights;
-  Eigen::VectorXd energyWeight(Energy.rows());
-  for (long i = 0; i < energyWeight.size(); ++i)
-  {
-    energyWeight[i] = i % 4 == 3 ? weights.bend : weights.stretch;
-  }
-  System = weightedGram(Energy, 0, Energy.rows(), energyWeight);
+  auto gram = [](const SparseRowMatrix& A, double weight) {
+    return weightedGram(A, 0, A.rows(), Eigen::VectorXd::Constant(A.rows(), weight));
+  };
+  System = gram(Energy.stretch, weights.stretch) + gram(Energy.bend, weights.bend);
   for (const SparseMatrix& A : RegionNormals)
   {
     System += weights.fix * A;
@@ -160,7 +170,7 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
   checkPrescribed(prescribed);
   // b_r = Phi_r^T F_r^2 dbar_r; the right-hand side of eq. 14 is gamma_f sum_r b_r.
   std::vector<Displacements> b;
-  Displacements b0 = Displacements::Zero(Basis.size(), 3);
+  Displacements b0 = Displacements::Zero(Basis->size(), 3);
   for (std::size_t r = 0; r < prescribed.size(); ++r)
   {
     b.push_back(RegionScale[r] * multiplyTransposed(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], prescribed[r]));
@@ -177,9 +187,9 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
     // Section 6: local step (projections of the current positions; the rest shape first), then
     // the global step (eq. 17) with them: w -> G(w), optionally Anderson-accelerated.
     using Vector = Eigen::VectorXd;
-    const long size = 3 * static_cast<long>(Basis.size());
+    const long size = 3 * static_cast<long>(Basis->size());
     auto flat = [size](Displacements& m) { return Eigen::Map<Vector>(m.data(), size); };
-    w = Displacements::Zero(Basis.size(), 3);
+    w = Displacements::Zero(Basis->size(), 3);
     std::vector<PointList> positions = Constraints->positions(w);
     std::vector<PointList> projections = Constraints->project(positions);
     std::vector<Vector> previousG, previousF; // the last G(w) and G(w) - w

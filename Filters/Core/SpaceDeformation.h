@@ -1,8 +1,11 @@
-// The MLS space deformation of paper section 5: minimizes
+// A subspace deformation d(x) = sum_j w_j phi_j(x) (paper sections 3-5): minimizes
 //   gamma_s |G w|^2 + gamma_b |L w|^2 + gamma_f |F (Phi w - dbar)|^2
-// over the k x 3 coefficients w by the normal equations (eq. 14)
+// over the k x 3 coefficients w by the normal equations (eq. 10, 11, 14)
 //   (gamma_s G^T G + gamma_b L^T L + gamma_f Phi^T F^T F Phi) w = gamma_f Phi^T F^T F dbar,
-// factorized once (CHOLMOD) and solved again for every new dbar (a design variation).
+// factorized once (CHOLMOD) and solved again for every new dbar (a design variation). The shape
+// functions and the energies G, L are given: the MLS subspace with volumetric integration points
+// (section 5, built from Samples), or a mesh's own piecewise linear functions with its shell
+// operators (section 3), or any basis with those operators applied to Phi (eq. 11).
 // Every term is normalized by its number of rows, as section 7 prescribes for the weights
 // ("normalized by the number of constraints prescribed for a given type and region"): each region
 // r contributes weight_r / n_r sum_{i in r} |d(x_i) - dbar_i|^2, and the N integration points
@@ -12,10 +15,10 @@
 // of priority: targets (gamma_f ~ 1000) before constraints (gamma_c ~ 10) before smoothness (~ 1).
 #pragma once
 
-#include "MLSBasis.h"
 #include "Sampling.h"
 #include "ShapeConstraints.h"
 #include "SparseCholesky.h"
+#include "SubspaceOperators.h"
 
 #include <memory>
 
@@ -56,6 +59,10 @@ public:
   /// Builds the MLS basis on the samples and G, L at the integration points (eq. 12, 13).
   explicit SpaceDeformation(const Samples& samples, const Progress& progress = {});
 
+  /// A subspace with its energies (rows normalized as above) and the model's length l, the
+  /// scale of the iteration tolerance.
+  SpaceDeformation(std::shared_ptr<const ShapeFunctions> basis, DeformationEnergy energy, double length);
+
   /// Phi at the region positions and F. Throws InvalidInputException for an empty region or a
   /// position outside every support.
   void setRegions(const std::vector<DirichletRegion>& regions);
@@ -88,18 +95,19 @@ public:
   /// than tolerance * lengthScale() or maxIterations.
   Solution solve(const std::vector<Displacements>& prescribed, const IterationSettings& settings = {}) const;
 
-  /// The largest side of the sampled box (the model's length l).
+  /// The model's length l (for MLS samples, the largest side of the sampled box).
   double lengthScale() const { return Length; }
 
-  const MLSBasis& basis() const { return Basis; }
-  std::size_t numberOfIntegrationPoints() const { return Energy.rows() / 4; }
+  const ShapeFunctions& basis() const { return *Basis; }
+  /// N, the points at which the bending energy is integrated.
+  std::size_t numberOfIntegrationPoints() const { return Energy.bend.rows(); }
   double reciprocalCondition() const { return ReciprocalCondition; }
 
 private:
   void checkPrescribed(const std::vector<Displacements>& prescribed) const;
 
-  MLSBasis Basis;
-  SparseRowMatrix Energy;          // D = [G; L] interleaved, see SubspaceOperators.h
+  std::shared_ptr<const ShapeFunctions> Basis;
+  DeformationEnergy Energy;
   SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
   std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end

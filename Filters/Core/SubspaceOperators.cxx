@@ -9,7 +9,7 @@ namespace
 // Assembles a row-major sparse matrix with rowsPerPoint rows per position, evaluated in
 // parallel chunks; fill(i, values, rows) writes the rows of position i from its shape functions.
 template <typename Fill>
-SparseRowMatrix assembleRows(const MLSBasis& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
+SparseRowMatrix assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
   Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
@@ -87,6 +87,38 @@ SparseRowMatrix assembleRows(const MLSBasis& basis, const PointList& positions, 
   }
   return A;
 }
+
+// The rows of A for which keep(row) holds, in their order.
+template <typename Keep>
+SparseRowMatrix selectRows(const SparseRowMatrix& A, Keep keep)
+{
+  long rows = 0, nonZeros = 0;
+  for (long row = 0; row < A.rows(); ++row)
+  {
+    if (keep(row))
+    {
+      ++rows;
+      nonZeros += A.outerIndexPtr()[row + 1] - A.outerIndexPtr()[row];
+    }
+  }
+  SparseRowMatrix B(rows, A.cols());
+  B.resizeNonZeros(nonZeros);
+  auto* outer = B.outerIndexPtr();
+  outer[0] = 0;
+  long out = 0;
+  for (long row = 0; row < A.rows(); ++row)
+  {
+    if (keep(row))
+    {
+      const auto begin = A.outerIndexPtr()[row], end = A.outerIndexPtr()[row + 1];
+      std::copy(A.innerIndexPtr() + begin, A.innerIndexPtr() + end, B.innerIndexPtr() + outer[out]);
+      std::copy(A.valuePtr() + begin, A.valuePtr() + end, B.valuePtr() + outer[out]);
+      outer[out + 1] = outer[out] + (end - begin);
+      ++out;
+    }
+  }
+  return B;
+}
 }
 
 void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out)
@@ -144,7 +176,7 @@ SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const 
   return sum;
 }
 
-SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
   return assembleRows(
     basis, positions, 1, false,
@@ -152,10 +184,11 @@ SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions
     outside, progress);
 }
 
-SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+DeformationEnergy volumetricEnergy(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
   double gradientScale, double laplacianScale, const Progress& progress)
 {
-  return assembleRows(
+  // Rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L.
+  const SparseRowMatrix D = assembleRows(
     basis, integrationPoints, 4, true,
     [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
       const double g = std::sqrt(volume[i]) * gradientScale, l = std::sqrt(volume[i]) * laplacianScale;
@@ -169,5 +202,9 @@ SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integration
       }
     },
     nullptr, progress);
+  DeformationEnergy energy;
+  energy.stretch = selectRows(D, [](long row) { return row % 4 != 3; });
+  energy.bend = selectRows(D, [](long row) { return row % 4 == 3; });
+  return energy;
 }
 } // namespace mlsdeform

@@ -2,18 +2,15 @@
 //   Phi_ij = phi_j(x_i)                                   (d = Phi w)
 //   G_{3i+d, j} = sqrt(V_i) d phi_j(q_i)/dx_d             (eq. 12, E_stretch = |G w|^2)
 //   L_{i,j}     = sqrt(V_i) Laplacian phi_j(q_i)          (eq. 13, E_bend    = |L w|^2)
-// G and L are stored interleaved in one energy matrix D with rows 4i..4i+2 = G_{3i..3i+2} and
-// row 4i+3 = L_i, so that gamma_s G^T G + gamma_b L^T L = D^T diag(gamma_s, gamma_s, gamma_s, gamma_b, ...) D
-// and the derivatives are evaluated once per integration point.
 #pragma once
 
-#include "MLSBasis.h"
+#include "ShapeFunctions.h"
 
 namespace mlsdeform
 {
 /// Phi at the positions (one row each). Rows of positions outside every support are empty;
 /// their indices are appended to outside when given.
-SparseRowMatrix subspaceMatrix(const MLSBasis& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
 /// Rows begin..end of A X for a dense X with three columns, written as (x, y, z) triples to out:
 /// one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at many points).
@@ -31,8 +28,18 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end,
 /// range), the k x k Gram matrix of a row range, summed over row chunks in parallel.
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
 
-/// D (4N x k) at the integration points q_i with volumes V_i; the gradient rows are multiplied by
+/// The smoothness energies of a subspace as weighted rows: E_stretch = |G w|^2 and
+/// E_bend = |L w|^2 (eq. 9, 11, 12, 13).
+struct DeformationEnergy
+{
+  SparseRowMatrix stretch; // G
+  SparseRowMatrix bend;    // L
+};
+
+/// G (3N x k) and L (N x k) at the integration points q_i with volumes V_i (eq. 12, 13), the
+/// derivatives evaluated once per point; the gradient rows are multiplied by
 /// sqrt(V_i) * gradientScale, the Laplacian rows by sqrt(V_i) * laplacianScale.
-SparseRowMatrix energyMatrix(const MLSBasis& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+DeformationEnergy volumetricEnergy(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
   double gradientScale, double laplacianScale, const Progress& progress = {});
+
 } // namespace mlsdeform

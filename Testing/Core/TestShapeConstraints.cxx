@@ -1,6 +1,7 @@
 // Section 6: the local/global iteration keeps geometric constraints during the deformation.
 #include "../TestHarness.h"
 #include "ConstraintProjections.h"
+#include "MLSBasis.h"
 #include "SpaceDeformation.h"
 #include "SubspaceOperators.h"
 #include "TestGeometry.h"

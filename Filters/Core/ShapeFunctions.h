@@ -1,0 +1,31 @@
+// The shape functions phi_1..phi_k of a deformation subspace d(x) = sum_j w_j phi_j(x) (paper
+// sections 3 and 4): the mesh's piecewise linear functions (eq. 5), MLS (section 4) and others.
+#pragma once
+
+#include "CoreTypes.h"
+
+namespace mlsdeform
+{
+/// The shape functions that do not vanish at one position, and optionally their derivatives.
+struct ShapeFunctionValues
+{
+  std::vector<int> index;        // j
+  std::vector<double> value;     // phi_j(x)
+  std::vector<Vec3> gradient;    // grad phi_j(x)   (when derivatives were asked for)
+  std::vector<double> laplacian; // Laplacian phi_j(x) (when derivatives were asked for)
+  bool empty() const { return index.empty(); }
+};
+
+class ShapeFunctions
+{
+public:
+  virtual ~ShapeFunctions() = default;
+
+  /// Evaluates at x; the result is empty where no shape function is defined (outside every
+  /// support). Thread-safe.
+  virtual void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const = 0;
+
+  /// k, the number of shape functions.
+  virtual std::size_t size() const = 0;
+};
+} // namespace mlsdeform
