@@ -15,91 +15,22 @@
  * used: it picks, among equally bent results, the least stretched one (pure bending alone does not
  * determine motions normal to a flat configuration).
  *
- * Inputs: port 0 a vtkPointSet or composite of point sets; port 1 (repeatable) the regions;
- * optional port 2 MLS samples and port 3 integration points from vtkMLSSampler (without them the
- * filter samples its input with NumberOfSamples, VolumeSampleFraction, IntegrationPointRatio,
- * LloydIterations, Cover and RandomSeed).
- *
- * Output: the input's structure and types, points moved by d(x), point array "Displacement", and
- * field data NumberOfSamples (k), NumberOfIntegrationPoints (N), SetupTime and SolveTime (s),
- * HandleResidual and FixedResidual (the largest, over the regions of that role, of the RMS
- * distance of the region's points from their targets),
- * ReciprocalCondition, Resampled and Refactorized (whether this update redid those steps).
- *
- * Set-up is cached: when only a handle's motion changes, the update is a right-hand side, a
- * back-substitution and a sparse product at the points.
+ * Inputs and outputs as in vtkSubspaceDeformFilter, plus optional port 2 MLS samples and port 3
+ * integration points from vtkMLSSampler (without them the filter samples its input with
+ * NumberOfSamples, VolumeSampleFraction, IntegrationPointRatio, LloydIterations, Cover and
+ * RandomSeed).
  */
 #ifndef vtkMLSDeformFilter_h
 #define vtkMLSDeformFilter_h
 
-#include "MLSDeformFiltersModule.h"
-#include "vtkPassInputTypeAlgorithm.h"
+#include "vtkSubspaceDeformFilter.h"
 
-class MLSDEFORMFILTERS_EXPORT vtkMLSDeformFilter : public vtkPassInputTypeAlgorithm
+class MLSDEFORMFILTERS_EXPORT vtkMLSDeformFilter : public vtkSubspaceDeformFilter
 {
 public:
   static vtkMLSDeformFilter* New();
-  vtkTypeMacro(vtkMLSDeformFilter, vtkPassInputTypeAlgorithm);
+  vtkTypeMacro(vtkMLSDeformFilter, vtkSubspaceDeformFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// gamma_s, weight of the stretching energy (eq. 12; default 0).
-  vtkSetClampMacro(StretchWeight, double, 0.0, 1e9);
-  vtkGetMacro(StretchWeight, double);
-  ///@}
-
-  ///@{
-  /// gamma_b, weight of the bending energy (eq. 13; default 1).
-  vtkSetClampMacro(BendWeight, double, 0.0, 1e9);
-  vtkGetMacro(BendWeight, double);
-  ///@}
-
-  ///@{
-  /// gamma_f, weight of the handle and fixed targets (eq. 14; default 1000).
-  vtkSetClampMacro(FixWeight, double, 0.0, 1e12);
-  vtkGetMacro(FixWeight, double);
-  ///@}
-
-  ///@{
-  /// gamma_c, weight of the geometric constraints of the Regions inputs (eq. 17; default 10).
-  vtkSetClampMacro(ConstraintWeight, double, 0.0, 1e9);
-  vtkGetMacro(ConstraintWeight, double);
-  ///@}
-
-  enum ConstraintFormulations
-  {
-    Sparse = 0,  // section 6.1: rows x_i - x_p, sparse for any region size
-    MeanCentered // eq. 16: rows x_i - mean, dense over a region's samples
-  };
-  ///@{
-  /// How a constraint measures its points (default Sparse).
-  vtkSetClampMacro(ConstraintFormulation, int, Sparse, MeanCentered);
-  vtkGetMacro(ConstraintFormulation, int);
-  ///@}
-
-  ///@{
-  /// Local/global iterations at most (default 5000).
-  vtkSetClampMacro(MaxIterations, int, 1, 1000000);
-  vtkGetMacro(MaxIterations, int);
-  ///@}
-
-  ///@{
-  /// The iteration stops when no constrained point moved more than Tolerance times the model's
-  /// length in one iteration (default 1e-7).
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
-  vtkGetMacro(Tolerance, double);
-  ///@}
-
-  enum Accelerations
-  {
-    None = 0, // the plain alternating iteration of the paper
-    Anderson  // Anderson acceleration (depth 5) with a residual safeguard
-  };
-  ///@{
-  /// Acceleration of the local/global iteration (default Anderson).
-  vtkSetClampMacro(Acceleration, int, None, Anderson);
-  vtkGetMacro(Acceleration, int);
-  ///@}
 
   ///@{
   /// Internal sampling: number of MLS samples k (default 1000).
@@ -137,34 +68,18 @@ public:
   vtkGetMacro(RandomSeed, int);
   ///@}
 
-  /// Connections of the optional inputs.
-  void AddRegionConnection(vtkAlgorithmOutput* region) { this->AddInputConnection(1, region); }
-  void RemoveAllRegions() { this->SetInputConnection(1, nullptr); }
+  /// Connections of the optional sampling inputs.
   void SetSamplesConnection(vtkAlgorithmOutput* samples) { this->SetInputConnection(2, samples); }
   void SetIntegrationPointsConnection(vtkAlgorithmOutput* points) { this->SetInputConnection(3, points); }
 
-  ///@{
-  /// How often the expensive steps ran (for tests of the cache).
-  vtkGetMacro(NumberOfSamplings, int);
-  vtkGetMacro(NumberOfFactorizations, int);
-  vtkGetMacro(NumberOfSolves, int);
-  ///@}
-
 protected:
   vtkMLSDeformFilter();
-  ~vtkMLSDeformFilter() override;
+  ~vtkMLSDeformFilter() override = default;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  std::string SubspaceKey(const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) override;
+  std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
+    const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) override;
 
-  double StretchWeight = 0.0;
-  double BendWeight = 1.0;
-  double FixWeight = 1000.0;
-  double ConstraintWeight = 10.0;
-  int ConstraintFormulation = Sparse;
-  int MaxIterations = 5000;
-  double Tolerance = 1e-7;
-  int Acceleration = Anderson;
   int NumberOfSamples = 1000;
   double VolumeSampleFraction = 0.25;
   double IntegrationPointRatio = 4.0;
@@ -172,16 +87,9 @@ protected:
   double Cover = 5.0;
   int RandomSeed = 0;
 
-  int NumberOfSamplings = 0;
-  int NumberOfFactorizations = 0;
-  int NumberOfSolves = 0;
-
 private:
   vtkMLSDeformFilter(const vtkMLSDeformFilter&) = delete;
   void operator=(const vtkMLSDeformFilter&) = delete;
-
-  struct Cache;
-  Cache* Cached;
 };
 
 #endif

@@ -160,6 +160,21 @@ PointList placeSites(const DenseSamples& dense, int surfaceCount, int volumeCoun
 }
 } // namespace
 
+double largestSide(const PointList& points)
+{
+  if (points.empty())
+  {
+    return 0.0;
+  }
+  Vec3 lower = points.front(), upper = points.front();
+  for (const Vec3& p : points)
+  {
+    lower = lower.cwiseMin(p);
+    upper = upper.cwiseMax(p);
+  }
+  return (upper - lower).maxCoeff();
+}
+
 void requireFinite(const PointList& points, const char* what)
 {
   for (const Vec3& p : points)

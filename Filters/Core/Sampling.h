@@ -61,6 +61,9 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
 /// margin makes the weight at the reach w(1/margin) = 0.25.
 std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover);
 
+/// The largest side of the points' bounding box (0 for none): the model's length l.
+double largestSide(const PointList& points);
+
 /// Throws InvalidInputException if a coordinate is NaN or infinite.
 void requireFinite(const PointList& points, const char* what);
 } // namespace mlsdeform

@@ -20,20 +20,6 @@ constexpr double MinimumStretchPerBend = 1e-6;
 // decrease rejected good steps (rigid scene: 3.9x instead of 10x fewer iterations), while the
 // bound keeps the residual from creeping upward.
 constexpr double SafeguardGrowth = 3.0;
-
-double largestSideOf(const PointList& a, const PointList& b)
-{
-  Vec3 lower = a.front(), upper = a.front();
-  for (const PointList* list : { &a, &b })
-  {
-    for (const Vec3& p : *list)
-    {
-      lower = lower.cwiseMin(p);
-      upper = upper.cwiseMax(p);
-    }
-  }
-  return (upper - lower).maxCoeff();
-}
 }
 
 SpaceDeformation::SpaceDeformation(std::shared_ptr<const ShapeFunctions> basis, DeformationEnergy energy, double length)
@@ -70,7 +56,9 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progr
   {
     throw InvalidInputException("the integration points have zero total volume");
   }
-  const double l = largestSideOf(samples.centers, samples.integrationPoints);
+  PointList sampled = samples.centers;
+  sampled.insert(sampled.end(), samples.integrationPoints.begin(), samples.integrationPoints.end());
+  const double l = largestSide(sampled);
   Length = l;
   const double N = static_cast<double>(samples.integrationPoints.size());
   Energy = volumetricEnergy(*Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);

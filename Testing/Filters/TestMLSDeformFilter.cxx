@@ -20,64 +20,7 @@
 
 namespace
 {
-const double FixedBox[6] = { -0.1, 0.1, -0.1, 1.1, -0.1, 0.1 };  // strip x <= 0.1
-const double HandleBox[6] = { 0.9, 1.1, -0.1, 1.1, -0.1, 0.1 };  // strip x >= 0.9
-const double Lift = 0.3;
-
-struct PlaneScene
-{
-  vtkNew<vtkTrivialProducer> source;
-  vtkSmartPointer<vtkConstraintRegion> fixed, handle;
-  vtkNew<vtkMLSDeformFilter> deform;
-  explicit PlaneScene(vtkDataObject* geometry)
-  {
-    source->SetOutput(geometry);
-    fixed = boxRegion(source->GetOutputPort(), vtkConstraintRegion::Fixed, FixedBox);
-    handle = boxRegion(source->GetOutputPort(), vtkConstraintRegion::Handle, HandleBox);
-    handle->SetTranslation(0, 0, Lift);
-    deform->SetInputConnection(source->GetOutputPort());
-    deform->AddRegionConnection(fixed->GetOutputPort());
-    deform->AddRegionConnection(handle->GetOutputPort());
-  }
-};
-
-// Distances of a strip's points from their targets (lifted by lift), measured on the output.
-struct TargetError
-{
-  double max = 0, rms = 0;
-};
-TargetError targetError(vtkPointSet* input, vtkPointSet* output, const double box[6], double lift)
-{
-  TargetError error;
-  int count = 0;
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-  {
-    double x[3], y[3];
-    input->GetPoint(i, x);
-    output->GetPoint(i, y);
-    if (x[0] >= box[0] && x[0] <= box[1])
-    {
-      const double e2 = (y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) + (y[2] - x[2] - lift) * (y[2] - x[2] - lift);
-      error.max = std::max(error.max, std::sqrt(e2));
-      error.rms += e2;
-      ++count;
-    }
-  }
-  error.rms = std::sqrt(error.rms / count);
-  return error;
-}
-
-// Sum of squared second differences of the height along the middle row y = 0.5 (33 samples).
-double profileRoughness(vtkPointSet* output)
-{
-  std::vector<double> z;
-  for (vtkIdType i = 16 * 33; i < 17 * 33; ++i)
-    z.push_back(output->GetPoint(i)[2]);
-  double roughness = 0;
-  for (std::size_t i = 1; i + 1 < z.size(); ++i)
-    roughness += std::pow(z[i - 1] - 2 * z[i] + z[i + 1], 2);
-  return roughness;
-}
+using PlaneScene = FigureScene<vtkMLSDeformFilter>;
 }
 
 TEST(PlaneBendingStretchingAndMix)

@@ -27,7 +27,7 @@ def field(proxy, name):
 
 
 # The proxies and their documented defaults.
-for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform')):
+for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform'), ('filters', 'ShellDeform')):
     check(sm.ProxyManager().GetPrototypeProxy(group, name) is not None, 'proxy %s/%s is defined' % (group, name))
 deform_defaults = MLSDeform(Input=Sphere())
 check(deform_defaults.FixWeight == 1000 and deform_defaults.BendWeight == 1 and deform_defaults.StretchWeight == 0,
@@ -109,6 +109,16 @@ check(field(deformed, 'SolveTime') < field(deformed, 'SetupTime'), 'a variation 
 
 external = MLSDeform(Input=part, Regions=[fixed, handle], Samples=OutputPort(sampler, 0), IntegrationPoints=OutputPort(sampler, 1))
 check(field(external, 'NumberOfSamples') == 400, 'MLSDeform uses connected MLSSampler samples')
+
+# The shell deformation (the ground truth of section 3) shares the regions and weights.
+shell = ShellDeform(Input=part, Regions=[fixed, handle])
+check(shell.FixWeight == 1000 and shell.BendWeight == 1 and shell.ConstraintFormulation == 'Sparse',
+      'ShellDeform has the shared properties and defaults')
+shell_result = sm.Fetch(shell)
+check(field(shell, 'NumberOfSamples') == 6475, 'ShellDeform: one unknown per vertex')
+check(field(shell, 'HandleResidual') < 0.05 * 0.1 * height, 'ShellDeform: handle reaches its target within 5%%: %.3g' % field(shell, 'HandleResidual'))
+shell_moved = vtk_to_numpy(shell_result.GetPoints().GetData())
+check(np.abs(shell_moved - x)[x[:, 2] <= zmin + 0.1 * height].max() < 0.05 * 0.1 * height, 'ShellDeform: fixed points stay')
 
 print('failed: %s' % failures if failures else 'all checks passed')
 sys.exit(1 if failures else 0)

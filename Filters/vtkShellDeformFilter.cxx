@@ -1,0 +1,29 @@
+#include "vtkShellDeformFilter.h"
+
+#include "MLSGeometry.h"
+#include "ShellOperators.h"
+
+#include <vtkObjectFactory.h>
+
+using namespace mlsdeform;
+
+vtkStandardNewMacro(vtkShellDeformFilter);
+
+vtkShellDeformFilter::vtkShellDeformFilter()
+  : vtkSubspaceDeformFilter(2)
+{
+}
+
+std::string vtkShellDeformFilter::SubspaceKey(const std::vector<vtkPointSet*>& inSets, vtkInformationVector**)
+{
+  return mlsgeometry::pointsSignature(inSets) + mlsgeometry::cellsSignature(inSets);
+}
+
+std::unique_ptr<SpaceDeformation> vtkShellDeformFilter::BuildSubspace(const std::vector<vtkPointSet*>& inSets, vtkInformationVector**)
+{
+  const SamplingDomain mesh = mlsgeometry::samplingDomain(inSets);
+  this->UpdateProgress(0.1);
+  DeformationEnergy energy = shellEnergy(mesh);
+  this->UpdateProgress(0.5);
+  return std::make_unique<SpaceDeformation>(std::make_shared<PiecewiseLinearBasis>(mesh.points), std::move(energy), largestSide(mesh.points));
+}

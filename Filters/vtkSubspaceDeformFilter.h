@@ -1,0 +1,153 @@
+/**
+ * @class vtkSubspaceDeformFilter
+ * @brief Common part of the deformation filters: regions, weights, constraints and the solve.
+ *
+ * A subspace deformation d(x) = sum_j w_j phi_j(x) minimizes StretchWeight * E_stretch +
+ * BendWeight * E_bend + FixWeight * E_fix (+ ConstraintWeight * E_constr with geometric
+ * constraints, section 6), with E_fix measuring how well the Regions inputs (vtkConstraintRegion
+ * outputs) reach their prescribed displacements (paper eq. 10, 11, 14, 17). Subclasses choose the
+ * shape functions and how the energies are discretized: vtkMLSDeformFilter (MLS space
+ * deformation, sections 4-5) and vtkShellDeformFilter (the mesh-based ground truth, section 3).
+ *
+ * Inputs: port 0 a vtkPointSet or composite of point sets; port 1 (repeatable) the regions.
+ *
+ * Output: the input's structure and types, points moved by d(x), point array "Displacement", and
+ * field data NumberOfSamples (k), NumberOfIntegrationPoints (N), SetupTime and SolveTime (s),
+ * HandleResidual and FixedResidual (the largest, over the regions of that role, of the RMS
+ * distance of the region's points from their targets), ReciprocalCondition, Resampled and
+ * Refactorized (whether this update rebuilt the subspace or refactorized), and per constraint
+ * region its type, points, residual, iterations and convergence.
+ *
+ * Set-up is cached: when only a handle's motion changes, the update is a right-hand side, a
+ * back-substitution and a sparse product at the points. Errors leave the output as the
+ * unchanged input and are reported in the output window.
+ */
+#ifndef vtkSubspaceDeformFilter_h
+#define vtkSubspaceDeformFilter_h
+
+#include "MLSDeformFiltersModule.h"
+#include "vtkPassInputTypeAlgorithm.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkPointSet;
+namespace mlsdeform
+{
+class SpaceDeformation;
+}
+
+class MLSDEFORMFILTERS_EXPORT vtkSubspaceDeformFilter : public vtkPassInputTypeAlgorithm
+{
+public:
+  vtkTypeMacro(vtkSubspaceDeformFilter, vtkPassInputTypeAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// gamma_s, weight of the stretching energy (eq. 12; default 0).
+  vtkSetClampMacro(StretchWeight, double, 0.0, 1e9);
+  vtkGetMacro(StretchWeight, double);
+  ///@}
+
+  ///@{
+  /// gamma_b, weight of the bending energy (eq. 13; default 1).
+  vtkSetClampMacro(BendWeight, double, 0.0, 1e9);
+  vtkGetMacro(BendWeight, double);
+  ///@}
+
+  ///@{
+  /// gamma_f, weight of the handle and fixed targets (eq. 14; default 1000).
+  vtkSetClampMacro(FixWeight, double, 0.0, 1e12);
+  vtkGetMacro(FixWeight, double);
+  ///@}
+
+  ///@{
+  /// gamma_c, weight of the geometric constraints of the Regions inputs (eq. 17; default 10).
+  vtkSetClampMacro(ConstraintWeight, double, 0.0, 1e9);
+  vtkGetMacro(ConstraintWeight, double);
+  ///@}
+
+  enum ConstraintFormulations
+  {
+    Sparse = 0,  // section 6.1: rows x_i - x_p, sparse for any region size
+    MeanCentered // eq. 16: rows x_i - mean, dense over a region's samples
+  };
+  ///@{
+  /// How a constraint measures its points (default Sparse).
+  vtkSetClampMacro(ConstraintFormulation, int, Sparse, MeanCentered);
+  vtkGetMacro(ConstraintFormulation, int);
+  ///@}
+
+  ///@{
+  /// Local/global iterations at most (default 5000).
+  vtkSetClampMacro(MaxIterations, int, 1, 1000000);
+  vtkGetMacro(MaxIterations, int);
+  ///@}
+
+  ///@{
+  /// The iteration stops when no constrained point moved more than Tolerance times the model's
+  /// length in one iteration (default 1e-7).
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  enum Accelerations
+  {
+    None = 0, // the plain alternating iteration of the paper
+    Anderson  // Anderson acceleration (depth 5) with a residual safeguard
+  };
+  ///@{
+  /// Acceleration of the local/global iteration (default Anderson).
+  vtkSetClampMacro(Acceleration, int, None, Anderson);
+  vtkGetMacro(Acceleration, int);
+  ///@}
+
+  /// Connections of the regions.
+  void AddRegionConnection(vtkAlgorithmOutput* region) { this->AddInputConnection(1, region); }
+  void RemoveAllRegions() { this->SetInputConnection(1, nullptr); }
+
+  ///@{
+  /// How often the expensive steps ran (for tests of the cache).
+  vtkGetMacro(NumberOfSamplings, int);
+  vtkGetMacro(NumberOfFactorizations, int);
+  vtkGetMacro(NumberOfSolves, int);
+  ///@}
+
+protected:
+  /// ports: 0 the input, 1 the regions, then optional polydata inputs of the subclass
+  explicit vtkSubspaceDeformFilter(int numberOfInputPorts);
+  ~vtkSubspaceDeformFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// A key of everything the subspace depends on: it is rebuilt when the key changes.
+  virtual std::string SubspaceKey(const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) = 0;
+  /// The shape functions and energies for the input (throws mlsdeform exceptions on bad input);
+  /// progress from 0 to 0.6.
+  virtual std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
+    const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) = 0;
+
+  double StretchWeight = 0.0;
+  double BendWeight = 1.0;
+  double FixWeight = 1000.0;
+  double ConstraintWeight = 10.0;
+  int ConstraintFormulation = Sparse;
+  int MaxIterations = 5000;
+  double Tolerance = 1e-7;
+  int Acceleration = Anderson;
+
+  int NumberOfSamplings = 0;
+  int NumberOfFactorizations = 0;
+  int NumberOfSolves = 0;
+
+private:
+  vtkSubspaceDeformFilter(const vtkSubspaceDeformFilter&) = delete;
+  void operator=(const vtkSubspaceDeformFilter&) = delete;
+
+  struct Cache;
+  Cache* Cached;
+};
+
+#endif

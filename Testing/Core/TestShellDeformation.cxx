@@ -1,0 +1,193 @@
+// Section 3: the mesh-based shell deformation (the ground truth) with Meyer et al.'s operators.
+#include "../TestHarness.h"
+#include "ShellOperators.h"
+#include "SpaceDeformation.h"
+#include "TestGeometry.h"
+
+#include <cmath>
+#include <random>
+
+using namespace mlsdeform;
+
+namespace
+{
+// A strip [0, 4] x [0, 1] of 40 x 10 squares, each split into two triangles.
+SamplingDomain strip()
+{
+  return testgeometry::triangulatedPlane(40, 10, 4, 1);
+}
+
+// The shell model of a mesh: its own vertices as shape functions (Phi = I) and eq. 6-7.
+SpaceDeformation shell(const SamplingDomain& mesh)
+{
+  return SpaceDeformation(std::make_shared<PiecewiseLinearBasis>(mesh.points), shellEnergy(mesh), largestSide(mesh.points));
+}
+
+// Fixed: x <= fixedEnd; handle: x >= handleBegin, moved by motion.
+struct Ends
+{
+  std::vector<DirichletRegion> regions{ 2 };
+  std::vector<Displacements> prescribed;
+  Ends(const SamplingDomain& mesh, double fixedEnd, double handleBegin, const Vec3& motion)
+  {
+    for (const Vec3& x : mesh.points)
+    {
+      if (x.x() >= handleBegin - 1e-9)
+        regions[0].positions.push_back(x);
+      if (x.x() <= fixedEnd + 1e-9)
+        regions[1].positions.push_back(x);
+    }
+    prescribed = { motion.transpose().replicate(regions[0].positions.size(), 1), Displacements::Zero(regions[1].positions.size(), 3) };
+  }
+};
+}
+
+TEST(MixedAreasSumToTheArea)
+{
+  // also on an irregular mesh with obtuse triangles: jitter the strip's interior vertices
+  SamplingDomain mesh = strip();
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> jitter(-0.03, 0.03); // < half the distance to a diagonal: no flips
+  for (Vec3& p : mesh.points)
+    if (p.x() > 0 && p.x() < 4 && p.y() > 0 && p.y() < 1)
+      p += Vec3(jitter(random), jitter(random), 0);
+  const std::vector<double> areas = mixedAreas(mesh);
+  double sum = 0, smallest = 1;
+  for (double a : areas)
+  {
+    sum += a;
+    smallest = std::min(smallest, a);
+  }
+  std::printf("sum of mixed areas %.15g (area 4), smallest %.3g\n", sum, smallest);
+  CHECK(std::abs(sum - 4.0) < 1e-12);
+  CHECK(smallest > 0);
+}
+
+TEST(OperatorsAreExactOnLinearAndQuadraticFunctions)
+{
+  const SamplingDomain mesh = strip();
+  const DeformationEnergy energy = shellEnergy(mesh);
+  const long n = static_cast<long>(mesh.points.size()), T = static_cast<long>(mesh.triangles.size());
+  const double length = 4;
+  // f = (2x - y, x + 3y, 0): every triangle's gradient is the constant Jacobian, scaled by sqrt(A_t / T)
+  Displacements f(n, 3), q(n, 3);
+  for (long i = 0; i < n; ++i)
+  {
+    const Vec3& p = mesh.points[i];
+    f.row(i) << 2 * p.x() - p.y(), p.x() + 3 * p.y(), 0;
+    q.row(i) << p.x() * p.x() + p.y() * p.y(), 0, 0; // Laplacian 4
+  }
+  const Displacements G = energy.stretch * f;
+  const double rowScale = std::sqrt(0.5 * 0.1 * 0.1 / T);
+  double gradientError = 0;
+  for (long t = 0; t < T; ++t)
+  {
+    Eigen::Matrix3d J;
+    J << 2, 1, 0, -1, 3, 0, 0, 0, 0; // rows: d/dx, d/dy, d/dz of (f_x, f_y, f_z)
+    gradientError = std::max(gradientError, (G.middleRows(3 * t, 3) / rowScale - J).cwiseAbs().maxCoeff());
+  }
+  // the cotangent Laplacian: 0 for linear, 4 for x^2 + y^2 at interior vertices
+  const Displacements Lf = energy.bend * f, Lq = energy.bend * q;
+  const std::vector<double> areas = mixedAreas(mesh);
+  double linearError = 0, quadraticError = 0;
+  for (long i = 0; i < n; ++i)
+  {
+    const Vec3& p = mesh.points[i];
+    if (p.x() <= 0 || p.x() >= 4 || p.y() <= 0 || p.y() >= 1)
+      continue;
+    const double rowScale = length * std::sqrt(areas[i] / n);
+    linearError = std::max(linearError, Lf.row(i).norm() / rowScale);
+    quadraticError = std::max(quadraticError, std::abs(Lq(i, 0) / rowScale - 4));
+  }
+  std::printf("gradient error %.3g, Laplacian of a linear function %.3g, of x^2 + y^2: error %.3g\n", gradientError, linearError,
+    quadraticError);
+  CHECK(gradientError < 1e-12);
+  CHECK(linearError < 1e-10);
+  CHECK(quadraticError < 1e-9);
+}
+
+TEST(StretchingInterpolatesLinearly)
+{
+  // Pure stretching (eq. 6) between a fixed end and a lifted end: the harmonic displacement with
+  // free long sides is linear in x between the regions.
+  const SamplingDomain mesh = strip();
+  const Ends ends(mesh, 0.0, 4.0, Vec3(0, 0, 0.4));
+  SpaceDeformation model = shell(mesh);
+  model.setRegions(ends.regions);
+  model.factorize(EnergyWeights{ 1, 0, 1000, 0 });
+  const Displacements d = model.solve(ends.prescribed).w;
+  double error = 0;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    error = std::max(error, (d.row(i).transpose() - Vec3(0, 0, 0.4 * mesh.points[i].x() / 4)).norm());
+  std::printf("largest deviation from linear interpolation: %.3g of the lift\n", error / 0.4);
+  CHECK(error < 1e-5 * 0.4);
+}
+
+TEST(TranslationIsReproducedExactly)
+{
+  const SamplingDomain mesh = strip();
+  for (const EnergyWeights& weights : { EnergyWeights{ 1, 0, 1000, 0 }, EnergyWeights{ 0, 1, 1000, 0 } })
+  {
+    Ends ends(mesh, 0.5, 3.5, Vec3(0.1, -0.2, 0.3));
+    ends.prescribed[1] = Vec3(0.1, -0.2, 0.3).transpose().replicate(ends.regions[1].positions.size(), 1);
+    SpaceDeformation model = shell(mesh);
+    model.setRegions(ends.regions);
+    model.factorize(weights);
+    const Displacements d = model.solve(ends.prescribed).w;
+    const double error = (d.rowwise() - Eigen::RowVector3d(0.1, -0.2, 0.3)).cwiseAbs().maxCoeff();
+    std::printf("translation error %.3g\n", error);
+    CHECK(error < 1e-10);
+  }
+}
+
+TEST(BendingIsSmootherThanStretching)
+{
+  // Fig. 1: the stretched strip kinks at the regions (its profile is piecewise linear), the bent
+  // one stays smooth: compare the largest second difference of z along the middle row.
+  const SamplingDomain mesh = strip();
+  const Ends ends(mesh, 1.0, 3.0, Vec3(0, 0, 0.4));
+  double kink[2];
+  int e = 0;
+  for (const EnergyWeights& weights : { EnergyWeights{ 0, 1, 1000, 0 }, EnergyWeights{ 1, 0, 1000, 0 } })
+  {
+    SpaceDeformation model = shell(mesh);
+    model.setRegions(ends.regions);
+    model.factorize(weights);
+    const Displacements d = model.solve(ends.prescribed).w;
+    const int row = 5 * 41; // y = 0.5
+    kink[e] = 0;
+    for (int i = 1; i < 40; ++i)
+      kink[e] = std::max(kink[e], std::abs(d(row + i + 1, 2) - 2 * d(row + i, 2) + d(row + i - 1, 2)));
+    ++e;
+  }
+  // stretching: a slope change of 0.2 over one 0.1 step (0.02); a smooth profile spreads it out
+  std::printf("largest second difference of the profile: bending %.3g, stretching %.3g\n", kink[0], kink[1]);
+  CHECK(std::abs(kink[1] - 0.02) < 0.002);
+  CHECK(kink[0] < 0.5 * kink[1]);
+}
+
+TEST(BadMeshesAreRejected)
+{
+  SamplingDomain empty;
+  CHECK_THROWS(shellEnergy(empty), InvalidInputException);
+  SamplingDomain outOfRange = strip();
+  outOfRange.triangles[3][1] = 100000;
+  CHECK_THROWS(shellEnergy(outOfRange), InvalidInputException);
+  SamplingDomain nan = strip();
+  nan.points[7].x() = std::nan("");
+  CHECK_THROWS(shellEnergy(nan), InvalidInputException);
+  SamplingDomain unused = strip();
+  unused.points.push_back(Vec3(9, 9, 9)); // in no triangle: its displacement would be undetermined
+  CHECK_THROWS(shellEnergy(unused), InvalidInputException);
+  // a zero-area triangle (two equal corners) is skipped, the rest still works
+  SamplingDomain degenerate = strip();
+  degenerate.triangles.push_back({ 0, 0, 1 });
+  const DeformationEnergy energy = shellEnergy(degenerate);
+  CHECK(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(energy.stretch.valuePtr(), energy.stretch.nonZeros())).allFinite() &&
+    Eigen::Map<const Eigen::VectorXd>(energy.bend.valuePtr(), energy.bend.nonZeros()).allFinite());
+  // a region position that is not a vertex lies outside the piecewise linear basis
+  SpaceDeformation model = shell(strip());
+  CHECK_THROWS(model.setRegions({ { { Vec3(0.05, 0.05, 0) }, 1.0 } }), InvalidInputException);
+}
+
+TEST_MAIN
