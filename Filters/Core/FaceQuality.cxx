@@ -1,0 +1,90 @@
+#include "FaceQuality.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mlsdeform
+{
+namespace
+{
+// OpenFOAM's ROOTVSMALL: keeps divisions finite for degenerate faces.
+constexpr double RootVerySmall = 1e-150;
+}
+
+FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face)
+{
+  FaceGeometry g;
+  const std::size_t n = face.size();
+  if (n < 3)
+  {
+    return g;
+  }
+  Vec3 average = Vec3::Zero();
+  for (int i : face)
+  {
+    average += points[i] / static_cast<double>(n);
+  }
+  // triangles (p_i, p_i+1, average): centre (p_i + p_i+1 + average) / 3 weighted by area
+  Vec3 sumN = Vec3::Zero(), sumAc = Vec3::Zero();
+  double sumA = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3& p = points[face[i]];
+    const Vec3& q = points[face[(i + 1) % n]];
+    const Vec3 normal = (q - p).cross(average - p);
+    const double a = normal.norm();
+    sumN += normal;
+    sumA += a;
+    sumAc += a * (p + q + average);
+  }
+  g.centre = sumA > RootVerySmall ? Vec3(sumAc / (3 * sumA)) : average;
+  g.area = sumN / 2;
+  return g;
+}
+
+CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector<int>>& faces)
+{
+  CellGeometry c;
+  std::vector<FaceGeometry> g;
+  Vec3 estimate = Vec3::Zero();
+  for (const auto& f : faces)
+  {
+    g.push_back(faceGeometry(points, f));
+    estimate += g.back().centre / static_cast<double>(faces.size());
+  }
+  // pyramids on the faces with apex at the estimate: volume |S . (C_f - apex)| / 3, centroid
+  // 3/4 C_f + 1/4 apex
+  double sum = 0;
+  for (const FaceGeometry& face : g)
+  {
+    const double pyramid3 = std::abs(face.area.dot(face.centre - estimate));
+    c.centre += pyramid3 * (0.75 * face.centre + 0.25 * estimate);
+    sum += pyramid3;
+  }
+  c.centre = sum > RootVerySmall ? Vec3(c.centre / sum) : estimate;
+  c.volume = sum / 3;
+  return c;
+}
+
+double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area)
+{
+  const Vec3 d = neighbourCentre - ownerCentre;
+  const double cosine = std::clamp(area.dot(d) / (area.norm() * d.norm() + RootVerySmall), -1.0, 1.0);
+  return std::acos(cosine) * 180.0 / M_PI;
+}
+
+double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
+  const std::vector<int>& faceIndices)
+{
+  const Vec3 Cpf = face.centre - ownerCentre;
+  const Vec3 d = neighbourCentre - ownerCentre;
+  const Vec3 sv = Cpf - (face.area.dot(Cpf) / (face.area.dot(d) + RootVerySmall)) * d;
+  const Vec3 svHat = sv / (sv.norm() + RootVerySmall);
+  double fd = 0.2 * d.norm() + RootVerySmall;
+  for (int i : faceIndices)
+  {
+    fd = std::max(fd, std::abs(svHat.dot(points[i] - face.centre)));
+  }
+  return sv.norm() / fd;
+}
+} // namespace mlsdeform

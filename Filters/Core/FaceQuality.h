@@ -1,0 +1,37 @@
+// Face-based mesh quality as OpenFOAM's checkMesh defines it (primitiveMeshCheck, used in paper
+// section 7.3): face centres and area vectors by triangle fans about the average point, cell
+// centres and volumes by pyramids on the faces about the average face centre (any polyhedron),
+// and per interior face
+//   non-orthogonality = angle between the face area vector S_f and d = C_N - C_P (degrees),
+//   skewness = |sv| / fd, sv the offset of the face centre from where the line P-N crosses the
+//              face plane, fd the largest extent of the face along sv (at least 0.2 |d|).
+#pragma once
+
+#include "CoreTypes.h"
+
+namespace mlsdeform
+{
+/// A polygon's centre (area weighted) and area vector (normal by the right-hand rule, length = area).
+struct FaceGeometry
+{
+  Vec3 centre = Vec3::Zero();
+  Vec3 area = Vec3::Zero();
+};
+FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face);
+
+/// A polyhedron's centre and volume from its faces (any orientation).
+struct CellGeometry
+{
+  Vec3 centre = Vec3::Zero();
+  double volume = 0;
+};
+CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector<int>>& faces);
+
+/// Non-orthogonality in degrees of a face with area vector S between cells with centres P and N;
+/// S points from the owner P to the neighbour N (out of P), as in OpenFOAM.
+double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area);
+
+/// OpenFOAM's face skewness of an interior face (face points needed for its extent).
+double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
+  const std::vector<int>& faceIndices);
+} // namespace mlsdeform

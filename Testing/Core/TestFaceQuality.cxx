@@ -1,0 +1,79 @@
+// OpenFOAM's checkMesh face measures (section 7.3) against values computed by hand.
+#include "../TestHarness.h"
+#include "FaceQuality.h"
+
+#include <cmath>
+
+using namespace mlsdeform;
+
+namespace
+{
+// The six quadrilateral faces of the box [x0, x1] x [0, 1] x [0, 1] with corner points appended.
+std::vector<std::vector<int>> boxFaces(PointList& points, double x0, double x1)
+{
+  const int b = static_cast<int>(points.size());
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+        points.push_back(Vec3(i ? x1 : x0, j, k));
+  auto v = [b](int i, int j, int k) { return b + i + 2 * j + 4 * k; };
+  // outward normals: -x, +x, -y, +y, -z, +z
+  return { { v(0, 0, 0), v(0, 0, 1), v(0, 1, 1), v(0, 1, 0) }, { v(1, 0, 0), v(1, 1, 0), v(1, 1, 1), v(1, 0, 1) },
+    { v(0, 0, 0), v(1, 0, 0), v(1, 0, 1), v(0, 0, 1) }, { v(0, 1, 0), v(0, 1, 1), v(1, 1, 1), v(1, 1, 0) },
+    { v(0, 0, 0), v(0, 1, 0), v(1, 1, 0), v(1, 0, 0) }, { v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1) } };
+}
+}
+
+TEST(FaceCentresAndAreas)
+{
+  // a unit square, an L-shaped hexagon (area 3, centroid (5/6, 5/6)) and a triangle
+  const PointList points = { Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(1, 1, 0), Vec3(1, 2, 0), Vec3(0, 2, 0), Vec3(1, 0, 0),
+    Vec3(0, 1, 0) };
+  const FaceGeometry square = faceGeometry(points, { 0, 6, 3, 7 });
+  CHECK((square.centre - Vec3(0.5, 0.5, 0)).norm() < 1e-15 && (square.area - Vec3(0, 0, 1)).norm() < 1e-15);
+  const FaceGeometry hexagon = faceGeometry(points, { 0, 1, 2, 3, 4, 5 });
+  std::printf("L-shape: centre (%.15g, %.15g), area %.15g\n", hexagon.centre.x(), hexagon.centre.y(), hexagon.area.z());
+  CHECK((hexagon.centre - Vec3(5.0 / 6, 5.0 / 6, 0)).norm() < 1e-14);
+  CHECK((hexagon.area - Vec3(0, 0, 3)).norm() < 1e-14);
+  const FaceGeometry triangle = faceGeometry(points, { 0, 5, 1 }); // clockwise seen from +z
+  CHECK((triangle.area - Vec3(0, 0, -2)).norm() < 1e-14);
+  CHECK((triangle.centre - Vec3(2.0 / 3, 2.0 / 3, 0)).norm() < 1e-14);
+}
+
+TEST(CellCentresAndVolumes)
+{
+  PointList points;
+  const auto box = boxFaces(points, 0, 2);
+  const CellGeometry b = cellGeometry(points, box);
+  CHECK((b.centre - Vec3(1, 0.5, 0.5)).norm() < 1e-14);
+  CHECK(std::abs(b.volume - 2) < 1e-14);
+  // a tetrahedron: centroid = mean of the corners, volume 1/6
+  const PointList tet = { Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1) };
+  const CellGeometry t = cellGeometry(tet, { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } });
+  CHECK((t.centre - Vec3(0.25, 0.25, 0.25)).norm() < 1e-15);
+  CHECK(std::abs(t.volume - 1.0 / 6) < 1e-15);
+}
+
+TEST(NonOrthogonalityAndSkewness)
+{
+  // Two unit cubes sharing the face x = 1: orthogonal, not skewed.
+  PointList points;
+  const auto left = boxFaces(points, 0, 1);
+  const auto right = boxFaces(points, 1, 2);
+  const CellGeometry P = cellGeometry(points, left), N = cellGeometry(points, right);
+  const FaceGeometry shared = faceGeometry(points, left[1]); // outward of the owner: towards the neighbour
+  CHECK((shared.area - Vec3(1, 0, 0)).norm() < 1e-15);
+  CHECK(std::abs(nonOrthogonality(P.centre, N.centre, shared.area)) < 1e-6);
+  CHECK(std::abs(skewness(P.centre, N.centre, shared, points, left[1])) < 1e-12);
+  // Neighbour centre moved by h along y: d = (1, h, 0), so the angle is atan(h) and the line
+  // P-N crosses the face h/2 from its centre, whose extent along y is 0.5: skewness h.
+  const double h = 0.3;
+  const Vec3 moved = N.centre + Vec3(0, h, 0);
+  const double angle = nonOrthogonality(P.centre, moved, shared.area);
+  const double skew = skewness(P.centre, moved, shared, points, left[1]);
+  std::printf("non-orthogonality %.12g (atan(h) = %.12g degrees), skewness %.12g (h = %g)\n", angle, std::atan(h) * 180 / M_PI, skew, h);
+  CHECK(std::abs(angle - std::atan(h) * 180 / M_PI) < 1e-10);
+  CHECK(std::abs(skew - h) < 1e-12);
+}
+
+TEST_MAIN
