@@ -185,13 +185,7 @@ double reportConstraints(
   {
     return 0;
   }
-  Vec3 lower = points.front(), upper = points.front();
-  for (const Vec3& p : points)
-  {
-    lower = lower.cwiseMin(p);
-    upper = upper.cwiseMax(p);
-  }
-  const double diagonal = (upper - lower).norm();
+  const double diagonal = boundingBox(points).size().norm();
   vtkNew<vtkStringArray> type;
   type->SetName("ConstraintType");
   vtkNew<vtkIntArray> count, iterations, converged;

@@ -114,23 +114,18 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
   if (dense.volume.empty() && volumeCount > 0)
   {
     // No volume cells: sample the padded bounding box around the input.
-    Vec3 lower = x[0], upper = x[0];
-    for (const Vec3& p : x)
-    {
-      lower = lower.cwiseMin(p);
-      upper = upper.cwiseMax(p);
-    }
-    const double pad = padding * (upper - lower).norm();
-    lower.array() -= pad;
-    upper.array() += pad;
+    BoundingBox box = boundingBox(x);
+    const double pad = padding * box.size().norm();
+    box.lower.array() -= pad;
+    box.upper.array() += pad;
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     dense.volume.reserve(volumeCount);
     for (int i = 0; i < volumeCount; ++i)
     {
       const Vec3 t(uniform(random), uniform(random), uniform(random));
-      dense.volume.push_back(lower + t.cwiseProduct(upper - lower));
+      dense.volume.push_back(box.lower + t.cwiseProduct(box.size()));
     }
-    dense.volumeOfDomain = (upper - lower).prod();
+    dense.volumeOfDomain = box.size().prod();
   }
   return dense;
 }
@@ -160,19 +155,20 @@ PointList placeSites(const DenseSamples& dense, int surfaceCount, int volumeCoun
 }
 } // namespace
 
-double largestSide(const PointList& points)
+BoundingBox boundingBox(const PointList& points)
 {
+  BoundingBox box;
   if (points.empty())
   {
-    return 0.0;
+    return box;
   }
-  Vec3 lower = points.front(), upper = points.front();
+  box.lower = box.upper = points.front();
   for (const Vec3& p : points)
   {
-    lower = lower.cwiseMin(p);
-    upper = upper.cwiseMax(p);
+    box.lower = box.lower.cwiseMin(p);
+    box.upper = box.upper.cwiseMax(p);
   }
-  return (upper - lower).maxCoeff();
+  return box;
 }
 
 void requireFinite(const PointList& points, const char* what)
@@ -354,13 +350,7 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
     throw InvalidInputException("the input has no points");
   }
   requireFinite(domain.points, "input points");
-  Vec3 lower = domain.points[0], upper = domain.points[0];
-  for (const Vec3& p : domain.points)
-  {
-    lower = lower.cwiseMin(p);
-    upper = upper.cwiseMax(p);
-  }
-  if (!((upper - lower).norm() > 0))
+  if (!(boundingBox(domain.points).size().norm() > 0))
   {
     throw InvalidInputException("all input points coincide: the domain has zero extent");
   }

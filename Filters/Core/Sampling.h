@@ -61,8 +61,19 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
 /// margin makes the weight at the reach w(1/margin) = 0.25.
 std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover);
 
+/// The axis-aligned bounding box of points (both corners zero for none).
+struct BoundingBox
+{
+  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();
+  Vec3 size() const { return upper - lower; }
+};
+BoundingBox boundingBox(const PointList& points);
+
 /// The largest side of the points' bounding box (0 for none): the model's length l.
-double largestSide(const PointList& points);
+inline double largestSide(const PointList& points)
+{
+  return boundingBox(points).size().maxCoeff();
+}
 
 /// Throws InvalidInputException if a coordinate is NaN or infinite.
 void requireFinite(const PointList& points, const char* what);
