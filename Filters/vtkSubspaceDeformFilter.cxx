@@ -220,7 +220,7 @@ void addField(vtkFieldData* field, const char* name, double value)
 
 struct vtkSubspaceDeformFilter::Cache
 {
-  std::string samplesKey;
+  std::string subspaceKey;
   std::unique_ptr<SpaceDeformation> model;
   std::string geometryKey;          // signature of the points below; empty when Phi is not valid
   PointList points;                 // the input points, concatenated
@@ -318,11 +318,11 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
 
     // 1. The subspace: shape functions and energies.
     const std::string key = this->SubspaceKey(inSets, inputVector);
-    if (!cache.model || key != cache.samplesKey)
+    if (!cache.model || key != cache.subspaceKey)
     {
       cache.reset();
       cache.model = this->BuildSubspace(inSets, inputVector);
-      cache.samplesKey = key;
+      cache.subspaceKey = key;
       ++this->NumberOfSamplings;
       resampled = true;
     }
