@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 
 namespace mlsdeform
 {
@@ -86,5 +90,81 @@ double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Face
     fd = std::max(fd, std::abs(svHat.dot(points[i] - face.centre)));
   }
   return sv.norm() / fd;
+}
+
+std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells)
+{
+  std::map<std::vector<int>, InteriorFace> open;
+  std::vector<InteriorFace> faces;
+  for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+  {
+    for (int f = 0; f < static_cast<int>(cells[c].size()); ++f)
+    {
+      std::vector<int> key = cells[c][f];
+      std::sort(key.begin(), key.end());
+      auto [it, inserted] = open.emplace(std::move(key), InteriorFace{ c, -1, f });
+      if (inserted)
+      {
+        continue;
+      }
+      if (it->second.neighbour >= 0)
+      {
+        throw std::invalid_argument("a face is shared by more than two cells (cells " +
+          std::to_string(it->second.owner) + ", " + std::to_string(it->second.neighbour) + " and " +
+          std::to_string(c) + ")");
+      }
+      it->second.neighbour = c;
+    }
+  }
+  for (const auto& entry : open)
+  {
+    if (entry.second.neighbour >= 0)
+    {
+      faces.push_back(entry.second);
+    }
+  }
+  std::sort(faces.begin(), faces.end(), [](const InteriorFace& a, const InteriorFace& b) {
+    return std::tie(a.owner, a.face) < std::tie(b.owner, b.face);
+  });
+  return faces;
+}
+
+std::vector<int> faceOrientation(
+  const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces)
+{
+  std::vector<int> orientation(faces.size(), 1);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+  {
+    const FaceGeometry g = faceGeometry(points, cells[faces[i].owner][faces[i].face]);
+    const Vec3 owner = cellGeometry(points, cells[faces[i].owner]).centre;
+    orientation[i] = g.area.dot(g.centre - owner) < 0 ? -1 : 1;
+  }
+  return orientation;
+}
+
+FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
+  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+{
+  std::vector<Vec3> centres(cells.size());
+#pragma omp parallel for
+  for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+  {
+    centres[c] = cellGeometry(points, cells[c]).centre;
+  }
+  FaceMeasures m;
+  m.nonOrthogonality.resize(faces.size());
+  m.skewness.resize(faces.size());
+#pragma omp parallel for
+  for (int i = 0; i < static_cast<int>(faces.size()); ++i)
+  {
+    const std::vector<int>& polygon = cells[faces[i].owner][faces[i].face];
+    FaceGeometry g = faceGeometry(points, polygon);
+    g.area *= orientation[i];
+    const Vec3& P = centres[faces[i].owner];
+    const Vec3& N = centres[faces[i].neighbour];
+    m.nonOrthogonality[i] = nonOrthogonality(P, N, g.area);
+    m.skewness[i] = skewness(P, N, g, points, polygon);
+  }
+  return m;
 }
 } // namespace mlsdeform

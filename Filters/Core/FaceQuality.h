@@ -9,6 +9,8 @@
 
 #include "CoreTypes.h"
 
+#include <vector>
+
 namespace mlsdeform
 {
 /// A polygon's centre (area weighted) and area vector (normal by the right-hand rule, length = area).
@@ -34,4 +36,34 @@ double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, co
 /// OpenFOAM's face skewness of an interior face (face points needed for its extent).
 double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
   const std::vector<int>& faceIndices);
+
+/// A cell as its list of faces, each a polygon of point indices.
+using CellFaces = std::vector<std::vector<int>>;
+
+/// A face shared by two cells; `face` indexes the owner's face list.
+struct InteriorFace
+{
+  int owner = -1;
+  int neighbour = -1;
+  int face = -1;
+};
+
+/// The faces shared by two cells, matched by their point sets (the owner is the lower cell index).
+/// Throws std::invalid_argument for a face shared by more than two cells.
+std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells);
+
+/// Per interior face, +1 or -1 so that the oriented area vector points out of the owner on
+/// `points`. OpenFOAM fixes that order in the topology, so decide it on the undeformed mesh and
+/// keep it: a neighbour whose centre folds over to the owner's side then shows above 90 degrees.
+std::vector<int> faceOrientation(
+  const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces);
+
+/// Non-orthogonality (degrees) and skewness of every interior face.
+struct FaceMeasures
+{
+  std::vector<double> nonOrthogonality;
+  std::vector<double> skewness;
+};
+FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
+  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation);
 } // namespace mlsdeform

@@ -2,7 +2,9 @@
 #include "../TestHarness.h"
 #include "FaceQuality.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 using namespace mlsdeform;
 
@@ -74,6 +76,45 @@ TEST(NonOrthogonalityAndSkewness)
   std::printf("non-orthogonality %.12g (atan(h) = %.12g degrees), skewness %.12g (h = %g)\n", angle, std::atan(h) * 180 / M_PI, skew, h);
   CHECK(std::abs(angle - std::atan(h) * 180 / M_PI) < 1e-10);
   CHECK(std::abs(skew - h) < 1e-12);
+}
+
+TEST(InteriorFacesAreMatchedAndOriented)
+{
+  // Two unit cubes in a row sharing the four points at x = 1; the owner's shared face is listed
+  // inward, which the orientation corrects.
+  PointList points;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i)
+        points.push_back(Vec3(i, j, k));
+  auto v = [](int i, int j, int k) { return i + 3 * j + 6 * k; };
+  auto cube = [&](int x) {
+    return CellFaces{ { v(x, 0, 0), v(x, 0, 1), v(x, 1, 1), v(x, 1, 0) },
+      { v(x + 1, 0, 0), v(x + 1, 1, 0), v(x + 1, 1, 1), v(x + 1, 0, 1) },
+      { v(x, 0, 0), v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1) }, { v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 1), v(x + 1, 1, 0) },
+      { v(x, 0, 0), v(x, 1, 0), v(x + 1, 1, 0), v(x + 1, 0, 0) }, { v(x, 0, 1), v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1) } };
+  };
+  std::vector<CellFaces> cells = { cube(0), cube(1) };
+  std::reverse(cells[0][1].begin(), cells[0][1].end());
+  const std::vector<InteriorFace> faces = interiorFaces(cells);
+  CHECK(faces.size() == 1);
+  CHECK(faces[0].owner == 0 && faces[0].neighbour == 1 && faces[0].face == 1);
+  const std::vector<int> orientation = faceOrientation(points, cells, faces);
+  CHECK(orientation[0] == -1);
+  const FaceMeasures before = faceMeasures(points, cells, faces, orientation);
+  CHECK(before.nonOrthogonality[0] < 1e-6 && before.skewness[0] < 1e-12);
+  // Fold the neighbour over the owner (its far face to x = -1): its centre is now on the
+  // owner's side, so the face, kept in its original orientation, is above 90 degrees.
+  PointList folded = points;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      folded[v(2, j, k)].x() = -1;
+  const FaceMeasures after = faceMeasures(folded, cells, faces, orientation);
+  std::printf("folded neighbour: non-orthogonality %.6g degrees\n", after.nonOrthogonality[0]);
+  CHECK(after.nonOrthogonality[0] > 90);
+  // a face shared by three cells is not a valid mesh
+  cells.push_back(CellFaces{ cells[1][0] });
+  CHECK_THROWS(interiorFaces(cells), std::invalid_argument);
 }
 
 TEST_MAIN

@@ -27,7 +27,7 @@ def field(proxy, name):
 
 
 # The proxies and their documented defaults.
-for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform'), ('filters', 'ShellDeform')):
+for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform'), ('filters', 'ShellDeform'), ('filters', 'DeformationQuality')):
     check(sm.ProxyManager().GetPrototypeProxy(group, name) is not None, 'proxy %s/%s is defined' % (group, name))
 deform_defaults = MLSDeform(Input=Sphere())
 check(deform_defaults.FixWeight == 1000 and deform_defaults.BendWeight == 1 and deform_defaults.StretchWeight == 0,
@@ -119,6 +119,20 @@ check(field(shell, 'NumberOfSamples') == 6475, 'ShellDeform: one unknown per ver
 check(field(shell, 'HandleResidual') < 0.05 * 0.1 * height, 'ShellDeform: handle reaches its target within 5%%: %.3g' % field(shell, 'HandleResidual'))
 shell_moved = vtk_to_numpy(shell_result.GetPoints().GetData())
 check(np.abs(shell_moved - x)[x[:, 2] <= zmin + 0.1 * height].max() < 0.05 * 0.1 * height, 'ShellDeform: fixed points stay')
+
+# Deformation Quality on a tetrahedral volume, with and without a deformation.
+volume = Tetrahedralize(Input=Wavelet(WholeExtent=[0, 4, 0, 4, 0, 4]))
+twisted = Transform(Input=volume)
+twisted.Transform.Scale = [1, 1, 0.5]
+quality = DeformationQuality(Input=twisted, Original=volume)
+summary = sm.Fetch(quality, idx=2)
+rows = [summary.GetValueByName(r, 'Measure').ToString() for r in range(summary.GetNumberOfRows())]
+check(rows == ['ScaledJacobian', 'NonOrthogonality', 'Skewness', 'InvertedCells'], 'DeformationQuality summary rows: %s' % rows)
+value = lambda r, c: summary.GetValueByName(r, c).ToDouble()
+check(0 < value(0, 'Min') < value(0, 'OriginalMin') <= 1, 'flattening lowers the smallest scaled Jacobian: %.3g < %.3g' % (value(0, 'Min'), value(0, 'OriginalMin')))
+check(value(3, 'Max') == 0 and value(1, 'OriginalMax') < 90, 'no inverted cells, no folded faces')
+faces = sm.Fetch(quality, idx=1)
+check(faces.GetNumberOfCells() > 0 and faces.GetCellData().GetArray('Skewness') is not None, 'interior faces with skewness')
 
 print('failed: %s' % failures if failures else 'all checks passed')
 sys.exit(1 if failures else 0)

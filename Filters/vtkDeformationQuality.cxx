@@ -1,0 +1,333 @@
+#include "vtkDeformationQuality.h"
+
+#include "FaceQuality.h"
+#include "Sampling.h"
+
+#include <vtkCell.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkMeshQuality.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkTable.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+vtkStandardNewMacro(vtkDeformationQuality);
+
+namespace
+{
+using mlsdeform::CellFaces;
+using mlsdeform::FaceMeasures;
+using mlsdeform::InteriorFace;
+using mlsdeform::PointList;
+
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+
+PointList pointList(vtkUnstructuredGrid* grid, const char* what)
+{
+  PointList points(grid->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    grid->GetPoint(i, points[i].data());
+  }
+  mlsdeform::requireFinite(points, what);
+  return points;
+}
+
+/// The faces of every 3D cell as point-id polygons (empty for other cells).
+std::vector<CellFaces> cellFaces(vtkUnstructuredGrid* grid)
+{
+  std::vector<CellFaces> cells(grid->GetNumberOfCells());
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCell(c, cell);
+    if (cell->GetCellDimension() != 3)
+    {
+      continue;
+    }
+    for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+    {
+      vtkIdList* ids = cell->GetFace(f)->GetPointIds();
+      std::vector<int> polygon(ids->GetNumberOfIds());
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        polygon[i] = static_cast<int>(ids->GetId(i));
+      }
+      cells[c].push_back(std::move(polygon));
+    }
+  }
+  return cells;
+}
+
+/// Verdict's scaled Jacobian of the element types it defines; NaN for the others.
+std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
+{
+  std::vector<double> jacobians(grid->GetNumberOfCells(), NaN);
+  vtkNew<vtkGenericCell> generic;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCell(c, generic);
+    vtkCell* cell = generic->GetRepresentativeCell();
+    switch (generic->GetCellType())
+    {
+      case VTK_TETRA:
+        jacobians[c] = vtkMeshQuality::TetScaledJacobian(cell);
+        break;
+      case VTK_HEXAHEDRON:
+        jacobians[c] = vtkMeshQuality::HexScaledJacobian(cell);
+        break;
+      case VTK_WEDGE:
+        jacobians[c] = vtkMeshQuality::WedgeScaledJacobian(cell);
+        break;
+      case VTK_PYRAMID:
+        jacobians[c] = vtkMeshQuality::PyramidScaledJacobian(cell);
+        break;
+      default:
+        break;
+    }
+  }
+  return jacobians;
+}
+
+/// The original must have the deformed mesh's cells: same counts, types and point ids.
+void requireSameCells(vtkUnstructuredGrid* deformed, vtkUnstructuredGrid* original)
+{
+  if (original->GetNumberOfPoints() != deformed->GetNumberOfPoints() ||
+    original->GetNumberOfCells() != deformed->GetNumberOfCells())
+  {
+    throw std::invalid_argument("the original mesh has " + std::to_string(original->GetNumberOfPoints()) +
+      " points and " + std::to_string(original->GetNumberOfCells()) + " cells, the input " +
+      std::to_string(deformed->GetNumberOfPoints()) + " and " + std::to_string(deformed->GetNumberOfCells()) +
+      ": they must be the same mesh before and after deformation");
+  }
+  vtkNew<vtkIdList> a, b;
+  for (vtkIdType c = 0; c < deformed->GetNumberOfCells(); ++c)
+  {
+    deformed->GetCellPoints(c, a);
+    original->GetCellPoints(c, b);
+    bool same = deformed->GetCellType(c) == original->GetCellType(c) && a->GetNumberOfIds() == b->GetNumberOfIds();
+    for (vtkIdType i = 0; same && i < a->GetNumberOfIds(); ++i)
+    {
+      same = a->GetId(i) == b->GetId(i);
+    }
+    if (!same)
+    {
+      throw std::invalid_argument("cell " + std::to_string(c) +
+        " differs between the original and the input: they must be the same mesh before and after deformation");
+    }
+  }
+}
+
+/// All measures of one mesh.
+struct Measures
+{
+  std::vector<double> scaledJacobian;
+  FaceMeasures faces;
+  std::vector<double> maxNonOrthogonality, maxSkewness; // per cell, over its interior faces
+  int inverted = 0;
+};
+
+Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const std::vector<CellFaces>& cells,
+  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+{
+  Measures m;
+  m.scaledJacobian = scaledJacobians(grid);
+  for (double j : m.scaledJacobian)
+  {
+    m.inverted += j < 0 ? 1 : 0;
+  }
+  m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
+  m.maxNonOrthogonality.assign(cells.size(), 0);
+  m.maxSkewness.assign(cells.size(), 0);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+  {
+    for (int c : { faces[i].owner, faces[i].neighbour })
+    {
+      m.maxNonOrthogonality[c] = std::max(m.maxNonOrthogonality[c], m.faces.nonOrthogonality[i]);
+      m.maxSkewness[c] = std::max(m.maxSkewness[c], m.faces.skewness[i]);
+    }
+  }
+  return m;
+}
+
+void addArray(vtkDataSetAttributes* data, const std::string& name, const std::vector<double>& values)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name.c_str());
+  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    array->SetValue(static_cast<vtkIdType>(i), values[i]);
+  }
+  data->AddArray(array);
+}
+
+void addMeasures(vtkUnstructuredGrid* grid, vtkPolyData* faces, const Measures& m, const std::string& prefix)
+{
+  addArray(grid->GetCellData(), prefix + "ScaledJacobian", m.scaledJacobian);
+  addArray(grid->GetCellData(), prefix + "MaxNonOrthogonality", m.maxNonOrthogonality);
+  addArray(grid->GetCellData(), prefix + "MaxSkewness", m.maxSkewness);
+  vtkNew<vtkIdTypeArray> inverted;
+  inverted->SetName((prefix + "InvertedCells").c_str());
+  inverted->InsertNextValue(m.inverted);
+  grid->GetFieldData()->AddArray(inverted);
+  addArray(faces->GetCellData(), prefix + "NonOrthogonality", m.faces.nonOrthogonality);
+  addArray(faces->GetCellData(), prefix + "Skewness", m.faces.skewness);
+}
+
+/// Min, mean and max of the finite values (NaN when there are none).
+std::array<double, 3> summarize(const std::vector<double>& values)
+{
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0;
+  std::size_t n = 0;
+  for (double v : values)
+  {
+    if (std::isfinite(v))
+    {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+      sum += v;
+      ++n;
+    }
+  }
+  return n ? std::array<double, 3>{ lo, sum / n, hi } : std::array<double, 3>{ NaN, NaN, NaN };
+}
+
+void addSummaryColumns(vtkTable* table, const Measures& m, const std::string& prefix)
+{
+  const double inverted = m.inverted;
+  const std::array<std::array<double, 3>, 4> rows = { summarize(m.scaledJacobian),
+    summarize(m.faces.nonOrthogonality), summarize(m.faces.skewness),
+    std::array<double, 3>{ inverted, inverted, inverted } };
+  const char* statistics[3] = { "Min", "Mean", "Max" };
+  for (int s = 0; s < 3; ++s)
+  {
+    vtkNew<vtkDoubleArray> column;
+    column->SetName((prefix + statistics[s]).c_str());
+    for (const auto& row : rows)
+    {
+      column->InsertNextValue(row[s]);
+    }
+    table->AddColumn(column);
+  }
+}
+}
+
+vtkDeformationQuality::vtkDeformationQuality()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(3);
+}
+
+int vtkDeformationQuality::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+int vtkDeformationQuality::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  const char* types[3] = { "vtkUnstructuredGrid", "vtkPolyData", "vtkTable" };
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), types[port]);
+  return 1;
+}
+
+int vtkDeformationQuality::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
+  vtkUnstructuredGrid* original = vtkUnstructuredGrid::GetData(inputVector[1]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
+  vtkPolyData* faceOutput = vtkPolyData::GetData(outputVector, 1);
+  vtkTable* summary = vtkTable::GetData(outputVector, 2);
+  output->ShallowCopy(input);
+  try
+  {
+    if (input->GetNumberOfCells() == 0)
+    {
+      throw std::invalid_argument("the input has no cells");
+    }
+    const PointList points = pointList(input, "the input mesh's points");
+    PointList originalPoints;
+    if (original)
+    {
+      requireSameCells(input, original);
+      originalPoints = pointList(original, "the original mesh's points");
+    }
+    this->UpdateProgress(0.1);
+    const std::vector<CellFaces> cells = cellFaces(input);
+    const std::vector<InteriorFace> faces = mlsdeform::interiorFaces(cells);
+    this->UpdateProgress(0.3);
+    // OpenFOAM's face order: out of the owner in the undeformed mesh
+    const std::vector<int> orientation = mlsdeform::faceOrientation(original ? originalPoints : points, cells, faces);
+    this->UpdateProgress(0.4);
+
+    vtkNew<vtkCellArray> polygons;
+    vtkNew<vtkIdTypeArray> owners, neighbours;
+    owners->SetName("Owner");
+    neighbours->SetName("Neighbour");
+    for (const InteriorFace& f : faces)
+    {
+      const std::vector<int>& polygon = cells[f.owner][f.face];
+      polygons->InsertNextCell(static_cast<vtkIdType>(polygon.size()));
+      for (int id : polygon)
+      {
+        polygons->InsertCellPoint(id);
+      }
+      owners->InsertNextValue(f.owner);
+      neighbours->InsertNextValue(f.neighbour);
+    }
+    faceOutput->SetPoints(input->GetPoints());
+    faceOutput->SetPolys(polygons);
+    faceOutput->GetCellData()->AddArray(owners);
+    faceOutput->GetCellData()->AddArray(neighbours);
+
+    vtkNew<vtkStringArray> names;
+    names->SetName("Measure");
+    for (const char* name : { "ScaledJacobian", "NonOrthogonality", "Skewness", "InvertedCells" })
+    {
+      names->InsertNextValue(name);
+    }
+    summary->AddColumn(names);
+
+    const Measures after = measure(input, points, cells, faces, orientation);
+    addMeasures(output, faceOutput, after, "");
+    addSummaryColumns(summary, after, "");
+    this->UpdateProgress(0.7);
+    if (original)
+    {
+      const Measures before = measure(original, originalPoints, cells, faces, orientation);
+      addMeasures(output, faceOutput, before, "Original");
+      addSummaryColumns(summary, before, "Original");
+    }
+  }
+  catch (const std::exception& e)
+  {
+    output->ShallowCopy(input);
+    faceOutput->Initialize();
+    summary->Initialize();
+    vtkErrorMacro(<< this->GetClassName() << " failed: " << e.what() << ".");
+    return 0;
+  }
+  return 1;
+}

@@ -1,0 +1,55 @@
+/**
+ * @class vtkDeformationQuality
+ * @brief Volume-mesh quality of a deformed mesh, and of its original, side by side.
+ *
+ * The measures of paper section 7.3:
+ * - per cell the scaled Jacobian (verdict's, through vtkMeshQuality) of tetrahedra, hexahedra,
+ *   wedges and pyramids: 1 for the ideal element, negative for an inverted one; NaN for other
+ *   cell types (polyhedra, 2D cells), which the statistics skip;
+ * - per interior face (a face shared by two 3D cells, also of vtkPolyhedron cells) the
+ *   non-orthogonality (degrees) and skewness exactly as OpenFOAM's checkMesh defines them. A
+ *   face's orientation (out of its owner, the lower cell id) is taken from the original mesh and
+ *   kept, as OpenFOAM keeps its face order: a neighbour folded over its owner shows above 90.
+ *
+ * Input port 0: the mesh to measure (the deformed one). Input port 1 (optional): the original mesh
+ * with the same cells, whose measures are reported alongside.
+ * Output port 0: the input with cell arrays ScaledJacobian, MaxNonOrthogonality and MaxSkewness
+ * (over the cell's interior faces; 0 for a cell without any) and, with an original, the same
+ * arrays prefixed "Original"; field data InvertedCells (and OriginalInvertedCells).
+ * Output port 1: the interior faces as polygons, cell arrays NonOrthogonality, Skewness, Owner,
+ * Neighbour (and the Original measures).
+ * Output port 2: a summary table, one row per measure (ScaledJacobian, NonOrthogonality,
+ * Skewness, InvertedCells) with columns Min, Mean, Max and, with an original, OriginalMin,
+ * OriginalMean, OriginalMax. The InvertedCells row holds the number of cells with a negative
+ * scaled Jacobian in all three columns.
+ */
+#ifndef vtkDeformationQuality_h
+#define vtkDeformationQuality_h
+
+#include "MLSDeformFiltersModule.h"
+#include "vtkUnstructuredGridAlgorithm.h"
+
+class MLSDEFORMFILTERS_EXPORT vtkDeformationQuality : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static vtkDeformationQuality* New();
+  vtkTypeMacro(vtkDeformationQuality, vtkUnstructuredGridAlgorithm);
+
+  /// The original (undeformed) mesh; optional.
+  void SetOriginalConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetOriginalData(vtkDataObject* data) { this->SetInputData(1, data); }
+
+protected:
+  vtkDeformationQuality();
+  ~vtkDeformationQuality() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkDeformationQuality(const vtkDeformationQuality&) = delete;
+  void operator=(const vtkDeformationQuality&) = delete;
+};
+
+#endif

@@ -1,0 +1,203 @@
+// vtkDeformationQuality: the scaled Jacobian and OpenFOAM's face measures against exact values.
+#include "../TestHarness.h"
+#include "FilterTestUtilities.h"
+#include "vtkDeformationQuality.h"
+
+#include <vtkCellData.h>
+#include <vtkPoints.h>
+#include <vtkStringArray.h>
+#include <vtkTable.h>
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+vtkSmartPointer<vtkUnstructuredGrid> singleCell(int type, const std::vector<std::array<double, 3>>& corners)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> points;
+  std::vector<vtkIdType> ids;
+  for (const auto& c : corners)
+    ids.push_back(points->InsertNextPoint(c.data()));
+  grid->SetPoints(points);
+  grid->InsertNextCell(type, static_cast<vtkIdType>(ids.size()), ids.data());
+  return grid;
+}
+
+/// cells x 1 x 1 unit hexahedra in a row along x, then y += shear * x.
+vtkSmartPointer<vtkUnstructuredGrid> hexRow(int cells, double shear, bool polyhedra = false)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> points;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i <= cells; ++i)
+        points->InsertNextPoint(i, j + shear * i, k);
+  grid->SetPoints(points);
+  const vtkIdType row = cells + 1;
+  for (vtkIdType i = 0; i < cells; ++i)
+  {
+    auto v = [&](int a, int b, int c) { return i + a + row * b + 2 * row * c; };
+    const vtkIdType hex[8] = { v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0), v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1) };
+    if (!polyhedra)
+    {
+      grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex);
+      continue;
+    }
+    const vtkIdType faces[30] = { 4, hex[0], hex[3], hex[2], hex[1], 4, hex[4], hex[5], hex[6], hex[7], 4, hex[0], hex[1],
+      hex[5], hex[4], 4, hex[1], hex[2], hex[6], hex[5], 4, hex[2], hex[3], hex[7], hex[6], 4, hex[3], hex[0], hex[4], hex[7] };
+    grid->InsertNextCell(VTK_POLYHEDRON, 8, hex, 6, faces);
+  }
+  return grid;
+}
+
+double cellValue(vtkDataSet* data, const char* name, vtkIdType cell = 0)
+{
+  vtkDataArray* array = data->GetCellData()->GetArray(name);
+  return array ? array->GetTuple1(cell) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double scaledJacobian(vtkUnstructuredGrid* grid)
+{
+  vtkNew<vtkDeformationQuality> quality;
+  quality->SetInputData(grid);
+  quality->Update();
+  return cellValue(quality->GetOutput(), "ScaledJacobian");
+}
+
+/// The summary table's value for a measure (row) and statistic (column).
+double summaryValue(vtkDeformationQuality* quality, const std::string& measure, const char* column)
+{
+  auto* table = vtkTable::SafeDownCast(quality->GetOutputDataObject(2));
+  auto* names = vtkStringArray::SafeDownCast(table->GetColumnByName("Measure"));
+  vtkDataArray* values = vtkDataArray::SafeDownCast(table->GetColumnByName(column));
+  for (vtkIdType r = 0; names && values && r < names->GetNumberOfValues(); ++r)
+    if (names->GetValue(r) == measure)
+      return values->GetTuple1(r);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+}
+
+TEST(ScaledJacobianOfIdealAndInvertedElements)
+{
+  const double cube = scaledJacobian(singleCell(VTK_HEXAHEDRON,
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } }));
+  const double s = std::sqrt(3.0) / 2, h = std::sqrt(2.0 / 3);
+  const std::vector<std::array<double, 3>> regular = { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, s, 0 }, { 0.5, s / 3, h } };
+  const double tet = scaledJacobian(singleCell(VTK_TETRA, regular));
+  // the same tetrahedron with two corners swapped is inside out
+  const double inverted = scaledJacobian(singleCell(VTK_TETRA, { regular[1], regular[0], regular[2], regular[3] }));
+  std::printf("unit cube %.15g, regular tetrahedron %.15g, inverted %.15g\n", cube, tet, inverted);
+  CHECK_NEAR(cube, 1.0, 1e-12);
+  // verdict normalizes tetrahedra with a rounded sqrt(2): 1 to 5e-8
+  CHECK_NEAR(tet, 1.0, 1e-7);
+  CHECK_NEAR(inverted, -1.0, 1e-7);
+  // wedges and pyramids are measured (an undistorted prism and a square pyramid are valid)
+  const double wedge = scaledJacobian(singleCell(VTK_WEDGE, { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, s, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 0.5, s, 1 } }));
+  const double pyramid = scaledJacobian(singleCell(VTK_PYRAMID, { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0.5, 0.5, std::sqrt(0.5) } }));
+  std::printf("prism %.15g, pyramid %.15g\n", wedge, pyramid);
+  CHECK(wedge > 0.9 && wedge <= 1 + 1e-12);
+  CHECK(pyramid > 0.9 && pyramid <= 1 + 1e-12);
+  // a polygon has no scaled Jacobian
+  CHECK(std::isnan(scaledJacobian(singleCell(VTK_TRIANGLE, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }))));
+}
+
+TEST(ShearedHexahedraAgainstHandValues)
+{
+  // y += h x maps every unit cube onto a parallelepiped: at each corner the edge vectors are
+  // (1, h, 0), (0, 1, 0), (0, 0, 1), so the scaled Jacobian is 1 / sqrt(1 + h^2). The shared
+  // faces stay in the planes x = i while the centres move by h per cell: non-orthogonality
+  // atan(h), and the line between the centres passes through the face centre: skewness 0.
+  const double shear = 0.5;
+  vtkSmartPointer<vtkUnstructuredGrid> original = hexRow(3, 0), sheared = hexRow(3, shear);
+  vtkNew<vtkDeformationQuality> quality;
+  quality->SetInputData(sheared);
+  quality->SetOriginalData(original);
+  quality->Update();
+  const double expectedJacobian = 1 / std::sqrt(1 + shear * shear), expectedAngle = std::atan(shear) * 180 / M_PI;
+  for (vtkIdType c = 0; c < 3; ++c)
+  {
+    CHECK_NEAR(cellValue(quality->GetOutput(), "ScaledJacobian", c), expectedJacobian, 1e-12);
+    CHECK_NEAR(cellValue(quality->GetOutput(), "OriginalScaledJacobian", c), 1.0, 1e-12);
+  }
+  auto* faces = vtkPolyData::SafeDownCast(quality->GetOutputDataObject(1));
+  CHECK(faces->GetNumberOfCells() == 2);
+  for (vtkIdType f = 0; f < 2; ++f)
+  {
+    CHECK_NEAR(cellValue(faces, "NonOrthogonality", f), expectedAngle, 1e-9);
+    CHECK_NEAR(cellValue(faces, "Skewness", f), 0.0, 1e-12);
+    CHECK_NEAR(cellValue(faces, "OriginalNonOrthogonality", f), 0.0, 1e-6);
+    CHECK(cellValue(faces, "Neighbour", f) == cellValue(faces, "Owner", f) + 1);
+  }
+  CHECK_NEAR(summaryValue(quality, "ScaledJacobian", "Min"), expectedJacobian, 1e-12);
+  CHECK_NEAR(summaryValue(quality, "ScaledJacobian", "OriginalMax"), 1.0, 1e-12);
+  CHECK_NEAR(summaryValue(quality, "NonOrthogonality", "Max"), expectedAngle, 1e-9);
+  CHECK_NEAR(summaryValue(quality, "NonOrthogonality", "OriginalMean"), 0.0, 1e-6);
+  CHECK(summaryValue(quality, "InvertedCells", "Max") == 0);
+  // the cells' worst faces: the middle cell has two, the end cells one
+  CHECK_NEAR(cellValue(quality->GetOutput(), "MaxNonOrthogonality", 1), expectedAngle, 1e-9);
+  // the input is not modified
+  CHECK(sheared->GetCellData()->GetNumberOfArrays() == 0);
+}
+
+TEST(PolyhedraHaveFaceMeasures)
+{
+  // The same sheared row as vtkPolyhedron cells: the face measures are those of the hexahedra,
+  // the scaled Jacobian is not defined.
+  const double shear = 0.5;
+  vtkNew<vtkDeformationQuality> quality;
+  quality->SetInputData(hexRow(3, shear, true));
+  quality->SetOriginalData(hexRow(3, 0, true));
+  quality->Update();
+  auto* faces = vtkPolyData::SafeDownCast(quality->GetOutputDataObject(1));
+  CHECK(faces->GetNumberOfCells() == 2);
+  CHECK_NEAR(cellValue(faces, "NonOrthogonality", 0), std::atan(shear) * 180 / M_PI, 1e-9);
+  CHECK(std::isnan(cellValue(quality->GetOutput(), "ScaledJacobian")));
+  CHECK(std::isnan(summaryValue(quality, "ScaledJacobian", "Min")));
+}
+
+TEST(InvertedCellsAreCounted)
+{
+  // push the middle layer of points of a 2-cell row past the far end: the first cell turns
+  // inside out
+  vtkSmartPointer<vtkUnstructuredGrid> original = hexRow(2, 0), folded = hexRow(2, 0);
+  for (vtkIdType i = 0; i < folded->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    folded->GetPoint(i, p);
+    if (p[0] == 0)
+      folded->GetPoints()->SetPoint(i, 3, p[1], p[2]);
+  }
+  vtkNew<vtkDeformationQuality> quality;
+  quality->SetInputData(folded);
+  quality->SetOriginalData(original);
+  quality->Update();
+  CHECK(cellValue(quality->GetOutput(), "ScaledJacobian", 0) < 0);
+  CHECK(summaryValue(quality, "InvertedCells", "Min") == 1);
+  CHECK(summaryValue(quality, "InvertedCells", "OriginalMin") == 0);
+  CHECK(quality->GetOutput()->GetFieldData()->GetArray("InvertedCells")->GetTuple1(0) == 1);
+}
+
+TEST(BadInputIsReported)
+{
+  vtkNew<vtkDeformationQuality> quality;
+  auto messages = MessageCollector::watch(quality);
+  quality->SetInputData(vtkSmartPointer<vtkUnstructuredGrid>::New());
+  quality->Update();
+  CHECK(messages->errorContains("no cells"));
+
+  vtkSmartPointer<vtkUnstructuredGrid> broken = hexRow(2, 0);
+  broken->GetPoints()->SetPoint(0, std::nan(""), 0, 0);
+  quality->SetInputData(broken);
+  quality->Update();
+  CHECK(messages->errorContains("NaN"));
+
+  quality->SetInputData(hexRow(2, 0));
+  quality->SetOriginalData(hexRow(3, 0));
+  quality->Update();
+  CHECK(messages->errorContains("same mesh before and after"));
+  CHECK(quality->GetOutput()->GetNumberOfCells() == 2); // the input passes through
+}
+
+TEST_MAIN
