@@ -1,6 +1,7 @@
 #include "vtkMLSDeformFilter.h"
 
 #include "MLSGeometry.h"
+#include "ShellOperators.h"
 #include "SpaceDeformation.h"
 
 #include <vtkInformationVector.h>
@@ -66,6 +67,7 @@ std::string vtkMLSDeformFilter::SubspaceKey(const std::vector<vtkPointSet*>& inS
     key << "internal " << mlsgeometry::pointsSignature(inSets) << mlsgeometry::cellsSignature(inSets) << this->NumberOfSamples << ' ' << this->VolumeSampleFraction << ' '
         << this->IntegrationPointRatio << ' ' << this->LloydIterations << ' ' << this->Cover << ' ' << this->RandomSeed;
   }
+  key << " basis " << this->Basis << " energy " << this->EnergyDiscretization;
   return key.str();
 }
 
@@ -89,7 +91,20 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
     samples = sampleDomain(mlsgeometry::samplingDomain(inSets), parameters, { &mlsgeometry::reportProgress, this, 0.0, 0.4 });
   }
-  return std::make_unique<SpaceDeformation>(samples, mlsdeform::Progress{ &mlsgeometry::reportProgress, this, 0.4, 0.6 });
+  const BasisKind kind = static_cast<BasisKind>(this->Basis);
+  if (this->EnergyDiscretization == SurfaceVertices)
+  {
+    // eq. 11: the shell energy of the input's triangles with d = Phi w at its vertices
+    const SamplingDomain mesh = mlsgeometry::samplingDomain(inSets);
+    if (!mesh.tetrahedra.empty())
+    {
+      throw InvalidInputException("EnergyDiscretization SurfaceVertices integrates on triangle surfaces; this input has volume cells (use Volumetric)");
+    }
+    std::shared_ptr<const ShapeFunctions> basis = makeBasis(kind, samples);
+    DeformationEnergy energy = surfaceVertexEnergy(*basis, mesh);
+    return std::make_unique<SpaceDeformation>(std::move(basis), std::move(energy), largestSide(mesh.points));
+  }
+  return std::make_unique<SpaceDeformation>(samples, kind, mlsdeform::Progress{ &mlsgeometry::reportProgress, this, 0.4, 0.6 });
 }
 
 void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
@@ -100,5 +115,7 @@ void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"
      << indent << "LloydIterations: " << this->LloydIterations << "\n"
      << indent << "Cover: " << this->Cover << "\n"
-     << indent << "RandomSeed: " << this->RandomSeed << "\n";
+     << indent << "RandomSeed: " << this->RandomSeed << "\n"
+     << indent << "Basis: " << this->Basis << "\n"
+     << indent << "EnergyDiscretization: " << this->EnergyDiscretization << "\n";
 }

@@ -19,6 +19,15 @@
  * integration points from vtkMLSSampler (without them the filter samples its input with
  * NumberOfSamples, VolumeSampleFraction, IntegrationPointRatio, LloydIterations, Cover and
  * RandomSeed).
+ *
+ * Basis selects the shape functions compared in section 4: MLS (default), or the radial basis
+ * functions Wendland and Gaussian (compact, with the cover rule's support radii) and Biharmonic
+ * and Triharmonic (global, with the linear polynomials added). Global bases make Phi and the
+ * k x k system dense: memory grows as k^2 and the set-up as n k + k^3, so keep k to a few
+ * thousand and the mesh moderate. EnergyDiscretization selects where the energies are
+ * integrated: Volumetric (section 5, at the integration points; any input) or SurfaceVertices
+ * (section 4, eq. 11: the shell operators of the input's triangles applied to Phi at its
+ * vertices; triangle surfaces only, every point on a triangle).
  */
 #ifndef vtkMLSDeformFilter_h
 #define vtkMLSDeformFilter_h
@@ -68,6 +77,31 @@ public:
   vtkGetMacro(RandomSeed, int);
   ///@}
 
+  enum Bases
+  {
+    MLS = 0,
+    Wendland = 1,
+    Gaussian = 2,
+    Biharmonic = 3,
+    Triharmonic = 4
+  };
+  ///@{
+  /// The shape functions (default MLS); see the class description.
+  vtkSetClampMacro(Basis, int, MLS, Triharmonic);
+  vtkGetMacro(Basis, int);
+  ///@}
+
+  enum EnergyDiscretizations
+  {
+    Volumetric = 0,
+    SurfaceVertices = 1
+  };
+  ///@{
+  /// Where the energies are integrated (default Volumetric); see the class description.
+  vtkSetClampMacro(EnergyDiscretization, int, Volumetric, SurfaceVertices);
+  vtkGetMacro(EnergyDiscretization, int);
+  ///@}
+
   /// Connections of the optional sampling inputs.
   void SetSamplesConnection(vtkAlgorithmOutput* samples) { this->SetInputConnection(2, samples); }
   void SetIntegrationPointsConnection(vtkAlgorithmOutput* points) { this->SetInputConnection(3, points); }
@@ -86,6 +120,8 @@ protected:
   int LloydIterations = 5;
   double Cover = 5.0;
   int RandomSeed = 0;
+  int Basis = MLS;
+  int EnergyDiscretization = Volumetric;
 
 private:
   vtkMLSDeformFilter(const vtkMLSDeformFilter&) = delete;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for MLSDeform and builds it: installs the Debian packages that are
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
-# Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb), then configures and builds into build/ (or
+# Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb, and for the paper comparisons gmsh
+# and matplotlib), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -17,6 +18,7 @@ packages=(
   libxml2-dev libx11-dev zlib1g-dev python3-dev
   libeigen3-dev libsuitesparse-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
+  gmsh python3-matplotlib
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -171,4 +171,23 @@ void PiecewiseLinearBasis::evaluate(const Vec3& x, ShapeFunctionValues& out, boo
     out.value.push_back(1.0);
   }
 }
+namespace
+{
+// The ridge of the vertex-based energies (DeformationEnergy::ridge).
+constexpr double SurfaceVertexRidge = 1e-9;
+}
+
+DeformationEnergy surfaceVertexEnergy(const ShapeFunctions& basis, const SamplingDomain& mesh)
+{
+  const DeformationEnergy shell = shellEnergy(mesh);
+  std::vector<int> outside;
+  const SparseRowMatrix Phi = subspaceMatrix(basis, mesh.points, &outside);
+  if (!outside.empty())
+  {
+    throw InvalidInputException("vertex " + std::to_string(outside.front()) + " (and " +
+      std::to_string(outside.size() - 1) + " more) lies outside every support of the basis");
+  }
+  // about as many shape functions as vertices: some combinations move no vertex
+  return { SparseRowMatrix(shell.stretch * Phi), SparseRowMatrix(shell.bend * Phi), SurfaceVertexRidge };
+}
 } // namespace mlsdeform

@@ -26,6 +26,12 @@ std::vector<double> mixedAreas(const SamplingDomain& mesh);
 /// non-finite points, indices out of range, or a vertex in no triangle of positive area.
 DeformationEnergy shellEnergy(const SamplingDomain& mesh);
 
+/// Eq. 11: the same shell energy for the displacements d = Phi w of a subspace, Phi its shape
+/// functions at the mesh's vertices: G Phi and L Phi (the vertex-based discretization of the
+/// section 4 comparisons), with a ridge of 1e-9 for the combinations that move no vertex.
+/// Throws InvalidInputException when a vertex lies outside every support.
+DeformationEnergy surfaceVertexEnergy(const ShapeFunctions& basis, const SamplingDomain& mesh);
+
 /// The piecewise linear shape functions psi_i of eq. 5 evaluated at the mesh's vertices:
 /// psi_i(x_j) = delta_ij. A position that is not a vertex (farther than 1e-9 l from every
 /// vertex) is outside; derivatives are not defined pointwise (the energies come from

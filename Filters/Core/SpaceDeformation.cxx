@@ -1,6 +1,7 @@
 #include "SpaceDeformation.h"
 
 #include "MLSBasis.h"
+#include "RadialBasis.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,8 @@ namespace
 {
 // Below this estimate of 1/cond the Cholesky factor is numerically singular in double precision.
 constexpr double SingularReciprocalCondition = 1e-12;
+// DeformationEnergy::ridge of the global RBF bases with volumetric energies.
+constexpr double GlobalBasisRidge = 1e-9;
 
 // Below this, a tiny stretching term decides between equally bent results (see the header).
 constexpr double MinimumStretchPerBend = 1e-6;
@@ -34,8 +37,26 @@ SpaceDeformation::SpaceDeformation(std::shared_ptr<const ShapeFunctions> basis, 
   }
 }
 
-SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progress)
-  : Basis(std::make_shared<MLSBasis>(samples.centers, samples.supportRadius))
+std::shared_ptr<const ShapeFunctions> makeBasis(BasisKind kind, const Samples& samples)
+{
+  switch (kind)
+  {
+    case BasisKind::Wendland:
+      return std::make_shared<RadialBasis>(RadialKernel::Wendland, samples.centers, samples.supportRadius);
+    case BasisKind::Gaussian:
+      return std::make_shared<RadialBasis>(RadialKernel::Gaussian, samples.centers, samples.supportRadius);
+    case BasisKind::Biharmonic:
+      return std::make_shared<RadialBasis>(RadialKernel::Biharmonic, samples.centers, samples.supportRadius);
+    case BasisKind::Triharmonic:
+      return std::make_shared<RadialBasis>(RadialKernel::Triharmonic, samples.centers, samples.supportRadius);
+    case BasisKind::MLS:
+      break;
+  }
+  return std::make_shared<MLSBasis>(samples.centers, samples.supportRadius);
+}
+
+SpaceDeformation::SpaceDeformation(const Samples& samples, BasisKind kind, const Progress& progress)
+  : Basis(makeBasis(kind, samples))
 {
   if (samples.integrationPoints.empty() || samples.integrationPoints.size() != samples.volume.size())
   {
@@ -62,6 +83,12 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, const Progress& progr
   Length = l;
   const double N = static_cast<double>(samples.integrationPoints.size());
   Energy = volumetricEnergy(*Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);
+  if (kind == BasisKind::Biharmonic || kind == BasisKind::Triharmonic)
+  {
+    // dense kernel systems are badly conditioned (nearly dependent columns, r^3 growing with
+    // distance); a tiny ridge keeps the Cholesky factorization stable
+    Energy.ridge = GlobalBasisRidge;
+  }
 }
 
 void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
@@ -120,6 +147,11 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   if (Constraints)
   {
     System += weights.constraint * Constraints->normalMatrix();
+  }
+  if (Energy.ridge > 0)
+  {
+    const Eigen::VectorXd ridge = Eigen::VectorXd::Constant(System.rows(), Energy.ridge * System.diagonal().maxCoeff());
+    System += SparseMatrix(ridge.asDiagonal());
   }
   Factor = std::make_unique<SparseCholesky>();
   Factor->compute(System);

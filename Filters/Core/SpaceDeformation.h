@@ -24,6 +24,20 @@
 
 namespace mlsdeform
 {
+/// The shape functions of section 4 a subspace is built from on the samples (MLSBasis.h,
+/// RadialBasis.h).
+enum class BasisKind
+{
+  MLS,
+  Wendland,
+  Gaussian,
+  Biharmonic,
+  Triharmonic
+};
+
+/// The basis of that kind on the samples' centers (compact ones with their support radii).
+std::shared_ptr<const ShapeFunctions> makeBasis(BasisKind kind, const Samples& samples);
+
 struct EnergyWeights
 {
   double stretch = 0.0;     // gamma_s
@@ -56,8 +70,8 @@ struct DirichletRegion
 class SpaceDeformation
 {
 public:
-  /// Builds the MLS basis on the samples and G, L at the integration points (eq. 12, 13).
-  explicit SpaceDeformation(const Samples& samples, const Progress& progress = {});
+  /// Builds the basis on the samples (MLS by default) and G, L at the integration points (eq. 12, 13).
+  explicit SpaceDeformation(const Samples& samples, BasisKind kind = BasisKind::MLS, const Progress& progress = {});
 
   /// A subspace with its energies (rows normalized as above) and the model's length l, the
   /// scale of the iteration tolerance.

@@ -159,6 +159,15 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end,
 
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
 {
+  // A mostly full range (a global basis) is multiplied as a dense matrix: Eigen's blocked,
+  // multithreaded product is far faster there than sparse products.
+  const SparseRowMatrix range = A.middleRows(begin, end - begin);
+  if (range.nonZeros() > 0.25 * static_cast<double>(range.rows()) * static_cast<double>(range.cols()))
+  {
+    const Eigen::MatrixXd dense(range);
+    const Eigen::MatrixXd gram = dense.transpose() * rowWeight.asDiagonal() * dense;
+    return gram.sparseView();
+  }
   const int chunks = std::max(1, omp_get_max_threads());
   std::vector<SparseMatrix> parts(chunks);
 #pragma omp parallel for schedule(static, 1)

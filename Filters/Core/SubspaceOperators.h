@@ -34,6 +34,11 @@ struct DeformationEnergy
 {
   SparseRowMatrix stretch; // G
   SparseRowMatrix bend;    // L
+  /// A ridge |w|^2 weighted by this fraction of the system's largest diagonal entry. Energies
+  /// measured at few points (eq. 11 at the vertices) leave combinations of shape functions that
+  /// move none of those points undetermined (more shape functions than vertices, or a global
+  /// basis's z polynomial on a plane z = const); the ridge picks the smallest. 0: none.
+  double ridge = 0;
 };
 
 /// G (3N x k) and L (N x k) at the integration points q_i with volumes V_i (eq. 12, 13), the

@@ -2,11 +2,12 @@
 // coplanar samples are handled by the pseudo-inverse.
 #include "MLSBasis.h"
 #include "Sampling.h"
+#include "ShapeFunctionChecks.h"
 #include "TestGeometry.h"
 #include "../TestHarness.h"
 
 using namespace mlsdeform;
-using testgeometry::randomPoints;
+using namespace testgeometry;
 
 namespace
 {
@@ -15,16 +16,6 @@ MLSBasis randomBasis(const PointList& centers, const PointList& covered, double 
   return MLSBasis(centers, coverSupportRadii(centers, { &covered, &centers }, cover));
 }
 
-// phi_j(x) for all j as a dense vector, for finite differences.
-Eigen::VectorXd dense(const MLSBasis& basis, const Vec3& x)
-{
-  ShapeFunctionValues phi;
-  basis.evaluate(x, phi, false);
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(basis.size());
-  for (std::size_t a = 0; a < phi.index.size(); ++a)
-    out[phi.index[a]] = phi.value[a];
-  return out;
-}
 }
 
 TEST(WeightFunction)
@@ -76,43 +67,18 @@ TEST(DerivativesMatchFiniteDifferences)
   const PointList centers = randomPoints(300, Vec3(0, 0, 0), Vec3(1, 1, 1), 3);
   const PointList evaluation = randomPoints(50, Vec3(0.1, 0.1, 0.1), Vec3(0.9, 0.9, 0.9), 4);
   const MLSBasis basis = randomBasis(centers, evaluation);
-  ShapeFunctionValues phi;
-  double gradientError = 0, laplacianError = 0, gradientScale = 0, laplacianScale = 0;
-  const double h1 = 1e-6, h2 = 1e-4;
-  int compared = 0;
-  for (const Vec3& x : evaluation)
-  {
-    // w(r) = 1/2 cos(pi r/sigma) + 1/2 is C1 only at r = sigma: its second derivative jumps there,
-    // so finite differences across a support boundary do not approximate the Laplacian.
-    bool nearBoundary = false;
+  // w(r) = 1/2 cos(pi r/sigma) + 1/2 is C1 only at r = sigma: its second derivative jumps there,
+  // so finite differences across a support boundary do not approximate the Laplacian.
+  const DerivativeErrors e = finiteDifferenceErrors(basis, evaluation, [&](const Vec3& x) {
     for (std::size_t j = 0; j < centers.size(); ++j)
-      nearBoundary = nearBoundary || std::abs((x - centers[j]).norm() - basis.supportRadii()[j]) < 10 * h2;
-    if (nearBoundary)
-      continue;
-    ++compared;
-    basis.evaluate(x, phi, true);
-    const Eigen::VectorXd f0 = dense(basis, x);
-    Eigen::VectorXd fdLaplacian = Eigen::VectorXd::Zero(basis.size());
-    Eigen::MatrixXd fdGradient(basis.size(), 3);
-    for (int d = 0; d < 3; ++d)
-    {
-      const Vec3 e = Vec3::Unit(d);
-      fdGradient.col(d) = (dense(basis, x + h1 * e) - dense(basis, x - h1 * e)) / (2 * h1);
-      fdLaplacian += (dense(basis, x + h2 * e) - 2 * f0 + dense(basis, x - h2 * e)) / (h2 * h2);
-    }
-    for (std::size_t a = 0; a < phi.index.size(); ++a)
-    {
-      const int j = phi.index[a];
-      gradientError = std::max(gradientError, (fdGradient.row(j).transpose() - phi.gradient[a]).norm());
-      laplacianError = std::max(laplacianError, std::abs(fdLaplacian[j] - phi.laplacian[a]));
-      gradientScale = std::max(gradientScale, phi.gradient[a].norm());
-      laplacianScale = std::max(laplacianScale, std::abs(phi.laplacian[a]));
-    }
-  }
-  std::printf("%d points: gradient error %g (scale %g), Laplacian error %g (scale %g)\n", compared, gradientError, gradientScale, laplacianError, laplacianScale);
-  CHECK(compared >= 25);
-  CHECK(gradientError <= 1e-6 * gradientScale);
-  CHECK(laplacianError <= 1e-3 * laplacianScale);
+      if (std::abs((x - centers[j]).norm() - basis.supportRadii()[j]) < 1e-3)
+        return true;
+    return false;
+  });
+  std::printf("%d points: gradient error %g (scale %g), Laplacian error %g (scale %g)\n", e.compared, e.gradient, e.gradientScale, e.laplacian, e.laplacianScale);
+  CHECK(e.compared >= 25);
+  CHECK(e.gradient <= 1e-6 * e.gradientScale);
+  CHECK(e.laplacian <= 1e-3 * e.laplacianScale);
 }
 
 TEST(CoplanarSamples)

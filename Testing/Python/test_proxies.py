@@ -33,6 +33,7 @@ deform_defaults = MLSDeform(Input=Sphere())
 check(deform_defaults.FixWeight == 1000 and deform_defaults.BendWeight == 1 and deform_defaults.StretchWeight == 0,
       'FixWeight 1000, BendWeight 1, StretchWeight 0 by default')
 check(deform_defaults.Cover == 5 and deform_defaults.IntegrationPointRatio == 4, 'Cover 5 and IntegrationPointRatio 4 by default')
+check(deform_defaults.Basis == 'MLS' and deform_defaults.EnergyDiscretization == 'Volumetric', 'Basis MLS and EnergyDiscretization Volumetric by default')
 Delete(deform_defaults)
 
 # OpenDataFile on .off goes to the plugin's reader.
