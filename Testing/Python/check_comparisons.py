@@ -1,0 +1,71 @@
+"""Checks the numbers of the paper comparisons (Examples/paper_comparisons.py --quick) against
+the paper's claims and against the values recorded when they were written (a regression of more
+than the stated tolerance fails).
+
+    python3 check_comparisons.py OUTPUT_DIR
+"""
+import csv
+import os
+import sys
+
+out_dir = sys.argv[1]
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what)
+    if not condition:
+        failures.append(what)
+
+
+def rows(name):
+    with open(os.path.join(out_dir, name)) as f:
+        return list(csv.DictReader(f))
+
+
+# Fig. 3: deviation from the shell, relative to the handle displacement
+fig3 = {(r['energy'], r['basis']): (float(r['rms_deviation']), float(r['max_deviation'])) for r in rows('fig3_deviation.csv')}
+bases = ['MLS s=5', 'Wendland s=5', 'Wendland s=50', 'Gaussian s=5', 'Gaussian s=50', 'Biharmonic', 'Triharmonic']
+check(all((e, b) in fig3 for e in ('bending', 'stretching') for b in bases), 'Fig. 3: every basis, bending and stretching')
+check(fig3[('bending', 'MLS s=5')][0] < 0.02, 'Fig. 3 target: MLS s=5 bending within 2%% RMS (%.5f)' % fig3[('bending', 'MLS s=5')][0])
+# recorded: MLS bending RMS 7.5e-5, stretching 1.1e-3; 3x allowed
+check(fig3[('bending', 'MLS s=5')][0] < 3 * 7.5e-5, 'Fig. 3: MLS s=5 bending RMS has not regressed (recorded 7.5e-5)')
+check(fig3[('stretching', 'MLS s=5')][0] < 3 * 1.1e-3, 'Fig. 3: MLS s=5 stretching RMS has not regressed (recorded 1.1e-3)')
+# the paper: compact RBFs with s = 5 show artifacts, triharmonic RBFs fail at stretching
+for basis in ('Wendland s=5', 'Gaussian s=5'):
+    check(fig3[('bending', basis)][1] > 2 * fig3[('bending', 'MLS s=5')][1],
+          'Fig. 3: %s deviates more than MLS s=5 (max %.5f vs %.5f)' % (basis, fig3[('bending', basis)][1], fig3[('bending', 'MLS s=5')][1]))
+check(fig3[('stretching', 'Triharmonic')][0] > 10 * fig3[('stretching', 'MLS s=5')][0],
+      'Fig. 3: triharmonic RBFs miss stretching (RMS %.4f vs MLS %.4f)' % (fig3[('stretching', 'Triharmonic')][0], fig3[('stretching', 'MLS s=5')][0]))
+check(os.path.getsize(os.path.join(out_dir, 'fig3_mean_curvature.png')) > 10000, 'Fig. 3: mean-curvature image written')
+
+# Fig. 4: time and memory
+fig4 = {(r['basis'], int(r['k'])): (float(r['setup_seconds']), float(r['memory_mib'])) for r in rows('fig4_performance.csv')}
+check(fig4[('MLS s=5', 1000)][0] < fig4[('Biharmonic', 1000)][0] and fig4[('MLS s=5', 1000)][0] < fig4[('Wendland s=50', 1000)][0],
+      'Fig. 4: MLS s=5 sets up faster than Biharmonic and Wendland s=50 at k = 1000')
+check(fig4[('MLS s=5', 1000)][1] < 0.5 * fig4[('Biharmonic', 1000)][1] and fig4[('MLS s=5', 1000)][1] < 0.5 * fig4[('Wendland s=50', 1000)][1],
+      'Fig. 4: MLS s=5 needs less than half their memory at k = 1000 (%.0f MiB)' % fig4[('MLS s=5', 1000)][1])
+check(fig4[('MLS s=5', 2000)][1] < 4 * fig4[('MLS s=5', 1000)][1] + 50, 'Fig. 4: MLS memory grows about linearly in k')
+check(os.path.getsize(os.path.join(out_dir, 'fig4_performance.png')) > 10000, 'Fig. 4: plot written')
+
+# Fig. 12: no inversion, MLS at least as good as triharmonic
+fig12 = {r['method']: r for r in rows('fig12_sphere_hole.csv')}
+for method in ('MLS s=5', 'Triharmonic'):
+    check(int(fig12[method]['inverted_after']) == 0 and float(fig12[method]['min_scaled_jacobian_after']) > 0,
+          'Fig. 12 target: %s inverts no element (min scaled Jacobian %.3f)' % (method, float(fig12[method]['min_scaled_jacobian_after'])))
+check(float(fig12['MLS s=5']['min_scaled_jacobian_after']) >= float(fig12['Triharmonic']['min_scaled_jacobian_after']),
+      'Fig. 12 target: MLS min scaled Jacobian at least the triharmonic one')
+check(float(fig12['MLS s=5']['min_scaled_jacobian_after']) > 0.5 * float(fig12['MLS s=5']['min_scaled_jacobian_before']),
+      'Fig. 12: MLS keeps at least half the original min scaled Jacobian (recorded: all of it)')
+
+# Fig. 13: the hexahedral pipe
+fig13 = rows('fig13_hex_pipe.csv')[0]
+check(abs(float(fig13['min_scaled_jacobian_before']) - 0.9914) < 1e-3, 'Fig. 13: the generated pipe (min scaled Jacobian 0.9914)')
+check(int(fig13['inverted_after']) == 0 and float(fig13['min_scaled_jacobian_after']) > 0.9,
+      'Fig. 13: bent pipe keeps min scaled Jacobian above 0.9 (%.3f, recorded 0.962)' % float(fig13['min_scaled_jacobian_after']))
+with open(os.path.join(out_dir, 'report.md')) as f:
+    report = f.read()
+check(all('## Fig. %d' % n in report for n in (3, 4, 12, 13)), 'report.md has the four sections')
+
+print('failed: %s' % failures if failures else 'all checks passed')
+sys.exit(1 if failures else 0)
