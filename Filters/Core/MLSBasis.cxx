@@ -43,17 +43,7 @@ MLSBasis::MLSBasis(const PointList& centers, const std::vector<double>& supportR
   , Radii(supportRadii)
   , Supports(centers)
 {
-  if (centers.size() != supportRadii.size())
-  {
-    throw InvalidInputException("MLS basis: one support radius per sample is needed");
-  }
-  for (double r : supportRadii)
-  {
-    if (!(r > 0) || !std::isfinite(r))
-    {
-      throw InvalidInputException("MLS basis: support radii must be positive and finite");
-    }
-  }
+  requireSupportRadii(centers, supportRadii, "MLS");
   Supports.setRadii(supportRadii);
 }
 

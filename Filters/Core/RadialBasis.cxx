@@ -30,17 +30,7 @@ RadialBasis::RadialBasis(RadialKernel kernel, const PointList& centers, const st
   {
     return;
   }
-  if (centers.size() != supportRadii.size())
-  {
-    throw InvalidInputException("RBF basis: one support radius per center is needed");
-  }
-  for (double r : supportRadii)
-  {
-    if (!(r > 0) || !std::isfinite(r))
-    {
-      throw InvalidInputException("RBF basis: support radii must be positive and finite");
-    }
-  }
+  requireSupportRadii(centers, supportRadii, "RBF");
   Supports.build(centers);
   Supports.setRadii(supportRadii);
 }

@@ -4,6 +4,9 @@
 
 #include "CoreTypes.h"
 
+#include <cmath>
+#include <string>
+
 namespace mlsdeform
 {
 /// The shape functions that do not vanish at one position, and optionally their derivatives.
@@ -28,4 +31,21 @@ public:
   /// k, the number of shape functions.
   virtual std::size_t size() const = 0;
 };
+
+/// Compact shape functions need one positive, finite support radius per center; throws
+/// InvalidInputException naming the basis otherwise.
+inline void requireSupportRadii(const PointList& centers, const std::vector<double>& radii, const std::string& basis)
+{
+  if (centers.size() != radii.size())
+  {
+    throw InvalidInputException(basis + " basis: one support radius per center is needed");
+  }
+  for (double r : radii)
+  {
+    if (!(r > 0) || !std::isfinite(r))
+    {
+      throw InvalidInputException(basis + " basis: support radii must be positive and finite");
+    }
+  }
+}
 } // namespace mlsdeform
