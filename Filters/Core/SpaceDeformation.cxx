@@ -27,14 +27,14 @@ constexpr double SafeguardGrowth = 3.0;
 
 SpaceDeformation::SpaceDeformation(std::shared_ptr<const ShapeFunctions> basis, DeformationEnergy energy, double length)
   : Basis(std::move(basis))
-  , Energy(std::move(energy))
   , Length(length)
 {
-  if (!Basis || Basis->size() == 0 || Energy.stretch.cols() != static_cast<long>(Basis->size()) ||
-    Energy.bend.cols() != static_cast<long>(Basis->size()) || !(length > 0))
+  if (!Basis || Basis->size() == 0 || energy.stretch.cols() != static_cast<long>(Basis->size()) ||
+    energy.bend.cols() != static_cast<long>(Basis->size()) || !(length > 0))
   {
     throw InvalidInputException("a subspace needs shape functions, energies on them and a positive length");
   }
+  Energy = normalMatrices(energy);
 }
 
 std::shared_ptr<const ShapeFunctions> makeBasis(BasisKind kind, const Samples& samples)
@@ -82,7 +82,7 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, BasisKind kind, const
   const double l = largestSide(sampled);
   Length = l;
   const double N = static_cast<double>(samples.integrationPoints.size());
-  Energy = volumetricEnergy(*Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);
+  Energy = volumetricEnergyNormals(*Basis, samples.integrationPoints, samples.volume, 1 / std::sqrt(l * N), std::sqrt(l / N), progress);
   if (kind == BasisKind::Biharmonic || kind == BasisKind::Triharmonic)
   {
     // dense kernel systems are badly conditioned (nearly dependent columns, r^3 growing with
@@ -136,10 +136,7 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   EnergyWeights weights = requested;
   weights.stretch = std::max(weights.stretch, MinimumStretchPerBend * weights.bend);
   Weights = weights;
-  auto gram = [](const SparseRowMatrix& A, double weight) {
-    return weightedGram(A, 0, A.rows(), Eigen::VectorXd::Constant(A.rows(), weight));
-  };
-  System = gram(Energy.stretch, weights.stretch) + gram(Energy.bend, weights.bend);
+  System = weights.stretch * Energy.stretch + weights.bend * Energy.bend;
   for (const SparseMatrix& A : RegionNormals)
   {
     System += weights.fix * A;

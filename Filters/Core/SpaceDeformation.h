@@ -114,14 +114,14 @@ public:
 
   const ShapeFunctions& basis() const { return *Basis; }
   /// N, the points at which the bending energy is integrated.
-  std::size_t numberOfIntegrationPoints() const { return Energy.bend.rows(); }
+  std::size_t numberOfIntegrationPoints() const { return Energy.points; }
   double reciprocalCondition() const { return ReciprocalCondition; }
 
 private:
   void checkPrescribed(const std::vector<Displacements>& prescribed) const;
 
   std::shared_ptr<const ShapeFunctions> Basis;
-  DeformationEnergy Energy;
+  EnergyNormals Energy;
   SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
   std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end

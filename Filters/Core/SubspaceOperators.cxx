@@ -2,6 +2,11 @@
 
 #include <omp.h>
 
+// The BLAS's symmetric rank-k update C = alpha A^T A + beta C (Fortran interface; CHOLMOD links
+// the same BLAS).
+extern "C" void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+  const int* lda, const double* beta, double* c, const int* ldc, std::size_t uploLength, std::size_t transLength);
+
 namespace mlsdeform
 {
 namespace
@@ -157,32 +162,71 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end,
   return multiplyRows(SparseRowMatrix(A.middleRows(begin, end - begin).transpose()), X);
 }
 
-SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+GramAccumulator::GramAccumulator(long size)
+  : Size(size)
+  , Sparse(size, size)
 {
-  // A mostly full range (a global basis) is multiplied as a dense matrix: Eigen's blocked,
-  // multithreaded product is far faster there than sparse products.
-  const SparseRowMatrix range = A.middleRows(begin, end - begin);
-  if (range.nonZeros() > 0.25 * static_cast<double>(range.rows()) * static_cast<double>(range.cols()))
+}
+
+void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  const long rows = end - begin;
+  const SparseRowMatrix range = A.middleRows(begin, rows);
+  if (range.nonZeros() > 0.25 * static_cast<double>(rows) * static_cast<double>(Size))
   {
-    const Eigen::MatrixXd dense(range);
-    const Eigen::MatrixXd gram = dense.transpose() * rowWeight.asDiagonal() * dense;
-    return gram.sparseView();
+    // dense: DenseLower += B^T B with B = diag(sqrt(rowWeight)) A(begin:end, :)
+    Eigen::MatrixXd B = rowWeight.cwiseSqrt().asDiagonal() * Eigen::MatrixXd(range);
+    if (DenseLower.size() == 0)
+    {
+      DenseLower = Eigen::MatrixXd::Zero(Size, Size);
+    }
+    const int n = static_cast<int>(Size), k = static_cast<int>(rows);
+    const double one = 1.0;
+    dsyrk_("L", "T", &n, &k, &one, B.data(), &k, &one, DenseLower.data(), &n, 1, 1);
+    return;
   }
   const int chunks = std::max(1, omp_get_max_threads());
   std::vector<SparseMatrix> parts(chunks);
 #pragma omp parallel for schedule(static, 1)
   for (int c = 0; c < chunks; ++c)
   {
-    const long first = begin + (end - begin) * c / chunks, last = begin + (end - begin) * (c + 1) / chunks;
-    const SparseRowMatrix rows = A.middleRows(first, last - first);
-    parts[c] = SparseMatrix(rows.transpose() * rowWeight.segment(first - begin, last - first).asDiagonal() * rows);
+    const long first = rows * c / chunks, last = rows * (c + 1) / chunks;
+    const SparseRowMatrix part = range.middleRows(first, last - first);
+    parts[c] = SparseMatrix(part.transpose() * rowWeight.segment(first, last - first).asDiagonal() * part);
   }
-  SparseMatrix sum = parts[0];
-  for (int c = 1; c < chunks; ++c)
+  for (const SparseMatrix& part : parts)
   {
-    sum += parts[c];
+    Sparse += part;
   }
-  return sum;
+}
+
+SparseMatrix GramAccumulator::sum() const
+{
+  if (DenseLower.size() == 0)
+  {
+    return Sparse;
+  }
+  // both triangles of the dense part, written column by column
+  SparseMatrix dense(Size, Size);
+  dense.resizeNonZeros(Size * Size);
+  for (long j = 0; j < Size; ++j)
+  {
+    dense.outerIndexPtr()[j] = static_cast<int>(j * Size);
+    for (long i = 0; i < Size; ++i)
+    {
+      dense.innerIndexPtr()[j * Size + i] = static_cast<int>(i);
+      dense.valuePtr()[j * Size + i] = i >= j ? DenseLower(i, j) : DenseLower(j, i);
+    }
+  }
+  dense.outerIndexPtr()[Size] = static_cast<int>(Size * Size);
+  return Sparse.nonZeros() == 0 ? dense : SparseMatrix(dense + Sparse);
+}
+
+SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  GramAccumulator gram(A.cols());
+  gram.add(A, begin, end, rowWeight);
+  return gram.sum();
 }
 
 SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
@@ -193,27 +237,48 @@ SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& pos
     outside, progress);
 }
 
-DeformationEnergy volumetricEnergy(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+EnergyNormals normalMatrices(const DeformationEnergy& energy)
+{
+  auto gram = [](const SparseRowMatrix& A) { return weightedGram(A, 0, A.rows(), Eigen::VectorXd::Ones(A.rows())); };
+  return { gram(energy.stretch), gram(energy.bend), energy.bend.rows(), energy.ridge };
+}
+
+EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
   double gradientScale, double laplacianScale, const Progress& progress)
 {
-  // Rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L.
-  const SparseRowMatrix D = assembleRows(
-    basis, integrationPoints, 4, true,
-    [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
-      const double g = std::sqrt(volume[i]) * gradientScale, l = std::sqrt(volume[i]) * laplacianScale;
-      for (std::size_t a = 0; a < phi.index.size(); ++a)
-      {
-        for (int d = 0; d < 3; ++d)
+  const long n = static_cast<long>(integrationPoints.size()), k = static_cast<long>(basis.size());
+  // points per block: about 8M shape function values (64 MB dense), and at least 1024 points:
+  // a dense block updates the whole k x k triangle, which costs memory traffic ~k^2 however
+  // few rows it has, so it must be tall to run at the BLAS's arithmetic speed
+  const long block = std::max(1024L, (1L << 23) / std::max(1L, k));
+  GramAccumulator stretch(k), bend(k);
+  for (long first = 0; first < n; first += block)
+  {
+    const long last = std::min(n, first + block);
+    const PointList points(integrationPoints.begin() + first, integrationPoints.begin() + last);
+    const Progress part{ progress.callback, progress.client, progress.begin + (progress.end - progress.begin) * first / n,
+      progress.begin + (progress.end - progress.begin) * last / n };
+    // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
+    SparseRowMatrix D = assembleRows(
+      basis, points, 4, true,
+      [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
+        const double g = std::sqrt(volume[first + i]) * gradientScale, l = std::sqrt(volume[first + i]) * laplacianScale;
+        for (std::size_t a = 0; a < phi.index.size(); ++a)
         {
-          rows[d][a] = g * phi.gradient[a][d];
+          for (int d = 0; d < 3; ++d)
+          {
+            rows[d][a] = g * phi.gradient[a][d];
+          }
+          rows[3][a] = l * phi.laplacian[a];
         }
-        rows[3][a] = l * phi.laplacian[a];
-      }
-    },
-    nullptr, progress);
-  DeformationEnergy energy;
-  energy.stretch = selectRows(D, [](long row) { return row % 4 != 3; });
-  energy.bend = selectRows(D, [](long row) { return row % 4 == 3; });
-  return energy;
+      },
+      nullptr, part);
+    const SparseRowMatrix G = selectRows(D, [](long row) { return row % 4 != 3; });
+    const SparseRowMatrix L = selectRows(D, [](long row) { return row % 4 == 3; });
+    D = SparseRowMatrix(); // freed before the products
+    stretch.add(G, 0, G.rows(), Eigen::VectorXd::Ones(G.rows()));
+    bend.add(L, 0, L.rows(), Eigen::VectorXd::Ones(L.rows()));
+  }
+  return { stretch.sum(), bend.sum(), n, 0.0 };
 }
 } // namespace mlsdeform

@@ -24,9 +24,27 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Displacements& X);
 /// by one thread in a fixed order (the same result whatever the number of threads).
 Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X);
 
-/// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one weight per row of the
-/// range), the k x k Gram matrix of a row range, summed over row chunks in parallel.
+/// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one non-negative weight per row
+/// of the range), the k x k Gram matrix of a row range (GramAccumulator on that one range).
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+
+/// Sums Gram matrices A^T diag(weight) A of row blocks. A sparse block is multiplied by sparse
+/// products over row chunks in parallel; a mostly full block (a global basis) by the BLAS's
+/// symmetric rank-k update (dsyrk, multithreaded and vectorized in OpenBLAS) into one dense
+/// lower triangle, so that a dense k x k result costs k^2 doubles, not a copy per block.
+class GramAccumulator
+{
+public:
+  explicit GramAccumulator(long size);
+  void add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+  /// The sum as a symmetric sparse matrix (both triangles).
+  SparseMatrix sum() const;
+
+private:
+  long Size;
+  SparseMatrix Sparse;
+  Eigen::MatrixXd DenseLower; // empty until a dense block came
+};
 
 /// The smoothness energies of a subspace as weighted rows: E_stretch = |G w|^2 and
 /// E_bend = |L w|^2 (eq. 9, 11, 12, 13).
@@ -41,10 +59,24 @@ struct DeformationEnergy
   double ridge = 0;
 };
 
-/// G (3N x k) and L (N x k) at the integration points q_i with volumes V_i (eq. 12, 13), the
-/// derivatives evaluated once per point; the gradient rows are multiplied by
-/// sqrt(V_i) * gradientScale, the Laplacian rows by sqrt(V_i) * laplacianScale.
-DeformationEnergy volumetricEnergy(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+/// What the normal equations (eq. 14) need of the energies: G^T G and L^T L (k x k).
+struct EnergyNormals
+{
+  SparseMatrix stretch; // G^T G
+  SparseMatrix bend;    // L^T L
+  long points = 0;      // the points the bending energy is measured at (rows of L)
+  double ridge = 0;     // as DeformationEnergy::ridge
+};
+
+/// G^T G and L^T L of an energy given by its rows.
+EnergyNormals normalMatrices(const DeformationEnergy& energy);
+
+/// G^T G and L^T L for G (3N x k) and L (N x k) at the integration points q_i with volumes V_i
+/// (eq. 12, 13): the gradient rows multiplied by sqrt(V_i) * gradientScale, the Laplacian rows
+/// by sqrt(V_i) * laplacianScale. The rows are formed for a block of points at a time (the
+/// derivatives evaluated once per point), multiplied into the normal matrices and dropped, so
+/// a global basis needs memory ~k^2, not ~N k (Fig. 4 up to k = 10k).
+EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
   double gradientScale, double laplacianScale, const Progress& progress = {});
 
 } // namespace mlsdeform

@@ -1,4 +1,6 @@
-// Section 5, eq. 12-14: invariants of the solve.
+// Section 5, eq. 12-14: the normal matrices and invariants of the solve.
+#include "MLSBasis.h"
+#include "RadialBasis.h"
 #include "SpaceDeformation.h"
 #include "SubspaceOperators.h"
 #include "TestGeometry.h"
@@ -42,6 +44,61 @@ Displacements evaluate(const SpaceDeformation& model, const Displacements& w, co
 {
   return subspaceMatrix(model.basis(), x) * w;
 }
+}
+
+TEST(GramMatricesOfDenseAndSparseBlocks)
+{
+  // A has full rows (multiplied by the BLAS) and rows with two entries (sparse products); the
+  // accumulated Gram matrix of three row ranges is A^T W A.
+  const long rows = 300, k = 40;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(rows, k);
+  for (long i = 0; i < rows; ++i)
+    for (long j = 0; j < k; ++j)
+      if (i < 120 || j == i % k || j == (7 * i) % k)
+        dense(i, j) = uniform(random);
+  const SparseRowMatrix A = dense.sparseView();
+  Eigen::VectorXd weight(rows);
+  for (long i = 0; i < rows; ++i)
+    weight[i] = 1 + uniform(random);
+  const Eigen::MatrixXd expected = dense.transpose() * weight.asDiagonal() * dense;
+  GramAccumulator gram(k);
+  for (const auto& [begin, end] : { std::pair<long, long>(0, 120), std::pair<long, long>(120, 200), std::pair<long, long>(200, 300) })
+    gram.add(A, begin, end, weight.segment(begin, end - begin));
+  CHECK((Eigen::MatrixXd(gram.sum()) - expected).norm() <= 1e-12 * expected.norm());
+  CHECK((Eigen::MatrixXd(weightedGram(A, 0, 120, weight.head(120))) - dense.topRows(120).transpose() * weight.head(120).asDiagonal() * dense.topRows(120)).norm() <= 1e-12 * expected.norm());
+}
+
+TEST(VolumetricNormalsAreGramMatricesOfTheDerivativeRows)
+{
+  // eq. 12, 13: G^T G and L^T L from the derivatives at the integration points, for a sparse
+  // (MLS) and a dense (biharmonic) basis
+  const Scene scene;
+  const PointList& q = scene.samples.integrationPoints;
+  const std::vector<double>& V = scene.samples.volume;
+  const MLSBasis mls(scene.samples.centers, scene.samples.supportRadius);
+  const RadialBasis biharmonic(RadialKernel::Biharmonic, scene.samples.centers, scene.samples.supportRadius);
+  for (const ShapeFunctions* basis : { static_cast<const ShapeFunctions*>(&mls), static_cast<const ShapeFunctions*>(&biharmonic) })
+  {
+    const long k = static_cast<long>(basis->size()), n = static_cast<long>(q.size());
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3 * n, k), L = Eigen::MatrixXd::Zero(n, k);
+    ShapeFunctionValues phi;
+    for (long i = 0; i < n; ++i)
+    {
+      basis->evaluate(q[i], phi, true);
+      for (std::size_t a = 0; a < phi.index.size(); ++a)
+      {
+        G.block(3 * i, phi.index[a], 3, 1) = 0.5 * std::sqrt(V[i]) * phi.gradient[a];
+        L(i, phi.index[a]) = 2.0 * std::sqrt(V[i]) * phi.laplacian[a];
+      }
+    }
+    const EnergyNormals normals = volumetricEnergyNormals(*basis, q, V, 0.5, 2.0);
+    const Eigen::MatrixXd GG = G.transpose() * G, LL = L.transpose() * L;
+    CHECK(normals.points == n);
+    CHECK((Eigen::MatrixXd(normals.stretch) - GG).norm() <= 1e-10 * GG.norm());
+    CHECK((Eigen::MatrixXd(normals.bend) - LL).norm() <= 1e-10 * LL.norm());
+  }
 }
 
 TEST(CommonTranslationMovesEveryPointByIt)
