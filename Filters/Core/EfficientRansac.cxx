@@ -1,0 +1,541 @@
+#include "EfficientRansac.h"
+
+#include "Sampling.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+namespace mlsdeform
+{
+namespace
+{
+// Bits of the Morton code per axis: the finest octree cell is 1/1024 of the bounding box.
+constexpr int MortonBits = 10;
+// Samples evaluated for a new candidate's score; the next subsets double.
+constexpr long FirstSubset = 256;
+// Minimal sets drawn between two decisions.
+constexpr int DrawsPerBatch = 200;
+// A search that draws this many minimal sets stops whatever it found.
+constexpr long MaximumDraws = 20000000;
+// Candidates kept between batches, the best estimates.
+constexpr std::size_t KeptCandidates = 1000;
+// Width of the confidence interval of an estimated score, in standard deviations.
+constexpr double ConfidenceWidth = 2;
+
+std::uint64_t spreadBits(std::uint64_t v)
+{
+  // 10 bits to every third of 30
+  v &= 0x3ff;
+  v = (v | (v << 16)) & 0x30000ff;
+  v = (v | (v << 8)) & 0x300f00f;
+  v = (v | (v << 4)) & 0x30c30c3;
+  v = (v | (v << 2)) & 0x9249249;
+  return v;
+}
+
+// The octree of the samples, implicit in their Morton order (Schnabel et al. section 4.3).
+class MortonOctree
+{
+public:
+  MortonOctree(const PointList& points, const std::vector<int>& valid)
+  {
+    PointList used;
+    for (int i : valid)
+    {
+      used.push_back(points[i]);
+    }
+    const BoundingBox box = boundingBox(used);
+    const double size = std::max(box.size().maxCoeff(), 1e-300);
+    Code.assign(points.size(), 0);
+    for (int i : valid)
+    {
+      const Vec3 t = (points[i] - box.lower) / size * ((1 << MortonBits) - 1);
+      Code[i] = spreadBits(static_cast<std::uint64_t>(t.x())) | (spreadBits(static_cast<std::uint64_t>(t.y())) << 1) |
+        (spreadBits(static_cast<std::uint64_t>(t.z())) << 2);
+    }
+    Order = valid;
+    std::stable_sort(Order.begin(), Order.end(), [&](int a, int b) { return Code[a] < Code[b]; });
+    Sorted.resize(Order.size());
+    for (std::size_t a = 0; a < Order.size(); ++a)
+    {
+      Sorted[a] = Code[Order[a]];
+    }
+  }
+
+  /// The samples in the cell of the given level (0: the root) that contains sample i, as a
+  /// range [first, last) of order().
+  std::pair<long, long> cell(int i, int level) const
+  {
+    const int shift = 3 * (MortonBits - level);
+    const std::uint64_t lower = (Code[i] >> shift) << shift, upper = lower + (std::uint64_t(1) << shift);
+    const long first = std::lower_bound(Sorted.begin(), Sorted.end(), lower) - Sorted.begin();
+    const long last = std::lower_bound(Sorted.begin(), Sorted.end(), upper) - Sorted.begin();
+    return { first, last };
+  }
+  const std::vector<int>& order() const { return Order; }
+
+private:
+  std::vector<std::uint64_t> Code;
+  std::vector<int> Order;
+  std::vector<std::uint64_t> Sorted;
+};
+
+// The largest connected component of the samples (indices into points): samples whose cells of
+// size clusterEpsilon touch (26-neighbourhood) are connected (Schnabel et al. section 4.4).
+std::vector<int> largestComponent(const PointList& points, const std::vector<int>& samples, double clusterEpsilon)
+{
+  if (samples.size() < 2)
+  {
+    return samples;
+  }
+  PointList used;
+  for (int i : samples)
+  {
+    used.push_back(points[i]);
+  }
+  const Vec3 lower = boundingBox(used).lower;
+  auto key = [&](const std::array<long, 3>& c) { return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]); };
+  const long n = static_cast<long>(samples.size());
+  std::vector<std::array<long, 3>> cellOf(n);
+  std::vector<std::uint64_t> keyOf(n);
+  for (long a = 0; a < n; ++a)
+  {
+    const Vec3 t = (points[samples[a]] - lower) / clusterEpsilon;
+    for (int d = 0; d < 3; ++d)
+    {
+      cellOf[a][d] = std::min(static_cast<long>(t[d]) + 1, (1L << 21) - 2); // +1: neighbours stay >= 0
+    }
+    keyOf[a] = key(cellOf[a]);
+  }
+  std::vector<std::uint64_t> cells = keyOf;
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  std::vector<long> parent(cells.size());
+  std::iota(parent.begin(), parent.end(), 0L);
+  auto find = [&](long c) {
+    while (parent[c] != c)
+    {
+      c = parent[c] = parent[parent[c]];
+    }
+    return c;
+  };
+  auto indexOf = [&](std::uint64_t k) {
+    const auto it = std::lower_bound(cells.begin(), cells.end(), k);
+    return it != cells.end() && *it == k ? static_cast<long>(it - cells.begin()) : -1L;
+  };
+  std::vector<char> seen(cells.size(), 0);
+  for (long a = 0; a < n; ++a)
+  {
+    const long c = indexOf(keyOf[a]);
+    if (seen[c])
+    {
+      continue;
+    }
+    seen[c] = 1;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+        {
+          const long other = indexOf(key({ cellOf[a][0] + dx, cellOf[a][1] + dy, cellOf[a][2] + dz }));
+          if (other >= 0)
+          {
+            parent[find(other)] = find(c);
+          }
+        }
+  }
+  std::vector<long> size(cells.size(), 0);
+  for (long a = 0; a < n; ++a)
+  {
+    ++size[find(indexOf(keyOf[a]))];
+  }
+  const long largest = std::max_element(size.begin(), size.end()) - size.begin();
+  std::vector<int> component;
+  for (long a = 0; a < n; ++a)
+  {
+    if (find(indexOf(keyOf[a])) == largest)
+    {
+      component.push_back(samples[a]);
+    }
+  }
+  return component;
+}
+
+struct Candidate
+{
+  Primitive shape;
+  std::array<int, 3> samples;
+  int level = 0;
+  int subsets = 0;      // evaluated subsets
+  long evaluated = 0;   // samples in them
+  long compatible = 0;  // compatible samples among them
+  double estimate = 0, lower = 0, upper = 0;
+};
+
+class Search
+{
+public:
+  Search(const PointList& points, const std::vector<Vec3>& normals, const RansacParameters& p, const std::vector<int>& valid)
+    : Points(points)
+    , Normals(normals)
+    , P(p)
+    , CosAlpha(std::cos(p.normalThreshold))
+    , Octree(points, valid)
+    , Available(points.size(), 0)
+    , Random(p.seed)
+  {
+    for (int i : valid)
+    {
+      Available[i] = 1;
+    }
+    // levels 0 .. L-1, the finest with about four samples per cell
+    const double perCell = std::max(1.0, static_cast<double>(valid.size()) / 4);
+    Levels = std::clamp(static_cast<int>(std::ceil(std::log(perCell) / std::log(8.0))), 1, MortonBits);
+    LevelDraws.assign(Levels, 0);
+    LevelScore.assign(Levels, 0);
+    for (PrimitiveType type : { PrimitiveType::Plane, PrimitiveType::Cylinder, PrimitiveType::Sphere, PrimitiveType::Cone })
+    {
+      const bool enabled = type == PrimitiveType::Plane ? p.planes : type == PrimitiveType::Cylinder ? p.cylinders
+        : type == PrimitiveType::Sphere                  ? p.spheres
+                                                         : p.cones;
+      if (enabled)
+      {
+        Types.push_back(type);
+      }
+    }
+    resetSubsets();
+  }
+
+  std::vector<DetectedPrimitive> run(const Progress& progress)
+  {
+    std::vector<DetectedPrimitive> found;
+    const double total = static_cast<double>(Remaining.size());
+    while (static_cast<long>(Remaining.size()) >= P.minimumSupport && !Types.empty() && Draws < MaximumDraws)
+    {
+      drawBatch();
+      Candidate* best = refineBest();
+      if (best && best->estimate >= P.minimumSupport && detectionProbability(best->estimate) >= P.probability)
+      {
+        DetectedPrimitive primitive;
+        if (extract(*best, primitive))
+        {
+          found.push_back(std::move(primitive));
+          removeMembers(found.back().members);
+          progress.report(1 - Remaining.size() / total);
+        }
+        else
+        {
+          *best = Candidates.back();
+          Candidates.pop_back();
+        }
+      }
+      else if (detectionProbability(P.minimumSupport) >= P.probability)
+      {
+        break; // a shape of minimumSupport samples would have been found by now
+      }
+    }
+    return found;
+  }
+
+private:
+  // 1 - (1 - n / (N L 2^(k-1)))^T for minimal sets of k = 3 samples (Schnabel et al. eq. 4)
+  double detectionProbability(double n) const
+  {
+    const double N = static_cast<double>(Remaining.size());
+    const double single = std::min(1.0, n / (N * Levels * 4));
+    return 1 - std::pow(1 - single, static_cast<double>(Draws));
+  }
+
+  void resetSubsets()
+  {
+    Remaining.clear();
+    for (int i : Octree.order())
+    {
+      if (Available[i])
+      {
+        Remaining.push_back(i);
+      }
+    }
+    std::shuffle(Remaining.begin(), Remaining.end(), Random);
+    SubsetEnd.clear();
+    long end = 0, size = FirstSubset;
+    while (end < static_cast<long>(Remaining.size()))
+    {
+      end = std::min(static_cast<long>(Remaining.size()), end + size);
+      SubsetEnd.push_back(end);
+      size *= 2;
+    }
+  }
+
+  void evaluateNextSubset(Candidate& c) const
+  {
+    const long begin = c.subsets == 0 ? 0 : SubsetEnd[c.subsets - 1], end = SubsetEnd[c.subsets];
+    long compatible = 0;
+    for (long a = begin; a < end; ++a)
+    {
+      const int i = Remaining[a];
+      compatible += c.shape.compatible(Points[i], Normals[i], P.epsilon, CosAlpha);
+    }
+    c.compatible += compatible;
+    c.evaluated += end - begin;
+    ++c.subsets;
+    // expected score N c / m with a normal approximation of the hypergeometric spread
+    const double N = static_cast<double>(Remaining.size()), m = static_cast<double>(c.evaluated);
+    const double f = static_cast<double>(c.compatible) / m, fSpread = (c.compatible + 1.0) / (m + 2);
+    const double spread = N * std::sqrt(fSpread * (1 - fSpread) / m * std::max(0.0, (N - m) / std::max(1.0, N - 1)));
+    c.estimate = N * f;
+    c.lower = c.estimate - ConfidenceWidth * spread;
+    c.upper = c.estimate + ConfidenceWidth * spread;
+  }
+
+  bool fullyEvaluated(const Candidate& c) const { return c.subsets == static_cast<int>(SubsetEnd.size()); }
+
+  // Draws minimal sets (serially, from the seeded generator) and scores their candidates on the
+  // first subset (in parallel).
+  void drawBatch()
+  {
+    std::vector<double> weight(Levels);
+    double sum = 0;
+    for (int l = 0; l < Levels; ++l)
+    {
+      sum += LevelDraws[l] > 0 ? LevelScore[l] / LevelDraws[l] : 0;
+    }
+    for (int l = 0; l < Levels; ++l)
+    {
+      const double learned = sum > 0 && LevelDraws[l] > 0 ? LevelScore[l] / LevelDraws[l] / sum : 1.0 / Levels;
+      weight[l] = 0.9 * learned + 0.1 / Levels;
+    }
+    std::discrete_distribution<int> pickLevel(weight.begin(), weight.end());
+    std::uniform_int_distribution<long> pickRemaining(0, static_cast<long>(Remaining.size()) - 1);
+    const std::size_t first = Candidates.size();
+    for (int draw = 0; draw < DrawsPerBatch; ++draw)
+    {
+      ++Draws;
+      const int level = pickLevel(Random);
+      ++LevelDraws[level];
+      std::array<int, 3> s;
+      s[0] = Remaining[pickRemaining(Random)];
+      const auto [begin, end] = Octree.cell(s[0], level);
+      if (end - begin < 3)
+      {
+        continue;
+      }
+      std::uniform_int_distribution<long> pickInCell(begin, end - 1);
+      int found = 1;
+      for (int attempt = 0; attempt < 20 && found < 3; ++attempt)
+      {
+        const int i = Octree.order()[pickInCell(Random)];
+        if (Available[i] && std::find(s.begin(), s.begin() + found, i) == s.begin() + found)
+        {
+          s[found++] = i;
+        }
+      }
+      if (found < 3)
+      {
+        continue;
+      }
+      const Vec3 p[3] = { Points[s[0]], Points[s[1]], Points[s[2]] };
+      const Vec3 n[3] = { Normals[s[0]], Normals[s[1]], Normals[s[2]] };
+      for (PrimitiveType type : Types)
+      {
+        if (const std::optional<Primitive> shape = fitMinimal(type, p, n, P.epsilon, CosAlpha))
+        {
+          Candidate c;
+          c.shape = *shape;
+          c.samples = s;
+          c.level = level;
+          Candidates.push_back(c);
+        }
+      }
+    }
+    scoreFrom(first);
+    for (std::size_t c = first; c < Candidates.size(); ++c)
+    {
+      LevelScore[Candidates[c].level] += Candidates[c].estimate;
+    }
+    if (Candidates.size() > 2 * KeptCandidates)
+    {
+      // the candidates far down the ranking will not be extracted before new draws replace them
+      std::stable_sort(Candidates.begin(), Candidates.end(), [](const Candidate& a, const Candidate& b) { return a.estimate > b.estimate; });
+      Candidates.resize(KeptCandidates);
+    }
+  }
+
+  void scoreFrom(std::size_t first)
+  {
+    const long count = static_cast<long>(Candidates.size() - first);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (long c = 0; c < count; ++c)
+    {
+      evaluateNextSubset(Candidates[first + c]);
+    }
+  }
+
+  // The candidate with the best estimate, its score refined on more subsets until its interval
+  // lies above every other candidate's (section 4.5).
+  Candidate* refineBest()
+  {
+    while (!Candidates.empty())
+    {
+      auto byEstimate = [](const Candidate& a, const Candidate& b) { return a.estimate < b.estimate; };
+      Candidate& best = *std::max_element(Candidates.begin(), Candidates.end(), byEstimate);
+      Candidate* challenger = nullptr;
+      for (Candidate& c : Candidates)
+      {
+        if (&c != &best && c.upper > best.lower && (!challenger || c.upper > challenger->upper))
+        {
+          challenger = &c;
+        }
+      }
+      if (!challenger)
+      {
+        return &best;
+      }
+      if (!fullyEvaluated(best))
+      {
+        evaluateNextSubset(best);
+      }
+      else if (!fullyEvaluated(*challenger))
+      {
+        evaluateNextSubset(*challenger);
+      }
+      else
+      {
+        return &best;
+      }
+    }
+    return nullptr;
+  }
+
+  std::vector<int> compatibleComponent(const Primitive& shape) const
+  {
+    const long n = static_cast<long>(Remaining.size());
+    std::vector<char> flag(n);
+#pragma omp parallel for schedule(static)
+    for (long a = 0; a < n; ++a)
+    {
+      flag[a] = shape.compatible(Points[Remaining[a]], Normals[Remaining[a]], P.epsilon, CosAlpha);
+    }
+    std::vector<int> compatible;
+    for (long a = 0; a < n; ++a)
+    {
+      if (flag[a])
+      {
+        compatible.push_back(Remaining[a]);
+      }
+    }
+    std::sort(compatible.begin(), compatible.end());
+    return largestComponent(Points, compatible, P.clusterEpsilon);
+  }
+
+  bool extract(const Candidate& candidate, DetectedPrimitive& primitive) const
+  {
+    Primitive shape = candidate.shape;
+    std::vector<int> component = compatibleComponent(shape);
+    for (int pass = 0; pass < 2 && static_cast<int>(component.size()) >= P.minimumSupport; ++pass)
+    {
+      const Primitive refit = fitLeastSquares(shape, Points, component);
+      if (shape.type == PrimitiveType::Cone && (refit.angle < MinimumConeAngle || refit.angle > M_PI / 2 - MinimumConeAngle))
+      {
+        break;
+      }
+      std::vector<int> grown = compatibleComponent(refit);
+      if (grown.size() < component.size())
+      {
+        break;
+      }
+      shape = refit;
+      component = std::move(grown);
+    }
+    if (static_cast<int>(component.size()) < P.minimumSupport)
+    {
+      return false;
+    }
+    ForwardSearchSettings settings;
+    settings.floor = P.epsilon / 4;
+    const ForwardSearchResult refined = forwardSearch(shape, Points, component, settings);
+    if (static_cast<int>(refined.members.size()) < P.minimumSupport || refined.maxDistance > P.epsilon)
+    {
+      return false;
+    }
+    primitive.shape = refined.shape;
+    primitive.members = refined.members;
+    primitive.rmsDistance = refined.rmsDistance;
+    primitive.maxDistance = refined.maxDistance;
+    return true;
+  }
+
+  void removeMembers(const std::vector<int>& members)
+  {
+    for (int i : members)
+    {
+      Available[i] = 0;
+    }
+    // candidates drawn from removed samples go; the others are scored again on new subsets
+    Candidates.erase(std::remove_if(Candidates.begin(), Candidates.end(),
+                       [&](const Candidate& c) { return !Available[c.samples[0]] || !Available[c.samples[1]] || !Available[c.samples[2]]; }),
+      Candidates.end());
+    resetSubsets();
+    for (Candidate& c : Candidates)
+    {
+      c.subsets = 0;
+      c.evaluated = c.compatible = 0;
+    }
+    if (Remaining.empty())
+    {
+      Candidates.clear();
+      return;
+    }
+    scoreFrom(0);
+  }
+
+  const PointList& Points;
+  const std::vector<Vec3>& Normals;
+  RansacParameters P;
+  double CosAlpha;
+  MortonOctree Octree;
+  std::vector<char> Available;
+  std::vector<int> Remaining; // available samples in random order: the scoring subsets
+  std::vector<long> SubsetEnd;
+  std::vector<Candidate> Candidates;
+  std::vector<PrimitiveType> Types;
+  int Levels = 1;
+  std::vector<double> LevelDraws, LevelScore;
+  long Draws = 0;
+  std::mt19937_64 Random;
+};
+}
+
+std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const std::vector<Vec3>& normals,
+  const RansacParameters& parameters, const Progress& progress)
+{
+  if (points.size() != normals.size())
+  {
+    throw InvalidInputException("primitive detection: one normal per sample is needed");
+  }
+  requireFinite(points, "primitive detection samples");
+  if (!(parameters.epsilon > 0) || !(parameters.clusterEpsilon > 0) || !(parameters.normalThreshold > 0) ||
+    !(parameters.normalThreshold <= M_PI / 2) || parameters.minimumSupport < 3 || !(parameters.probability > 0) ||
+    !(parameters.probability < 1))
+  {
+    throw InvalidInputException("primitive detection: epsilon and cluster epsilon must be positive, the normal threshold in "
+                                "(0, 90] degrees, the minimum support at least 3 and the probability in (0, 1)");
+  }
+  std::vector<int> valid;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (normals[i].allFinite() && std::abs(normals[i].norm() - 1) < 1e-6)
+    {
+      valid.push_back(static_cast<int>(i));
+    }
+  }
+  if (valid.empty())
+  {
+    return {};
+  }
+  Search search(points, normals, parameters, valid);
+  return search.run(progress);
+}
+} // namespace mlsdeform
