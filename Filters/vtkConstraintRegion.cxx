@@ -27,14 +27,15 @@ vtkStandardNewMacro(vtkConstraintRegion);
 namespace
 {
 // The points of the sets inside the function (mode ImplicitFunction), with values[s] within range
-// (mode ArrayRange; sets without the array contribute nothing), or all (mode AllPoints).
+// (mode ArrayRange) or with primitive among the components of values[s] (mode Primitive; sets
+// without the array contribute nothing), or all (mode AllPoints).
 mlsdeform::PointList selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values, int mode,
-  vtkImplicitFunction* function, bool insideOut, const double range[2])
+  vtkImplicitFunction* function, bool insideOut, const double range[2], int primitive)
 {
   mlsdeform::PointList selected;
   for (std::size_t s = 0; s < sets.size(); ++s)
   {
-    if (mode == vtkConstraintRegion::ArrayRange && !values[s])
+    if ((mode == vtkConstraintRegion::ArrayRange || mode == vtkConstraintRegion::Primitive) && !values[s])
     {
       continue;
     }
@@ -52,6 +53,14 @@ mlsdeform::PointList selectPositions(const std::vector<vtkPointSet*>& sets, cons
         const double v = values[s]->GetComponent(i, 0);
         take = v >= range[0] && v <= range[1];
       }
+      else if (mode == vtkConstraintRegion::Primitive)
+      {
+        take = false;
+        for (int c = 0; c < values[s]->GetNumberOfComponents(); ++c)
+        {
+          take = take || values[s]->GetComponent(i, c) == primitive;
+        }
+      }
       if (take)
       {
         selected.push_back(x);
@@ -59,6 +68,23 @@ mlsdeform::PointList selectPositions(const std::vector<vtkPointSet*>& sets, cons
     }
   }
   return selected;
+}
+
+// The role that keeps a primitive of that type (vtkPrimitiveDetector's codes), -1 for none.
+int roleOfPrimitive(int type)
+{
+  switch (type)
+  {
+    case 0:
+      return vtkConstraintRegion::Planarity;
+    case 1:
+      return vtkConstraintRegion::Cylinder;
+    case 2:
+    case 3:
+      return vtkConstraintRegion::FeatureLine; // similarity: spheres stay spheres, cones keep their angle
+    default:
+      return -1;
+  }
 }
 }
 vtkCxxSetObjectMacro(vtkConstraintRegion, Region, vtkImplicitFunction);
@@ -84,8 +110,8 @@ vtkConstraintRegion::~vtkConstraintRegion()
 
 const char* vtkConstraintRegion::GetRoleName(int role)
 {
-  static const char* names[] = { "Handle", "Fixed", "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid" };
-  return role >= Handle && role <= Rigid ? names[role] : "Unknown";
+  static const char* names[] = { "Handle", "Fixed", "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid", "FromPrimitive" };
+  return role >= Handle && role <= FromPrimitive ? names[role] : "Unknown";
 }
 
 void vtkConstraintRegion::SetSelectionArray(const char* name)
@@ -121,14 +147,52 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   }
 
   // Select positions, unless only the motion changed since the last selection.
+  if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
+  {
+    vtkErrorMacro(<< "Role FromPrimitive needs SelectionMode Primitive (a Primitive Detector's output as input).");
+    return 0;
+  }
+  int role = this->Role;
   std::vector<vtkDataArray*> values;
   for (vtkPointSet* set : sets)
   {
-    values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set) : nullptr);
+    values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set)
+        : this->SelectionMode == Primitive           ? set->GetPointData()->GetArray("PrimitiveIds")
+                                                     : nullptr);
+  }
+  if (this->SelectionMode == Primitive)
+  {
+    // the primitive must exist in the detector's output; its type gives the FromPrimitive role
+    vtkDataArray* types = nullptr;
+    for (vtkPointSet* set : sets)
+    {
+      types = types ? types : set->GetFieldData()->GetArray("PrimitiveTypes");
+    }
+    if (!types)
+    {
+      vtkErrorMacro(<< "SelectionMode Primitive needs a Primitive Detector's output as input (field data PrimitiveTypes and "
+                       "point array PrimitiveIds are missing).");
+      return 0;
+    }
+    if (this->PrimitiveId >= types->GetNumberOfTuples())
+    {
+      vtkErrorMacro(<< "There is no primitive " << this->PrimitiveId << ": the detector found " << types->GetNumberOfTuples()
+                    << " (ids 0 to " << types->GetNumberOfTuples() - 1 << ").");
+      return 0;
+    }
+    if (this->Role == FromPrimitive)
+    {
+      role = roleOfPrimitive(static_cast<int>(types->GetComponent(this->PrimitiveId, 0)));
+      if (role < 0)
+      {
+        vtkErrorMacro(<< "Primitive " << this->PrimitiveId << " has an unknown type.");
+        return 0;
+      }
+    }
   }
   std::ostringstream key;
   key << mlsgeometry::pointsSignature(sets) << ' ' << this->SelectionMode << ' ' << this->InsideOut << ' ' << this->Range[0] << ' '
-      << this->Range[1] << ' ' << this->Region << ' ' << (this->Region ? this->Region->GetMTime() : 0);
+      << this->Range[1] << ' ' << this->PrimitiveId << ' ' << this->Region << ' ' << (this->Region ? this->Region->GetMTime() : 0);
   for (vtkDataArray* array : values)
   {
     key << ' ' << array << ':' << (array ? array->GetMTime() : 0);
@@ -136,14 +200,15 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   if (key.str() != this->Selected->key)
   {
     this->Selected->key.clear();
-    this->Selected->positions = selectPositions(sets, values, this->SelectionMode, this->Region, this->InsideOut, this->Range);
+    this->Selected->positions =
+      selectPositions(sets, values, this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId);
     this->Selected->key = key.str();
     ++this->NumberOfSelections;
   }
   const mlsdeform::PointList& selected = this->Selected->positions;
   if (selected.empty() && input->GetNumberOfElements(vtkDataObject::POINT) > 0)
   {
-    vtkWarningMacro(<< GetRoleName(this->Role) << " region selects no point.");
+    vtkWarningMacro(<< GetRoleName(role) << " region selects no point.");
   }
 
   // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
@@ -173,7 +238,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   for (std::size_t i = 0; i < selected.size(); ++i)
   {
     mlsdeform::Vec3 moved = selected[i];
-    if (this->Role == Handle)
+    if (role == Handle)
     {
       motion->TransformPoint(selected[i].data(), moved.data());
     }
@@ -182,16 +247,16 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   }
   output->GetPointData()->AddArray(displacement);
 
-  vtkNew<vtkIntArray> role;
-  role->SetName("Role");
-  role->InsertNextValue(this->Role);
+  vtkNew<vtkIntArray> roleArray;
+  roleArray->SetName("Role");
+  roleArray->InsertNextValue(role);
   vtkNew<vtkStringArray> roleName;
   roleName->SetName("RoleName");
-  roleName->InsertNextValue(GetRoleName(this->Role));
+  roleName->InsertNextValue(GetRoleName(role));
   vtkNew<vtkDoubleArray> weight;
   weight->SetName("Weight");
   weight->InsertNextValue(this->Weight);
-  output->GetFieldData()->AddArray(role);
+  output->GetFieldData()->AddArray(roleArray);
   output->GetFieldData()->AddArray(roleName);
   output->GetFieldData()->AddArray(weight);
   return 1;
@@ -205,6 +270,7 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Region: " << this->Region << "\n"
      << indent << "InsideOut: " << this->InsideOut << "\n"
      << indent << "Range: " << this->Range[0] << " " << this->Range[1] << "\n"
+     << indent << "PrimitiveId: " << this->PrimitiveId << "\n"
      << indent << "Translation: " << this->Translation[0] << " " << this->Translation[1] << " " << this->Translation[2] << "\n"
      << indent << "Rotation: " << this->Rotation[0] << " " << this->Rotation[1] << " " << this->Rotation[2] << "\n"
      << indent << "Scale: " << this->Scale[0] << " " << this->Scale[1] << " " << this->Scale[2] << "\n"

@@ -6,11 +6,15 @@
  * of input points selected by one of the SelectionMode rules, with a Role:
  *  - Handle: the positions move by the handle transform (Translation, Rotation, Scale about Center);
  *  - Fixed: the positions stay in place;
- *  - Planarity, Circularity, Cylinder, FeatureLine, Rigid: geometric constraints (section 6).
+ *  - Planarity, Circularity, Cylinder, FeatureLine, Rigid: geometric constraints (section 6);
+ *  - FromPrimitive (with SelectionMode Primitive): the constraint that keeps the selected
+ *    primitive of a vtkPrimitiveDetector output (section 6.3): Planarity for a plane, Cylinder for
+ *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
+ *    sphere or a cone.
  *
  * Output: vtkPolyData with the selected positions as vertices, point array
  * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
- * data "Role" (the Role value), "RoleName" and "Weight". Plug it into MLSDeform's Regions input.
+ * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight". Plug it into MLSDeform's Regions input.
  */
 #ifndef vtkConstraintRegion_h
 #define vtkConstraintRegion_h
@@ -35,7 +39,8 @@ public:
     Circularity,
     Cylinder,
     FeatureLine,
-    Rigid
+    Rigid,
+    FromPrimitive
   };
   static const char* GetRoleName(int role);
 
@@ -43,19 +48,27 @@ public:
   {
     ImplicitFunction = 0, // points with Region(x) <= 0 (> 0 with InsideOut)
     ArrayRange,           // points whose SelectionArray value (component 0) is within Range
-    AllPoints             // every input point (for use after Extract Selection)
+    AllPoints,            // every input point (for use after Extract Selection)
+    Primitive             // points whose PrimitiveIds (vtkPrimitiveDetector) contain PrimitiveId
   };
 
   ///@{
   /// The region's role (default Handle).
-  vtkSetClampMacro(Role, int, Handle, Rigid);
+  vtkSetClampMacro(Role, int, Handle, FromPrimitive);
   vtkGetMacro(Role, int);
   ///@}
 
   ///@{
   /// How the positions are selected (default ImplicitFunction).
-  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, AllPoints);
+  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, Primitive);
   vtkGetMacro(SelectionMode, int);
+  ///@}
+
+  ///@{
+  /// The primitive of mode Primitive: its id in a vtkPrimitiveDetector's output (default 0). A
+  /// vertex on an edge belongs to every primitive of its faces.
+  vtkSetClampMacro(PrimitiveId, int, 0, VTK_INT_MAX);
+  vtkGetMacro(PrimitiveId, int);
   ///@}
 
   ///@{
@@ -125,6 +138,7 @@ protected:
   vtkImplicitFunction* Region = nullptr;
   bool InsideOut = false;
   double Range[2] = { 0.0, 1.0 };
+  int PrimitiveId = 0;
   double Translation[3] = { 0.0, 0.0, 0.0 };
   double Rotation[3] = { 0.0, 0.0, 0.0 };
   double Scale[3] = { 1.0, 1.0, 1.0 };

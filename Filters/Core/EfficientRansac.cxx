@@ -84,8 +84,11 @@ private:
 };
 
 // The largest connected component of the samples (indices into points): samples whose cells of
-// size clusterEpsilon touch (26-neighbourhood) are connected (Schnabel et al. section 4.4).
-std::vector<int> largestComponent(const PointList& points, const std::vector<int>& samples, double clusterEpsilon)
+// size clusterEpsilon touch (26-neighbourhood) are connected (Schnabel et al. section 4.4), and
+// so are faces that share a vertex when faces are given (a coarse mesh's faces can be farther
+// apart than clusterEpsilon and still be one surface).
+std::vector<int> largestComponent(const PointList& points, const std::vector<int>& samples, double clusterEpsilon,
+  const std::vector<std::vector<int>>* faces, std::vector<int>& vertexOwner)
 {
   if (samples.size() < 2)
   {
@@ -100,7 +103,7 @@ std::vector<int> largestComponent(const PointList& points, const std::vector<int
   auto key = [&](const std::array<long, 3>& c) { return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]); };
   const long n = static_cast<long>(samples.size());
   std::vector<std::array<long, 3>> cellOf(n);
-  std::vector<std::uint64_t> keyOf(n);
+  std::vector<std::pair<std::uint64_t, long>> byCell(n); // (cell key, sample position)
   for (long a = 0; a < n; ++a)
   {
     const Vec3 t = (points[samples[a]] - lower) / clusterEpsilon;
@@ -108,54 +111,74 @@ std::vector<int> largestComponent(const PointList& points, const std::vector<int
     {
       cellOf[a][d] = std::min(static_cast<long>(t[d]) + 1, (1L << 21) - 2); // +1: neighbours stay >= 0
     }
-    keyOf[a] = key(cellOf[a]);
+    byCell[a] = { key(cellOf[a]), a };
   }
-  std::vector<std::uint64_t> cells = keyOf;
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  std::vector<long> parent(cells.size());
+  std::sort(byCell.begin(), byCell.end());
+  std::vector<long> parent(n);
   std::iota(parent.begin(), parent.end(), 0L);
-  auto find = [&](long c) {
-    while (parent[c] != c)
+  auto find = [&](long a) {
+    while (parent[a] != a)
     {
-      c = parent[c] = parent[parent[c]];
+      a = parent[a] = parent[parent[a]];
     }
-    return c;
+    return a;
   };
-  auto indexOf = [&](std::uint64_t k) {
-    const auto it = std::lower_bound(cells.begin(), cells.end(), k);
-    return it != cells.end() && *it == k ? static_cast<long>(it - cells.begin()) : -1L;
+  auto unite = [&](long a, long b) { parent[find(a)] = find(b); };
+  // the first sample of a cell represents it
+  auto representative = [&](std::uint64_t k) {
+    const auto it = std::lower_bound(byCell.begin(), byCell.end(), std::make_pair(k, 0L));
+    return it != byCell.end() && it->first == k ? it->second : -1L;
   };
-  std::vector<char> seen(cells.size(), 0);
-  for (long a = 0; a < n; ++a)
+  for (long c = 0; c < n; ++c)
   {
-    const long c = indexOf(keyOf[a]);
-    if (seen[c])
+    const long a = byCell[c].second, first = representative(byCell[c].first);
+    unite(a, first);
+    if (a != first)
     {
-      continue;
+      continue; // the cell's neighbours are joined once, through its representative
     }
-    seen[c] = 1;
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz)
         {
-          const long other = indexOf(key({ cellOf[a][0] + dx, cellOf[a][1] + dy, cellOf[a][2] + dz }));
+          const long other = representative(key({ cellOf[a][0] + dx, cellOf[a][1] + dy, cellOf[a][2] + dz }));
           if (other >= 0)
           {
-            parent[find(other)] = find(c);
+            unite(other, a);
           }
         }
   }
-  std::vector<long> size(cells.size(), 0);
+  if (faces)
+  {
+    for (long a = 0; a < n; ++a)
+    {
+      for (int v : (*faces)[samples[a]])
+      {
+        if (vertexOwner[v] >= 0)
+        {
+          unite(a, vertexOwner[v]);
+        }
+        vertexOwner[v] = static_cast<int>(a);
+      }
+    }
+    for (long a = 0; a < n; ++a)
+    {
+      for (int v : (*faces)[samples[a]])
+      {
+        vertexOwner[v] = -1;
+      }
+    }
+  }
+  std::vector<long> size(n, 0);
   for (long a = 0; a < n; ++a)
   {
-    ++size[find(indexOf(keyOf[a]))];
+    ++size[find(a)];
   }
   const long largest = std::max_element(size.begin(), size.end()) - size.begin();
   std::vector<int> component;
   for (long a = 0; a < n; ++a)
   {
-    if (find(indexOf(keyOf[a])) == largest)
+    if (find(a) == largest)
     {
       component.push_back(samples[a]);
     }
@@ -177,18 +200,35 @@ struct Candidate
 class Search
 {
 public:
-  Search(const PointList& points, const std::vector<Vec3>& normals, const RansacParameters& p, const std::vector<int>& valid)
+  Search(const PointList& points, const std::vector<Vec3>& normals, const std::vector<std::vector<int>>* faces,
+    const RansacParameters& p, const std::vector<int>& valid)
     : Points(points)
     , Normals(normals)
+    , Faces(faces)
     , P(p)
     , CosAlpha(std::cos(p.normalThreshold))
     , Octree(points, valid)
     , Available(points.size(), 0)
     , Random(p.seed)
   {
+    PointList used;
     for (int i : valid)
     {
       Available[i] = 1;
+      used.push_back(points[i]);
+    }
+    Diagonal = boundingBox(used).size().norm();
+    if (faces)
+    {
+      int vertices = 0;
+      for (const std::vector<int>& face : *faces)
+      {
+        for (int v : face)
+        {
+          vertices = std::max(vertices, v + 1);
+        }
+      }
+      VertexOwner.assign(vertices, -1);
     }
     // levels 0 .. L-1, the finest with about four samples per cell
     const double perCell = std::max(1.0, static_cast<double>(valid.size()) / 4);
@@ -214,7 +254,11 @@ public:
     const double total = static_cast<double>(Remaining.size());
     while (static_cast<long>(Remaining.size()) >= P.minimumSupport && !Types.empty() && Draws < MaximumDraws)
     {
-      drawBatch();
+      const bool searched = detectionProbability(P.minimumSupport) >= P.probability;
+      if (!searched)
+      {
+        drawBatch(); // once a shape of minimumSupport samples would have been found, only the candidates left are tried
+      }
       Candidate* best = refineBest();
       if (best && best->estimate >= P.minimumSupport && detectionProbability(best->estimate) >= P.probability)
       {
@@ -231,9 +275,9 @@ public:
           Candidates.pop_back();
         }
       }
-      else if (detectionProbability(P.minimumSupport) >= P.probability)
+      else if (searched)
       {
-        break; // a shape of minimumSupport samples would have been found by now
+        break;
       }
     }
     return found;
@@ -290,6 +334,23 @@ private:
     c.upper = c.estimate + ConfidenceWidth * spread;
   }
 
+  // Spheres and cylinders wider than the samples' bounding box are planes or free-form patches
+  // within epsilon, cones must keep their angle range (MinimumConeAngle).
+  bool plausible(const Primitive& s) const
+  {
+    switch (s.type)
+    {
+      case PrimitiveType::Sphere:
+      case PrimitiveType::Cylinder:
+        return s.radius <= Diagonal;
+      case PrimitiveType::Cone:
+        return s.angle >= MinimumConeAngle && s.angle <= M_PI / 2 - MinimumConeAngle;
+      case PrimitiveType::Plane:
+        break;
+    }
+    return true;
+  }
+
   bool fullyEvaluated(const Candidate& c) const { return c.subsets == static_cast<int>(SubsetEnd.size()); }
 
   // Draws minimal sets (serially, from the seeded generator) and scores their candidates on the
@@ -340,7 +401,8 @@ private:
       const Vec3 n[3] = { Normals[s[0]], Normals[s[1]], Normals[s[2]] };
       for (PrimitiveType type : Types)
       {
-        if (const std::optional<Primitive> shape = fitMinimal(type, p, n, P.epsilon, CosAlpha))
+        const std::optional<Primitive> shape = fitMinimal(type, p, n, P.epsilon, CosAlpha);
+        if (shape && plausible(*shape))
         {
           Candidate c;
           c.shape = *shape;
@@ -427,7 +489,7 @@ private:
       }
     }
     std::sort(compatible.begin(), compatible.end());
-    return largestComponent(Points, compatible, P.clusterEpsilon);
+    return largestComponent(Points, compatible, P.clusterEpsilon, Faces, VertexOwner);
   }
 
   bool extract(const Candidate& candidate, DetectedPrimitive& primitive) const
@@ -437,7 +499,7 @@ private:
     for (int pass = 0; pass < 2 && static_cast<int>(component.size()) >= P.minimumSupport; ++pass)
     {
       const Primitive refit = fitLeastSquares(shape, Points, component);
-      if (shape.type == PrimitiveType::Cone && (refit.angle < MinimumConeAngle || refit.angle > M_PI / 2 - MinimumConeAngle))
+      if (!plausible(refit))
       {
         break;
       }
@@ -456,7 +518,7 @@ private:
     ForwardSearchSettings settings;
     settings.floor = P.epsilon / 4;
     const ForwardSearchResult refined = forwardSearch(shape, Points, component, settings);
-    if (static_cast<int>(refined.members.size()) < P.minimumSupport || refined.maxDistance > P.epsilon)
+    if (static_cast<int>(refined.members.size()) < P.minimumSupport || refined.maxDistance > P.epsilon || !plausible(refined.shape))
     {
       return false;
     }
@@ -493,8 +555,11 @@ private:
 
   const PointList& Points;
   const std::vector<Vec3>& Normals;
+  const std::vector<std::vector<int>>* Faces;
+  mutable std::vector<int> VertexOwner; // scratch of largestComponent: a sample per vertex, -1
   RansacParameters P;
   double CosAlpha;
+  double Diagonal = 0;
   MortonOctree Octree;
   std::vector<char> Available;
   std::vector<int> Remaining; // available samples in random order: the scoring subsets
@@ -509,11 +574,24 @@ private:
 }
 
 std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const std::vector<Vec3>& normals,
-  const RansacParameters& parameters, const Progress& progress)
+  const RansacParameters& parameters, const std::vector<std::vector<int>>* faces, const Progress& progress)
 {
-  if (points.size() != normals.size())
+  if (points.size() != normals.size() || (faces && faces->size() != points.size()))
   {
-    throw InvalidInputException("primitive detection: one normal per sample is needed");
+    throw InvalidInputException("primitive detection: one normal (and face, if faces are given) per sample is needed");
+  }
+  if (faces)
+  {
+    for (const std::vector<int>& face : *faces)
+    {
+      for (int v : face)
+      {
+        if (v < 0)
+        {
+          throw InvalidInputException("primitive detection: a face has a negative vertex index");
+        }
+      }
+    }
   }
   requireFinite(points, "primitive detection samples");
   if (!(parameters.epsilon > 0) || !(parameters.clusterEpsilon > 0) || !(parameters.normalThreshold > 0) ||
@@ -535,7 +613,7 @@ std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const s
   {
     return {};
   }
-  Search search(points, normals, parameters, valid);
+  Search search(points, normals, faces, parameters, valid);
   return search.run(progress);
 }
 } // namespace mlsdeform

@@ -7,12 +7,15 @@
 //     candidates are drawn more often.
 //   - Score (section 4.4): the samples within epsilon of a candidate whose normal deviates by
 //     less than the normal threshold, restricted to the largest connected component among them
-//     (cells of size clusterEpsilon that touch); estimated on growing random subsets with a
+//     (cells of size clusterEpsilon that touch; for mesh faces also faces sharing a vertex,
+//     since a coarse mesh's faces lie farther apart than clusterEpsilon); estimated on growing random subsets with a
 //     confidence interval (section 4.5) and refined only for the best candidates.
 //   - Probabilistic stopping (section 4.2): the best candidate, of n samples, is extracted once
 //     1 - (1 - n / (N L 4))^T >= probability after T minimal sets (N samples left, L octree
-//     levels); the search ends when a shape of minimumSupport samples would have been found
-//     with that probability and no candidate reaches it.
+//     levels); once a shape of minimumSupport samples would have been found with that
+//     probability, no more sets are drawn and the search ends with the candidates left.
+// Spheres and cylinders of a radius above the samples' bounding-box diagonal (planes or free
+// forms within epsilon) and cones outside the angle range of Primitives.h are not kept.
 // Extraction refits the best candidate to its compatible component by least squares (twice,
 // which lets an inexact candidate from noisy normals grow onto its surface), then the forward
 // search settles its members and parameters. Deterministic for a seed: random draws are serial,
@@ -43,9 +46,11 @@ struct DetectedPrimitive
   double rmsDistance = 0, maxDistance = 0;
 };
 
-/// Primitives in the oriented samples (points with unit normals), the largest first; a sample
+/// Primitives in the oriented samples (points with unit normals), in the order found; a sample
 /// belongs to at most one. Samples whose normal is not a finite unit vector take part in none.
-/// Throws InvalidInputException for non-finite points, mismatched sizes or invalid parameters.
+/// faces (optional): the vertex indices of the face each sample stands for (FaceSamples.h);
+/// faces sharing a vertex are connected. Throws InvalidInputException for non-finite points,
+/// mismatched sizes or invalid parameters.
 std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const std::vector<Vec3>& normals,
-  const RansacParameters& parameters, const Progress& progress = {});
+  const RansacParameters& parameters, const std::vector<std::vector<int>>* faces = nullptr, const Progress& progress = {});
 } // namespace mlsdeform

@@ -49,7 +49,7 @@ Detection detect(const Part& part, std::uint64_t seed = 0)
   d.samples = faceSamples(part.points, part.faces);
   d.parameters = defaults(part.diagonal());
   d.parameters.seed = seed;
-  d.found = detectPrimitives(d.samples.barycenters, d.samples.normals, d.parameters);
+  d.found = detectPrimitives(d.samples.barycenters, d.samples.normals, d.parameters, &part.faces);
   return d;
 }
 

@@ -1,0 +1,267 @@
+#include "vtkPrimitiveDetector.h"
+
+#include "EfficientRansac.h"
+#include "FaceSamples.h"
+#include "MLSGeometry.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkTable.h>
+
+#include <cmath>
+#include <limits>
+
+vtkStandardNewMacro(vtkPrimitiveDetector);
+
+namespace
+{
+using mlsdeform::DetectedPrimitive;
+using mlsdeform::PrimitiveType;
+
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+
+vtkSmartPointer<vtkIntArray> intArray(const char* name, vtkIdType tuples, int components, int value)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  array->Fill(value);
+  return array;
+}
+
+// One row per primitive: identity, support, fit and parameters (NaN where the type has none).
+vtkSmartPointer<vtkTable> primitiveTable(const std::vector<DetectedPrimitive>& found, const std::vector<double>& area)
+{
+  const char* numeric[] = { "TypeCode", "Faces", "Area", "RMSDistance", "MaxDistance", "NormalX", "NormalY", "NormalZ", "Offset", "AxisX",
+    "AxisY", "AxisZ", "CenterX", "CenterY", "CenterZ", "Radius", "ApexX", "ApexY", "ApexZ", "Angle" };
+  auto table = vtkSmartPointer<vtkTable>::New();
+  vtkNew<vtkIntArray> id;
+  id->SetName("Id");
+  vtkNew<vtkStringArray> type;
+  type->SetName("Type");
+  table->AddColumn(id);
+  table->AddColumn(type);
+  std::vector<vtkSmartPointer<vtkDoubleArray>> columns;
+  for (const char* name : numeric)
+  {
+    columns.push_back(vtkSmartPointer<vtkDoubleArray>::New());
+    columns.back()->SetName(name);
+    table->AddColumn(columns.back());
+  }
+  for (std::size_t p = 0; p < found.size(); ++p)
+  {
+    const mlsdeform::Primitive& s = found[p].shape;
+    double faceArea = 0;
+    for (int f : found[p].members)
+    {
+      faceArea += area[f];
+    }
+    std::vector<double> row(columns.size(), NaN);
+    row[0] = static_cast<double>(s.type);
+    row[1] = static_cast<double>(found[p].members.size());
+    row[2] = faceArea;
+    row[3] = found[p].rmsDistance;
+    row[4] = found[p].maxDistance;
+    auto put = [&](int first, const mlsdeform::Vec3& v) {
+      for (int d = 0; d < 3; ++d)
+      {
+        row[first + d] = v[d];
+      }
+    };
+    switch (s.type)
+    {
+      case PrimitiveType::Plane:
+        put(5, s.axis);
+        row[8] = s.offset;
+        break;
+      case PrimitiveType::Cylinder:
+        put(9, s.axis);
+        put(12, s.center);
+        row[15] = s.radius;
+        break;
+      case PrimitiveType::Sphere:
+        put(12, s.center);
+        row[15] = s.radius;
+        break;
+      case PrimitiveType::Cone:
+        put(9, s.axis);
+        put(16, s.center);
+        row[19] = s.angle * 180 / M_PI;
+        break;
+    }
+    id->InsertNextValue(static_cast<int>(p));
+    type->InsertNextValue(mlsdeform::primitiveTypeName(s.type));
+    for (std::size_t c = 0; c < columns.size(); ++c)
+    {
+      columns[c]->InsertNextValue(row[c]);
+    }
+  }
+  return table;
+}
+}
+
+vtkPrimitiveDetector::vtkPrimitiveDetector()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkPrimitiveDetector::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkPrimitiveDetector::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  if (auto* surface = vtkPolyData::SafeDownCast(input))
+  {
+    output->ShallowCopy(surface);
+  }
+  else
+  {
+    vtkNew<vtkDataSetSurfaceFilter> boundary;
+    boundary->SetInputData(input);
+    boundary->Update();
+    output->ShallowCopy(boundary->GetOutput());
+  }
+  vtkCellArray* polys = output->GetPolys();
+  if (!polys || polys->GetNumberOfCells() == 0)
+  {
+    vtkErrorMacro(<< "The input has no faces (polygons): primitives are detected on face barycenters and face normals, so a "
+                     "point cloud or a line set cannot be used.");
+    output->Initialize();
+    return 0;
+  }
+
+  // one oriented sample per polygon (Fig. 7)
+  mlsdeform::PointList vertices(output->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+  {
+    output->GetPoint(i, vertices[i].data());
+  }
+  std::vector<std::vector<int>> faces;
+  faces.reserve(polys->GetNumberOfCells());
+  auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    iterator->GetCurrentCell(size, ids);
+    faces.emplace_back(ids, ids + size);
+  }
+  std::vector<DetectedPrimitive> found;
+  mlsdeform::FaceSamples samples;
+  try
+  {
+    samples = mlsdeform::faceSamples(vertices, faces);
+    double bounds[6];
+    output->GetBounds(bounds);
+    const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) + std::pow(bounds[5] - bounds[4], 2));
+    mlsdeform::RansacParameters p;
+    p.planes = this->DetectPlanes;
+    p.cylinders = this->DetectCylinders;
+    p.spheres = this->DetectSpheres;
+    p.cones = this->DetectCones;
+    p.epsilon = this->Epsilon * diagonal;
+    p.clusterEpsilon = this->ClusterEpsilon * diagonal;
+    p.normalThreshold = this->NormalThreshold * M_PI / 180;
+    p.minimumSupport = this->MinimumSupport;
+    p.probability = this->Probability;
+    p.seed = static_cast<std::uint64_t>(this->RandomSeed);
+    if (!(diagonal > 0))
+    {
+      throw mlsdeform::InvalidInputException("the surface has zero extent");
+    }
+    found = mlsdeform::detectPrimitives(samples.barycenters, samples.normals, p, &faces, { &mlsgeometry::reportProgress, this });
+  }
+  catch (const mlsdeform::InvalidInputException& e)
+  {
+    vtkErrorMacro(<< "Primitive detection: " << e.what());
+    output->Initialize();
+    return 0;
+  }
+
+  // faces -> cells (polygons come after vertices and lines), vertices -> every primitive of their faces
+  const vtkIdType firstPolygon = output->GetNumberOfVerts() + output->GetNumberOfLines();
+  auto primitiveId = intArray("PrimitiveId", output->GetNumberOfCells(), 1, -1);
+  auto primitiveType = intArray("PrimitiveType", output->GetNumberOfCells(), 1, -1);
+  std::vector<std::vector<int>> membership(vertices.size());
+  auto types = intArray("PrimitiveTypes", static_cast<vtkIdType>(found.size()), 1, 0);
+  for (std::size_t p = 0; p < found.size(); ++p)
+  {
+    types->SetValue(static_cast<vtkIdType>(p), static_cast<int>(found[p].shape.type));
+    for (int f : found[p].members)
+    {
+      primitiveId->SetValue(firstPolygon + f, static_cast<int>(p));
+      primitiveType->SetValue(firstPolygon + f, static_cast<int>(found[p].shape.type));
+      for (int v : faces[f])
+      {
+        if (membership[v].empty() || membership[v].back() != static_cast<int>(p))
+        {
+          membership[v].push_back(static_cast<int>(p));
+        }
+      }
+    }
+  }
+  std::size_t most = 1;
+  for (auto& ids : membership)
+  {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    most = std::max(most, ids.size());
+  }
+  auto count = intArray("PrimitiveCount", static_cast<vtkIdType>(vertices.size()), 1, 0);
+  auto ids = intArray("PrimitiveIds", static_cast<vtkIdType>(vertices.size()), static_cast<int>(most), -1);
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+  {
+    count->SetValue(static_cast<vtkIdType>(v), static_cast<int>(membership[v].size()));
+    for (std::size_t a = 0; a < membership[v].size(); ++a)
+    {
+      ids->SetTypedComponent(static_cast<vtkIdType>(v), static_cast<int>(a), membership[v][a]);
+    }
+  }
+  output->GetCellData()->AddArray(primitiveId);
+  output->GetCellData()->AddArray(primitiveType);
+  output->GetPointData()->AddArray(count);
+  output->GetPointData()->AddArray(ids);
+  output->GetFieldData()->AddArray(types);
+  table->ShallowCopy(primitiveTable(found, samples.areas));
+  return 1;
+}
+
+void vtkPrimitiveDetector::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "DetectPlanes: " << this->DetectPlanes << "\n"
+     << indent << "DetectCylinders: " << this->DetectCylinders << "\n"
+     << indent << "DetectSpheres: " << this->DetectSpheres << "\n"
+     << indent << "DetectCones: " << this->DetectCones << "\n"
+     << indent << "Epsilon: " << this->Epsilon << "\n"
+     << indent << "ClusterEpsilon: " << this->ClusterEpsilon << "\n"
+     << indent << "NormalThreshold: " << this->NormalThreshold << "\n"
+     << indent << "MinimumSupport: " << this->MinimumSupport << "\n"
+     << indent << "Probability: " << this->Probability << "\n"
+     << indent << "RandomSeed: " << this->RandomSeed << "\n";
+}
