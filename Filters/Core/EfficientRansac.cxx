@@ -517,8 +517,10 @@ private:
     }
     ForwardSearchSettings settings;
     settings.floor = P.epsilon / 4;
-    const ForwardSearchResult refined = forwardSearch(shape, Points, component, settings);
-    if (static_cast<int>(refined.members.size()) < P.minimumSupport || refined.maxDistance > P.epsilon || !plausible(refined.shape))
+    settings.cosAlpha = CosAlpha;
+    settings.ceiling = P.epsilon;
+    const ForwardSearchResult refined = forwardSearch(shape, Points, Normals, component, settings);
+    if (static_cast<int>(refined.members.size()) < P.minimumSupport || !plausible(refined.shape))
     {
       return false;
     }
@@ -617,3 +619,4 @@ std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const s
   return search.run(progress);
 }
 } // namespace mlsdeform
+

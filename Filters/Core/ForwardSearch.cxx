@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
 
 namespace mlsdeform
 {
-ForwardSearchResult forwardSearch(const Primitive& start, const PointList& points, const std::vector<int>& candidates,
-  const ForwardSearchSettings& settings)
+ForwardSearchResult forwardSearch(const Primitive& start, const PointList& points, const std::vector<Vec3>& normals,
+  const std::vector<int>& candidates, const ForwardSearchSettings& settings)
 {
   ForwardSearchResult result;
   result.shape = start;
@@ -16,16 +18,26 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
   {
     return result;
   }
-  // candidates ordered by their distance from a fit: order[0..m) is the subset
+  // candidates ordered by their distance from a fit: order[0..m) is the subset; a candidate whose
+  // normal the fit does not match or that lies beyond the ceiling cannot enter
   std::vector<double> distance(n);
   std::vector<long> order(n);
   auto sortBy = [&](const Primitive& shape) {
     for (long a = 0; a < n; ++a)
     {
-      distance[a] = shape.distance(points[candidates[a]]);
+      const int i = candidates[a];
+      const double d = shape.distance(points[i]);
+      distance[a] = std::abs(normals[i].dot(shape.normalAt(points[i]))) >= settings.cosAlpha && d <= settings.ceiling
+        ? d
+        : std::numeric_limits<double>::infinity();
     }
+    // ties (an exact surface) in a scrambled but fixed order, so that a growing subset spreads
+    // over the surface instead of filling it row by row (a row would make a degenerate fit)
     std::iota(order.begin(), order.end(), 0L);
-    std::stable_sort(order.begin(), order.end(), [&](long a, long b) { return distance[a] < distance[b]; });
+    auto scrambled = [](long a) { return (static_cast<std::uint64_t>(a) * 0x9E3779B97F4A7C15ull) >> 16; };
+    std::sort(order.begin(), order.end(), [&](long a, long b) {
+      return distance[a] < distance[b] || (distance[a] == distance[b] && scrambled(a) < scrambled(b));
+    });
   };
   auto subset = [&](long m) {
     std::vector<int> s(m);
@@ -36,6 +48,7 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
     return s;
   };
   sortBy(start);
+  // start: the m0 candidates the current fit explains best
   long m = std::min(n, std::max(10L, n / 10));
   Primitive shape = start;
   while (true)
@@ -52,8 +65,9 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
       squared += distance[order[a]] * distance[order[a]];
     }
     const double rms = std::sqrt(squared / m);
-    // the closest candidate outside the subset: an outlier when it jumps above the subset
-    if (distance[order[m]] > std::max(settings.floor, settings.jump * rms))
+    // the closest candidate outside the subset: an outlier when it jumps above the subset (or
+    // when the subset itself no longer fits: a member with a mismatched normal)
+    if (!std::isfinite(rms) || distance[order[m]] > std::max(settings.floor, settings.jump * rms))
     {
       break;
     }
@@ -67,13 +81,17 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
     }
     m = limit;
   }
+  while (m > 0 && !std::isfinite(distance[order[m - 1]]))
+  {
+    --m; // members the last fit no longer matches leave (the distances are sorted)
+  }
   result.shape = shape;
   result.members = subset(m);
   std::sort(result.members.begin(), result.members.end());
   double squared = 0;
   for (int i : result.members)
   {
-    const double d = shape.distance(points[i]);
+    const double d = shape.distance(points[i]); // members' normals match: checked at their entry
     squared += d * d;
     result.maxDistance = std::max(result.maxDistance, d);
   }

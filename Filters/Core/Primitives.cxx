@@ -88,7 +88,7 @@ int parameterCount(PrimitiveType type)
   return type == PrimitiveType::Sphere ? 4 : type == PrimitiveType::Cylinder ? 5 : type == PrimitiveType::Cone ? 6 : 0;
 }
 
-Primitive fitPlane(const PointList& points, const std::vector<int>& subset)
+Primitive fitPlane(const Primitive& start, const PointList& points, const std::vector<int>& subset)
 {
   Vec3 mean = Vec3::Zero();
   for (int i : subset)
@@ -105,7 +105,9 @@ Primitive fitPlane(const PointList& points, const std::vector<int>& subset)
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
   Primitive plane;
   plane.type = PrimitiveType::Plane;
-  plane.axis = eigen.eigenvectors().col(0);
+  // collinear points determine no plane: keep the start's normal
+  const bool collinear = !(eigen.eigenvalues()[1] > 1e-12 * eigen.eigenvalues()[2]);
+  plane.axis = collinear && start.type == PrimitiveType::Plane ? start.axis : Vec3(eigen.eigenvectors().col(0));
   plane.offset = plane.axis.dot(mean);
   return plane;
 }
@@ -378,6 +380,6 @@ Primitive fitLeastSquares(const Primitive& start, const PointList& points, const
   {
     return start;
   }
-  return start.type == PrimitiveType::Plane ? fitPlane(points, subset) : fitGeometric(start, points, subset);
+  return start.type == PrimitiveType::Plane ? fitPlane(start, points, subset) : fitGeometric(start, points, subset);
 }
 } // namespace mlsdeform

@@ -54,7 +54,8 @@ std::optional<Primitive> fitMinimal(PrimitiveType type, const Vec3 (&p)[3], cons
 /// cylinder and the plane, which they approximate.
 constexpr double MinimumConeAngle = 0.05; // radians (about 3 degrees)
 
-/// The least-squares fit to the samples subset of points: a plane by principal components; a
+/// The least-squares fit to the samples subset of points: a plane by principal components (the
+/// start's normal through their mean if they are collinear); a
 /// cylinder, sphere or cone by Levenberg-Marquardt on the geometric distances started from
 /// start. Returns start when the subset is too small to determine the primitive.
 Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset);

@@ -221,6 +221,7 @@ TEST(ForwardSearchStopsBeforeOutliers)
   std::normal_distribution<double> noise(0, 1e-3);
   std::uniform_real_distribution<double> uniform(0, 1);
   PointList points;
+  std::vector<Vec3> normals(2000, Vec3::UnitZ());
   std::vector<int> candidates;
   for (int i = 0; i < 2000; ++i)
   {
@@ -232,7 +233,8 @@ TEST(ForwardSearchStopsBeforeOutliers)
   const Primitive start = syntheticparts::plane(Vec3(0.02, 0, 1), Vec3(0.5, 0.5, 0.003));
   ForwardSearchSettings settings;
   settings.floor = 1e-3;
-  const ForwardSearchResult result = forwardSearch(start, points, candidates, settings);
+  settings.cosAlpha = std::cos(0.3);
+  const ForwardSearchResult result = forwardSearch(start, points, normals, candidates, settings);
   long outliers = 0;
   for (int i : result.members)
     outliers += i % 20 == 0;
