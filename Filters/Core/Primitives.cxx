@@ -45,7 +45,7 @@ double signedDistance(const Primitive& s, const Vec3& x)
       double h, rho;
       Vec3 radial;
       coneCoordinates(s, x, h, rho, radial);
-      const double c = std::cos(s.angle), sn = std::sin(s.angle);
+      const double c = s.cosAngle, sn = s.sinAngle;
       // in the (h, rho) half plane the surface is the ray t (cos a, sin a), t >= 0
       return h * c + rho * sn >= 0 ? rho * c - h * sn : std::hypot(h, rho);
     }
@@ -75,7 +75,7 @@ Primitive perturbed(const Primitive& base, const Eigen::VectorXd& theta)
     case PrimitiveType::Cone:
       s.center += theta.head<3>();
       s.axis = (base.axis + theta[3] * e1 + theta[4] * e2).normalized();
-      s.angle += theta[5];
+      s.setAngle(base.angle + theta[5]);
       break;
     case PrimitiveType::Plane:
       break;
@@ -253,7 +253,7 @@ Vec3 Primitive::normalAt(const Vec3& x) const
       {
         return axis;
       }
-      return std::cos(angle) * radial - std::sin(angle) * axis;
+      return cosAngle * radial - sinAngle * axis;
     }
   }
   return axis;
@@ -350,8 +350,8 @@ std::optional<Primitive> fitMinimal(PrimitiveType type, const Vec3 (&p)[3], cons
       {
         s.axis = -s.axis;
       }
-      s.angle = (std::acos(std::clamp(s.axis.dot(u[0]), -1.0, 1.0)) + std::acos(std::clamp(s.axis.dot(u[1]), -1.0, 1.0)) +
-                  std::acos(std::clamp(s.axis.dot(u[2]), -1.0, 1.0))) / 3;
+      s.setAngle((std::acos(std::clamp(s.axis.dot(u[0]), -1.0, 1.0)) + std::acos(std::clamp(s.axis.dot(u[1]), -1.0, 1.0)) +
+                   std::acos(std::clamp(s.axis.dot(u[2]), -1.0, 1.0))) / 3);
       if (s.angle < MinimumConeAngle || s.angle > M_PI / 2 - MinimumConeAngle)
       {
         return std::nullopt;

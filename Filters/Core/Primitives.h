@@ -7,6 +7,7 @@
 
 #include "CoreTypes.h"
 
+#include <cmath>
 #include <optional>
 
 namespace mlsdeform
@@ -29,7 +30,15 @@ struct Primitive
   double offset = 0;             // plane: axis . x = offset
   Vec3 center = Vec3::Zero();    // sphere: center; cylinder: a point on the axis; cone: apex
   double radius = 0;             // sphere, cylinder
-  double angle = 0;              // cone: half opening angle (radians)
+  double angle = 0;              // cone: half opening angle (radians); set it with setAngle
+  double cosAngle = 1, sinAngle = 0; // cone: its cosine and sine (distances need them per sample)
+
+  void setAngle(double a)
+  {
+    angle = a;
+    cosAngle = std::cos(a);
+    sinAngle = std::sin(a);
+  }
 
   /// Unsigned distance of x from the surface (a cone is one infinite nappe).
   double distance(const Vec3& x) const;

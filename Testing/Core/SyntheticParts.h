@@ -116,7 +116,7 @@ inline void addCone(Part& part, const Vec3& apex, const Vec3& axis, double angle
   p.type = PrimitiveType::Cone;
   p.center = apex;
   p.axis = axis.normalized();
-  p.angle = angle;
+  p.setAngle(angle);
   const Vec3 e1 = (std::abs(p.axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(p.axis).normalized(), e2 = p.axis.cross(e1);
   const double slant = (h1 - h0) / std::cos(angle);
   addPatch(part, p, n, std::max(1, static_cast<int>(std::round(slant / h))), [=](double s, double t) {

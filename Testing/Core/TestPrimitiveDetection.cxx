@@ -129,7 +129,7 @@ TEST(DistancesAndNormalsOfThePrimitives)
   Primitive cone;
   cone.type = PrimitiveType::Cone;
   cone.axis = Vec3(0, 0, 1);
-  cone.angle = M_PI / 4;
+  cone.setAngle(M_PI / 4);
   CHECK_NEAR(cone.distance(Vec3(1, 0, 1)), 0.0, 1e-15);
   CHECK_NEAR(cone.distance(Vec3(0, 0, 1)), std::sqrt(0.5), 1e-15);
   CHECK_NEAR(cone.distance(Vec3(0, 0, -2)), 2.0, 1e-15);
@@ -204,7 +204,7 @@ TEST(LeastSquaresFitsRecoverNoisyPrimitives)
     Primitive start = truth;
     start.axis = Eigen::AngleAxisd(5 * M_PI / 180, Vec3(1, 1, 0).normalized()) * truth.axis;
     start.radius *= 1.05;
-    start.angle *= 1.05;
+    start.setAngle(1.05 * truth.angle);
     start.center += Vec3(0.02, -0.01, 0.01);
     const Primitive fit = fitLeastSquares(start, part.points, vertices[label]);
     CHECK(axisAngle(fit.axis, truth.axis) < 0.5 || truth.type == PrimitiveType::Sphere);
