@@ -436,7 +436,8 @@ private:
   }
 
   // The candidate with the best estimate, its score refined on more subsets until its interval
-  // lies above every other candidate's (section 4.5).
+  // lies above every other candidate's (section 4.5), or until its score is exact (then the
+  // others, expected lower, are not evaluated in full one after another).
   Candidate* refineBest()
   {
     while (!Candidates.empty())
@@ -451,7 +452,7 @@ private:
           challenger = &c;
         }
       }
-      if (!challenger)
+      if (!challenger || fullyEvaluated(best))
       {
         return &best;
       }

@@ -30,7 +30,7 @@ struct ForwardSearchSettings
 {
   double floor = 0;        // distances below this never stop the search (absolute)
   double jump = 4;         // outliers are farther than this many RMS distances of the subset
-  double growth = 0.15;    // the subset grows by this fraction of its size per step
+  double growth = 0.3;     // the subset grows by this fraction of its size per step
   double cosAlpha = 0;     // cosine of the normal threshold
   double ceiling = std::numeric_limits<double>::infinity(); // candidates farther never enter
 };

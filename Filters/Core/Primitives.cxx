@@ -155,10 +155,12 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
     }
     return r;
   };
+  // Levenberg-Marquardt; stops when a step gains less than 1e-10 of the cost (the fit is
+  // settled far below any distance tolerance) or no damping finds a better fit
   Eigen::VectorXd r = residuals(current);
   double cost = r.squaredNorm(), lambda = 1e-3;
   constexpr double Step = 1e-6;
-  for (int iteration = 0; iteration < 50; ++iteration)
+  for (int iteration = 0; iteration < 30; ++iteration)
   {
     Eigen::MatrixXd J(n, m);
     for (int j = 0; j < m; ++j)
@@ -171,8 +173,8 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
     }
     const Eigen::MatrixXd A = J.transpose() * J;
     const Eigen::VectorXd g = J.transpose() * r;
-    bool improved = false;
-    while (!improved && lambda < 1e10)
+    double decrease = -1;
+    for (int attempt = 0; attempt < 8 && decrease < 0; ++attempt)
     {
       Eigen::MatrixXd damped = A;
       damped.diagonal() += lambda * A.diagonal() + Eigen::VectorXd::Constant(m, 1e-12);
@@ -180,23 +182,18 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
       const Eigen::VectorXd rNext = residuals(next);
       if (rNext.allFinite() && rNext.squaredNorm() < cost)
       {
-        improved = true;
-        const double decrease = cost - rNext.squaredNorm();
+        decrease = cost - rNext.squaredNorm();
         current = next;
         r = rNext;
         cost = r.squaredNorm();
         lambda = std::max(lambda / 10, 1e-12);
-        if (decrease <= 1e-14 * (cost + 1e-300))
-        {
-          iteration = 50;
-        }
       }
       else
       {
         lambda *= 10;
       }
     }
-    if (!improved)
+    if (decrease <= 1e-10 * (cost + decrease))
     {
       break;
     }
