@@ -35,5 +35,5 @@ print('wrote', result)
 
 # Before (left) and after (right), colored by the displacement magnitude.
 picture = os.path.join(out_dir, 'fandisk_deformed.png')
-scene.save_side_by_side([part, deformed], [False, True], bounds, picture)
+scene.save_side_by_side([part, deformed], [None, 'Displacement'], bounds, picture)
 print('wrote', picture)

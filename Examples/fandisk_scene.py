@@ -39,15 +39,16 @@ def fixed_and_handle(part, bounds):
     return fixed, handle
 
 
-def save_side_by_side(sources, colored, bounds, path, resolution=(1200, 600)):
-    """Renders each source in its own view (colored by |Displacement| where colored is true),
-    all seen from -y with the same parallel camera fitted to bounds, and saves them as one PNG."""
+def save_side_by_side(sources, colors, bounds, path, resolution=(1200, 600), direction=(0.0, -1.0, 0.0), up=(0.0, 0.0, 1.0)):
+    """Renders each source in its own view, colored by the point or cell array named in colors
+    (None: plain; Displacement by magnitude), all seen along direction with the same parallel
+    camera fitted to bounds, and saves them as one PNG."""
     xmin, xmax, ymin, ymax, zmin, zmax = bounds
-    height = zmax - zmin
+    size = max(xmax - xmin, ymax - ymin, zmax - zmin)
     center = [(xmin + xmax) / 2, (ymin + ymax) / 2, (zmin + zmax) / 2]
     layout = CreateLayout('side by side')
     cell = 0
-    for index, (source, color) in enumerate(zip(sources, colored)):
+    for index, (source, color) in enumerate(zip(sources, colors)):
         view = CreateView('RenderView')
         if index + 1 < len(sources):  # equal columns: split off 1/(views left) on the left
             left = layout.SplitHorizontal(cell, 1.0 / (len(sources) - index))
@@ -58,18 +59,19 @@ def save_side_by_side(sources, colored, bounds, path, resolution=(1200, 600)):
         view.OrientationAxesVisibility = 0
         display = Show(source, view)
         if color:
-            ColorBy(display, ('POINTS', 'Displacement', 'Magnitude'))
+            displacement = color == 'Displacement'
+            ColorBy(display, ('POINTS', color, 'Magnitude') if displacement else ('CELLS', color))
             display.SetScalarBarVisibility(view, True)
-            bar = GetScalarBar(GetColorTransferFunction('Displacement'), view)
+            bar = GetScalarBar(GetColorTransferFunction(color), view)
             bar.WindowLocation = 'Any Location'
             bar.Position = [0.72, 0.1]
             bar.ScalarBarLength = 0.5
-            bar.RangeLabelFormat = '%.3f'
-            bar.Title = '|Displacement|'
+            bar.RangeLabelFormat = '%.3f' if displacement else '%.0f'
+            bar.Title = '|Displacement|' if displacement else color
             bar.ComponentTitle = ''
         view.CameraFocalPoint = center
-        view.CameraPosition = [center[0], center[1] - 4 * height, center[2]]
-        view.CameraViewUp = [0.0, 0.0, 1.0]
+        view.CameraPosition = [c + 4 * size * d for c, d in zip(center, direction)]
+        view.CameraViewUp = list(up)
         view.CameraParallelProjection = 1
-        view.CameraParallelScale = 0.75 * height
+        view.CameraParallelScale = 0.75 * (zmax - zmin if up[2] else size)
     SaveScreenshot(path, layout, ImageResolution=list(resolution))

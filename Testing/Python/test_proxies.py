@@ -27,7 +27,7 @@ def field(proxy, name):
 
 
 # The proxies and their documented defaults.
-for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform'), ('filters', 'ShellDeform'), ('filters', 'DeformationQuality')):
+for group, name in (('sources', 'OFFReader'), ('filters', 'MLSSampler'), ('filters', 'ConstraintRegion'), ('filters', 'MLSDeform'), ('filters', 'ShellDeform'), ('filters', 'DeformationQuality'), ('filters', 'PrimitiveDetector')):
     check(sm.ProxyManager().GetPrototypeProxy(group, name) is not None, 'proxy %s/%s is defined' % (group, name))
 deform_defaults = MLSDeform(Input=Sphere())
 check(deform_defaults.FixWeight == 1000 and deform_defaults.BendWeight == 1 and deform_defaults.StretchWeight == 0,
@@ -134,6 +134,24 @@ check(0 < value(0, 'Min') < value(0, 'OriginalMin') <= 1, 'flattening lowers the
 check(value(3, 'Max') == 0 and value(1, 'OriginalMax') < 90, 'no inverted cells, no folded faces')
 faces = sm.Fetch(quality, idx=1)
 check(faces.GetNumberOfCells() > 0 and faces.GetCellData().GetArray('Skewness') is not None, 'interior faces with skewness')
+
+# Primitive Detector on fandisk: documented defaults, the cell and point arrays, the table, and
+# a Constraint Region on a detected primitive with the role of its type.
+detector = PrimitiveDetector(Input=part)
+check(detector.Epsilon == 0.005 and detector.ClusterEpsilon == 0.02 and detector.NormalThreshold == 20 and
+      detector.MinimumSupport == 10 and detector.Probability == 0.95 and detector.RandomSeed == 0 and detector.DetectCones == 1,
+      'PrimitiveDetector defaults: Epsilon 0.005, ClusterEpsilon 0.02, NormalThreshold 20, MinimumSupport 10, Probability 0.95, seed 0')
+surface = sm.Fetch(detector)
+table = sm.Fetch(detector, idx=1)
+ids = vtk_to_numpy(surface.GetCellData().GetArray('PrimitiveId'))
+check(surface.GetNumberOfCells() == 12946 and (ids >= 0).mean() > 0.95, 'PrimitiveDetector assigns %.1f%% of the faces' % (100 * (ids >= 0).mean()))
+check(table.GetNumberOfRows() == ids.max() + 1 and sum(table.GetValueByName(r, 'Faces').ToDouble() for r in range(table.GetNumberOfRows())) == (ids >= 0).sum(),
+      'one table row per primitive, faces adding up')
+check(surface.GetPointData().GetArray('PrimitiveIds').GetNumberOfComponents() >= 2, 'vertices on edges belong to several primitives')
+planes = [r for r in range(table.GetNumberOfRows()) if table.GetValueByName(r, 'Type').ToString() == 'Plane']
+kept = ConstraintRegion(Input=detector, SelectionMode='Primitive', PrimitiveId=planes[0], Role='FromPrimitive')
+check(sm.Fetch(kept).GetFieldData().GetAbstractArray('RoleName').GetValue(0) == 'Planarity' and sm.Fetch(kept).GetNumberOfPoints() > 0,
+      'a detected plane selected with Role FromPrimitive is a Planarity region')
 
 print('failed: %s' % failures if failures else 'all checks passed')
 sys.exit(1 if failures else 0)
