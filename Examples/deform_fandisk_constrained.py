@@ -71,13 +71,7 @@ planar = scene.box_region(part, 'Planarity', [xmin - margin, ymin - margin, (zmi
 
 free = scene.MLSDeform(Input=part, Regions=[fixed, handle])
 kept = scene.MLSDeform(Input=part, Regions=[fixed, handle, planar] + features)
-kept.UpdatePipeline()
-field = servermanager.Fetch(kept).GetFieldData()
-types = field.GetAbstractArray('ConstraintType')
-for t in range(types.GetNumberOfValues()):
-    print('%s: %d points, residual %.2e of the diagonal, %d iterations, converged %d' % (
-        types.GetValue(t), field.GetArray('ConstraintPoints').GetValue(t), field.GetArray('ConstraintResidual').GetValue(t),
-        field.GetArray('ConstraintIterations').GetValue(t), field.GetArray('ConstraintConverged').GetValue(t)))
+field = scene.report_constraints(kept)
 print('handle residual %.2e, fixed residual %.2e (handle moved by %.3g), solve %.0f ms' % (
     field.GetArray('HandleResidual').GetValue(0), field.GetArray('FixedResidual').GetValue(0), 0.15 * height,
     1000 * field.GetArray('SolveTime').GetValue(0)))

@@ -38,13 +38,7 @@ kept = [scene.ConstraintRegion(Input=detector, SelectionMode='Primitive', Role='
 
 free = scene.MLSDeform(Input=detector, Regions=[fixed, handle])
 constrained = scene.MLSDeform(Input=detector, Regions=[fixed, handle] + kept)
-constrained.UpdatePipeline()
-field = servermanager.Fetch(constrained).GetFieldData()
-types = field.GetAbstractArray('ConstraintType')
-for t in range(types.GetNumberOfValues()):
-    print('kept %s: %d points, residual %.2e of the diagonal, %d iterations, converged %d' % (
-        types.GetValue(t), field.GetArray('ConstraintPoints').GetValue(t), field.GetArray('ConstraintResidual').GetValue(t),
-        field.GetArray('ConstraintIterations').GetValue(t), field.GetArray('ConstraintConverged').GetValue(t)))
+field = scene.report_constraints(constrained)
 print('handle residual %.2e (lifted by %.3g), fixed residual %.2e' % (
     field.GetArray('HandleResidual').GetValue(0), lift, field.GetArray('FixedResidual').GetValue(0)))
 

@@ -39,6 +39,20 @@ def fixed_and_handle(part, bounds):
     return fixed, handle
 
 
+def report_constraints(deformed):
+    """Prints one line per constraint region of a deformation (type, points, residual relative to
+    the diagonal, iterations, converged) and returns the output's field data."""
+    from paraview import servermanager
+    deformed.UpdatePipeline()
+    field = servermanager.Fetch(deformed).GetFieldData()
+    types = field.GetAbstractArray('ConstraintType')
+    for t in range(types.GetNumberOfValues()):
+        print('%s: %d points, residual %.2e of the diagonal, %d iterations, converged %d' % (
+            types.GetValue(t), field.GetArray('ConstraintPoints').GetValue(t), field.GetArray('ConstraintResidual').GetValue(t),
+            field.GetArray('ConstraintIterations').GetValue(t), field.GetArray('ConstraintConverged').GetValue(t)))
+    return field
+
+
 def save_side_by_side(sources, colors, bounds, path, resolution=(1200, 600), direction=(0.0, -1.0, 0.0), up=(0.0, 0.0, 1.0)):
     """Renders each source in its own view, colored by the point or cell array named in colors
     (None: plain; Displacement by magnitude), all seen along direction with the same parallel

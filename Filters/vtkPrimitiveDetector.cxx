@@ -89,9 +89,7 @@ vtkSmartPointer<vtkTable> primitiveTable(const std::vector<DetectedPrimitive>& f
         break;
       case PrimitiveType::Cylinder:
         put(9, s.axis);
-        put(12, s.center);
-        row[15] = s.radius;
-        break;
+        [[fallthrough]];
       case PrimitiveType::Sphere:
         put(12, s.center);
         row[15] = s.radius;

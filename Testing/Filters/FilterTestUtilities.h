@@ -62,12 +62,19 @@ inline vtkSmartPointer<vtkPolyData> figurePlane()
   return plane->GetOutput();
 }
 
+/// The box [0,2] x [0,1] x [0,1] as image data with n cells per unit length.
+inline vtkSmartPointer<vtkImageData> boxImage(int n)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(2 * n + 1, n + 1, n + 1);
+  image->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
+  return image;
+}
+
 /// A tetrahedral mesh of the box [0,2] x [0,1] x [0,1] (n cells per unit length).
 inline vtkSmartPointer<vtkUnstructuredGrid> tetrahedralBox(int n)
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(2 * n + 1, n + 1, n + 1);
-  image->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
+  vtkSmartPointer<vtkImageData> image = boxImage(n);
   vtkNew<vtkDataSetTriangleFilter> tetrahedralize;
   tetrahedralize->SetInputData(image);
   tetrahedralize->Update();

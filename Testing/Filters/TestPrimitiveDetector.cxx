@@ -86,11 +86,8 @@ bool parallel(const mlsdeform::Vec3& a, const mlsdeform::Vec3& b, double degrees
 // A box [0,2] x [0,1] x [0,1] of unit-spaced voxels (n per unit) as an unstructured grid.
 vtkSmartPointer<vtkUnstructuredGrid> voxelBox(int n)
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(2 * n + 1, n + 1, n + 1);
-  image->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
   vtkNew<vtkAppendFilter> append;
-  append->AddInputData(image);
+  append->AddInputData(boxImage(n));
   append->Update();
   return append->GetOutput();
 }
