@@ -155,8 +155,9 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
     }
     return r;
   };
-  // Levenberg-Marquardt; stops when a step gains less than 1e-10 of the cost (the fit is
-  // settled far below any distance tolerance) or no damping finds a better fit
+  // Levenberg-Marquardt; stops when a step gains less than 1e-10 of the cost, when the RMS
+  // distance is below 1e-9 of the spread (settled far below any distance tolerance: exact data
+  // would otherwise be refined to round-off), or when no damping finds a better fit
   Eigen::VectorXd r = residuals(current);
   double cost = r.squaredNorm(), lambda = 1e-3;
   constexpr double Step = 1e-6;
@@ -193,7 +194,7 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
         lambda *= 10;
       }
     }
-    if (decrease <= 1e-10 * (cost + decrease))
+    if (decrease <= 1e-10 * (cost + decrease) || cost <= 1e-18 * static_cast<double>(n))
     {
       break;
     }
