@@ -146,7 +146,6 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     return 0;
   }
 
-  // Select positions, unless only the motion changed since the last selection.
   if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
   {
     vtkErrorMacro(<< "Role FromPrimitive needs SelectionMode Primitive (a Primitive Detector's output as input).");
@@ -190,6 +189,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
       }
     }
   }
+  // Select positions, unless only the motion changed since the last selection.
   std::ostringstream key;
   key << mlsgeometry::pointsSignature(sets) << ' ' << this->SelectionMode << ' ' << this->InsideOut << ' ' << this->Range[0] << ' '
       << this->Range[1] << ' ' << this->PrimitiveId << ' ' << this->Region << ' ' << (this->Region ? this->Region->GetMTime() : 0);

@@ -3,6 +3,7 @@
 #include "EfficientRansac.h"
 #include "FaceSamples.h"
 #include "MLSGeometry.h"
+#include "Sampling.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -173,10 +174,13 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
   mlsdeform::FaceSamples samples;
   try
   {
+    mlsdeform::requireFinite(vertices, "surface points");
     samples = mlsdeform::faceSamples(vertices, faces);
-    double bounds[6];
-    output->GetBounds(bounds);
-    const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) + std::pow(bounds[5] - bounds[4], 2));
+    const double diagonal = mlsdeform::boundingBox(vertices).size().norm();
+    if (!(diagonal > 0))
+    {
+      throw mlsdeform::InvalidInputException("the surface has zero extent");
+    }
     mlsdeform::RansacParameters p;
     p.planes = this->DetectPlanes;
     p.cylinders = this->DetectCylinders;
@@ -188,10 +192,6 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
     p.minimumSupport = this->MinimumSupport;
     p.probability = this->Probability;
     p.seed = static_cast<std::uint64_t>(this->RandomSeed);
-    if (!(diagonal > 0))
-    {
-      throw mlsdeform::InvalidInputException("the surface has zero extent");
-    }
     found = mlsdeform::detectPrimitives(samples.barycenters, samples.normals, p, &faces, { &mlsgeometry::reportProgress, this });
   }
   catch (const mlsdeform::InvalidInputException& e)

@@ -47,7 +47,8 @@ public:
     {
       used.push_back(points[i]);
     }
-    const BoundingBox box = boundingBox(used);
+    Box = boundingBox(used);
+    const BoundingBox& box = Box;
     const double size = std::max(box.size().maxCoeff(), 1e-300);
     Code.assign(points.size(), 0);
     for (int i : valid)
@@ -76,8 +77,11 @@ public:
     return { first, last };
   }
   const std::vector<int>& order() const { return Order; }
+  /// The bounding box of the samples.
+  const BoundingBox& box() const { return Box; }
 
 private:
+  BoundingBox Box;
   std::vector<std::uint64_t> Code;
   std::vector<int> Order;
   std::vector<std::uint64_t> Sorted;
@@ -211,13 +215,11 @@ public:
     , Available(points.size(), 0)
     , Random(p.seed)
   {
-    PointList used;
     for (int i : valid)
     {
       Available[i] = 1;
-      used.push_back(points[i]);
     }
-    Diagonal = boundingBox(used).size().norm();
+    Diagonal = Octree.box().size().norm();
     if (faces)
     {
       int vertices = 0;

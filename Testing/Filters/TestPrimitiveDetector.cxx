@@ -47,6 +47,23 @@ std::vector<Row> rows(vtkTable* table)
   return result;
 }
 
+// A detector run on an input, with its outputs.
+struct Detection
+{
+  vtkNew<vtkPrimitiveDetector> detector;
+  vtkPolyData* surface = nullptr;
+  vtkTable* table = nullptr;
+  std::vector<Row> found;
+  explicit Detection(vtkDataObject* input)
+  {
+    detector->SetInputData(input);
+    detector->Update();
+    surface = detector->GetOutput();
+    table = vtkTable::SafeDownCast(detector->GetOutputDataObject(1));
+    found = rows(table);
+  }
+};
+
 // The fraction of the polygons that belong to a primitive.
 double coverage(vtkPolyData* surface)
 {
@@ -95,12 +112,10 @@ vtkSmartPointer<vtkUnstructuredGrid> voxelBox(int n)
 
 TEST(VolumeMeshBoundaryGivesSixPlanesWithTheirParameters)
 {
-  vtkNew<vtkPrimitiveDetector> detector;
-  detector->SetInputData(voxelBox(8));
-  detector->Update();
-  vtkPolyData* surface = detector->GetOutput();
-  vtkTable* table = vtkTable::SafeDownCast(detector->GetOutputDataObject(1));
-  const std::vector<Row> found = rows(table);
+  const Detection d(voxelBox(8));
+  vtkPolyData* surface = d.surface;
+  vtkTable* table = d.table;
+  const std::vector<Row>& found = d.found;
   CHECK(found.size() == 6);
   CHECK_NEAR(coverage(surface), 1.0, 1e-12);
   double faces = 0;
@@ -158,11 +173,9 @@ TEST(FandiskLargePlanesAndCylindersAreFound)
 {
   const vtkSmartPointer<vtkPolyData> fandisk = readOFF("fandisk.off");
   const vtkMTimeType before = fandisk->GetMTime();
-  vtkNew<vtkPrimitiveDetector> detector;
-  detector->SetInputData(fandisk);
-  detector->Update();
-  vtkPolyData* surface = detector->GetOutput();
-  const std::vector<Row> found = rows(vtkTable::SafeDownCast(detector->GetOutputDataObject(1)));
+  const Detection d(fandisk);
+  vtkPolyData* surface = d.surface;
+  const std::vector<Row>& found = d.found;
   std::printf("fandisk: %zu primitives, %.1f%% of the faces\n", found.size(), 100 * coverage(surface));
   CHECK(coverage(surface) > 0.95);
   CHECK(fandisk->GetMTime() == before && !fandisk->GetCellData()->GetArray("PrimitiveId")); // input untouched
@@ -184,11 +197,9 @@ TEST(FandiskLargePlanesAndCylindersAreFound)
 TEST(JointPlanesAndCylindersAreFound)
 {
   const vtkSmartPointer<vtkPolyData> joint = readOFF("joint.off");
-  vtkNew<vtkPrimitiveDetector> detector;
-  detector->SetInputData(joint);
-  detector->Update();
-  vtkPolyData* surface = detector->GetOutput();
-  const std::vector<Row> found = rows(vtkTable::SafeDownCast(detector->GetOutputDataObject(1)));
+  const Detection d(joint);
+  vtkPolyData* surface = d.surface;
+  const std::vector<Row>& found = d.found;
   std::printf("joint: %zu primitives, %.1f%% of the faces\n", found.size(), 100 * coverage(surface));
   CHECK(coverage(surface) > 0.9);
   // top (y = max) and bottom (y = min) faces: one plane each
@@ -243,17 +254,15 @@ TEST(ConstraintRegionSelectsAPrimitiveWithItsRole)
 TEST(CylinderPrimitiveGivesTheCylinderRole)
 {
   const vtkSmartPointer<vtkPolyData> joint = readOFF("joint.off");
-  vtkNew<vtkPrimitiveDetector> detector;
-  detector->SetInputData(joint);
-  detector->Update();
-  const std::vector<Row> found = rows(vtkTable::SafeDownCast(detector->GetOutputDataObject(1)));
+  const Detection d(joint);
+  const std::vector<Row>& found = d.found;
   int cylinder = -1;
   for (std::size_t p = 0; p < found.size() && cylinder < 0; ++p)
     if (found[p].type == "Cylinder")
       cylinder = static_cast<int>(p);
   CHECK(cylinder >= 0);
   vtkNew<vtkConstraintRegion> region;
-  region->SetInputConnection(detector->GetOutputPort());
+  region->SetInputConnection(d.detector->GetOutputPort());
   region->SetSelectionMode(vtkConstraintRegion::Primitive);
   region->SetRole(vtkConstraintRegion::FromPrimitive);
   region->SetPrimitiveId(cylinder);
@@ -261,7 +270,7 @@ TEST(CylinderPrimitiveGivesTheCylinderRole)
   CHECK(fieldValue(region->GetOutput(), "Role") == vtkConstraintRegion::Cylinder);
   // its vertices are those of its faces
   std::set<vtkIdType> vertices;
-  vtkPolyData* surface = detector->GetOutput();
+  vtkPolyData* surface = d.surface;
   vtkDataArray* id = surface->GetCellData()->GetArray("PrimitiveId");
   for (vtkIdType c = 0; c < surface->GetNumberOfCells(); ++c)
     if (id->GetTuple1(c) == cylinder)
@@ -278,21 +287,19 @@ TEST(JointSceneOfFigure10KeepsTheDetectedPrimitives)
   const vtkSmartPointer<vtkPolyData> joint = readOFF("joint.off");
   double b[6];
   joint->GetBounds(b);
-  vtkNew<vtkPrimitiveDetector> detector;
-  detector->SetInputData(joint);
-  detector->Update();
-  vtkPolyData* surface = detector->GetOutput();
-  const std::vector<Row> found = rows(vtkTable::SafeDownCast(detector->GetOutputDataObject(1)));
+  const Detection d(joint);
+  vtkPolyData* surface = d.surface;
+  const std::vector<Row>& found = d.found;
   const double lift = 0.15, bottom[6] = { b[0] - 1, b[1] + 1, b[2] - 1, b[2] + 0.05, b[4] - 1, b[5] + 1 },
                top[6] = { b[0] - 1, b[1] + 1, b[3] - 0.2, b[3] + 1, b[4] - 1, b[5] + 1 };
-  auto fixed = boxRegion(detector->GetOutputPort(), vtkConstraintRegion::Fixed, bottom);
-  auto handle = boxRegion(detector->GetOutputPort(), vtkConstraintRegion::Handle, top);
+  auto fixed = boxRegion(d.detector->GetOutputPort(), vtkConstraintRegion::Fixed, bottom);
+  auto handle = boxRegion(d.detector->GetOutputPort(), vtkConstraintRegion::Handle, top);
   handle->SetTranslation(0, lift, 0);
   std::vector<vtkSmartPointer<vtkConstraintRegion>> kept;
   for (std::size_t p = 0; p < found.size(); ++p)
   {
     kept.push_back(vtkSmartPointer<vtkConstraintRegion>::New());
-    kept.back()->SetInputConnection(detector->GetOutputPort());
+    kept.back()->SetInputConnection(d.detector->GetOutputPort());
     kept.back()->SetSelectionMode(vtkConstraintRegion::Primitive);
     kept.back()->SetRole(vtkConstraintRegion::FromPrimitive);
     kept.back()->SetPrimitiveId(static_cast<int>(p));
@@ -300,7 +307,7 @@ TEST(JointSceneOfFigure10KeepsTheDetectedPrimitives)
   vtkNew<vtkMLSDeformFilter> free, constrained;
   for (vtkMLSDeformFilter* deform : { free.Get(), constrained.Get() })
   {
-    deform->SetInputConnection(detector->GetOutputPort());
+    deform->SetInputConnection(d.detector->GetOutputPort());
     deform->AddRegionConnection(fixed->GetOutputPort());
     deform->AddRegionConnection(handle->GetOutputPort());
   }
