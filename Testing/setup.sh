@@ -16,7 +16,7 @@ packages=(
   libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libfreetype-dev
   libglew-dev libgl2ps-dev libjpeg-dev libpng-dev libtiff-dev libtheora-dev
   libxml2-dev libx11-dev zlib1g-dev python3-dev
-  libeigen3-dev libsuitesparse-dev libopenblas0-openmp
+  libeigen3-dev libsuitesparse-dev libblas-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
   gmsh python3-matplotlib
 )
