@@ -42,7 +42,7 @@ struct Region
   int role = 0;
   double weight = 1;
   PointList positions;
-  Displacements prescribed;
+  PointDisplacements prescribed;
 };
 
 // The Regions inputs: handle and fixed regions, and geometric constraints (section 6).
@@ -390,10 +390,10 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
 
     // 4. The variation: right-hand side, back-substitution, d(x) = Phi(x) w.
     const auto solveStart = Clock::now();
-    std::vector<Displacements> prescribed;
+    std::vector<PointDisplacementsView> prescribed;
     for (const Region& r : regions)
     {
-      prescribed.push_back(r.prescribed);
+      prescribed.emplace_back(r.prescribed.data(), r.prescribed.rows(), 3);
     }
     IterationSettings settings;
     settings.maxIterations = this->MaxIterations;

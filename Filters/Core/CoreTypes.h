@@ -15,7 +15,10 @@ using Vec3 = Eigen::Vector3d;
 using PointList = std::vector<Vec3>;
 using SparseMatrix = Eigen::SparseMatrix<double>;       // column major, for the solver
 using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>; // rows = evaluation points
-using Displacements = Eigen::Matrix<double, Eigen::Dynamic, 3>; // one row per point
+using Displacements = Eigen::Matrix<double, Eigen::Dynamic, 3>; // one row per point (or per shape function)
+/// Displacements of points stored as (x, y, z) triples, VTK's layout: a VTK array is viewed, not copied.
+using PointDisplacements = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using PointDisplacementsView = Eigen::Map<const PointDisplacements>;
 
 /// Bad input (empty, NaN, degenerate, nothing selected): the caller reports it and keeps its data.
 struct InvalidInputException : std::runtime_error

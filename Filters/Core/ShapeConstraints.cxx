@@ -4,6 +4,8 @@
 #include "Sampling.h"
 #include "SubspaceOperators.h"
 
+#include <algorithm>
+
 namespace mlsdeform
 {
 namespace
@@ -103,6 +105,10 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
       ++rows;
     }
     set.transposedSubspace = Phi.transpose();
+    if (c.type == ConstraintType::Cylinder)
+    {
+      projectToCylinder(c.positions, set.restAxis); // a zero axis: the fit searches all directions
+    }
     SparseRowMatrix centeredSubspace(rows, static_cast<long>(basis.size()));
     centeredSubspace.setFromTriplets(entries.begin(), entries.end());
     set.scale = c.weight / n;
@@ -134,7 +140,17 @@ std::vector<PointList> ShapeConstraints::positions(const Displacements& w) const
   return out;
 }
 
-std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& positions) const
+std::vector<Vec3> ShapeConstraints::restAxes() const
+{
+  std::vector<Vec3> axes;
+  for (const Set& set : Sets)
+  {
+    axes.push_back(set.restAxis);
+  }
+  return axes;
+}
+
+std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& positions, std::vector<Vec3>& axes) const
 {
   std::vector<PointList> projections;
   for (std::size_t t = 0; t < Sets.size(); ++t)
@@ -151,7 +167,7 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
         projections.push_back(projectToCircle(y));
         break;
       case ConstraintType::Cylinder:
-        projections.push_back(projectToCylinder(y, set.axis));
+        projections.push_back(projectToCylinder(y, axes[t]));
         break;
       case ConstraintType::FeatureLine:
         projections.push_back(projectToSimilarity(rest, y));
@@ -196,6 +212,12 @@ Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& posi
     rhs += set.scale * multiplyRows(set.transposedSubspace, v);
   }
   return rhs;
+}
+
+double ShapeConstraints::largestDistance(const std::vector<PointList>& a, const std::vector<PointList>& b)
+{
+  const std::vector<double> distances = largestDistances(a, b);
+  return distances.empty() ? 0.0 : *std::max_element(distances.begin(), distances.end());
 }
 
 std::vector<double> ShapeConstraints::largestDistances(const std::vector<PointList>& a, const std::vector<PointList>& b)

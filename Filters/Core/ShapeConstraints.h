@@ -55,8 +55,17 @@ public:
   /// Every set's current positions y_t = x_t + Phi_t w.
   std::vector<PointList> positions(const Displacements& w) const;
 
-  /// The local step: every set's projection of its current positions.
-  std::vector<PointList> project(const std::vector<PointList>& positions) const;
+  /// The largest distance of a constrained point between two lists of every set's positions.
+  static double largestDistance(const std::vector<PointList>& a, const std::vector<PointList>& b);
+
+  /// The cylinder fits' axes of the rest positions (zero for the other types): where the local
+  /// steps of one solve start.
+  std::vector<Vec3> restAxes() const;
+
+  /// The local step: every set's projection of its current positions. axes (one per set, from
+  /// restAxes) start the cylinder fits and return their axes; the iteration that owns them
+  /// carries them from step to step, so that a solve depends on its inputs only.
+  std::vector<PointList> project(const std::vector<PointList>& positions, std::vector<Vec3>& axes) const;
 
   /// The constraint part of the right-hand side of eq. 17 for the projections of the current
   /// positions: sum_t weight_t / n_t Phi_t^T v_t with v_t = C_m^T C_m (P_t - x_t), plus, for the
@@ -75,7 +84,7 @@ private:
     SparseRowMatrix transposedSubspace; // Phi_t^T, for the right-hand side of every iteration
     int pivot = 0;                    // p of the sparse formulation
     double scale = 1;                 // weight_t / n_t
-    mutable Vec3 axis = Vec3::Zero(); // the cylinder fit's last axis
+    Vec3 restAxis = Vec3::Zero();     // the cylinder fit's axis of the rest positions
   };
   PointList positionsOf(const Set& set, const Displacements& w) const;
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <limits>
 
 namespace mlsdeform
 {
@@ -117,10 +119,12 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
       std::to_string(positions[outside[0]].z()) + "); resample on a geometry that contains the regions");
   }
   RegionNormals.clear();
+  RegionTransposed.clear();
   for (std::size_t r = 0; r < RegionScale.size(); ++r)
   {
     const long n = RegionBegin[r + 1] - RegionBegin[r];
     RegionNormals.push_back(weightedGram(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], Eigen::VectorXd::Constant(n, RegionScale[r])));
+    RegionTransposed.emplace_back(RegionSubspace.middleRows(RegionBegin[r], n).transpose());
   }
   Factor.reset();
 }
@@ -151,9 +155,9 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
     System += SparseMatrix(ridge.asDiagonal());
   }
   Factor = std::make_unique<SparseCholesky>();
-  Factor->compute(System);
+  const bool positiveDefinite = Factor->factorize(System);
   ReciprocalCondition = Factor->reciprocalCondition();
-  if (Factor->info() != Eigen::Success || !(ReciprocalCondition > SingularReciprocalCondition))
+  if (!positiveDefinite || !(ReciprocalCondition > SingularReciprocalCondition))
   {
     Factor.reset();
     throw SolverException("the deformation system (eq. 14) is singular (reciprocal condition " +
@@ -163,7 +167,7 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
   }
 }
 
-void SpaceDeformation::checkPrescribed(const std::vector<Displacements>& prescribed) const
+void SpaceDeformation::checkPrescribed(const std::vector<PointDisplacementsView>& prescribed) const
 {
   if (prescribed.size() != RegionScale.size())
   {
@@ -178,7 +182,17 @@ void SpaceDeformation::checkPrescribed(const std::vector<Displacements>& prescri
   }
 }
 
-SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacements>& prescribed, const IterationSettings& settings) const
+SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDisplacements>& prescribed, const IterationSettings& settings) const
+{
+  std::vector<PointDisplacementsView> views;
+  for (const PointDisplacements& d : prescribed)
+  {
+    views.emplace_back(d.data(), d.rows(), 3);
+  }
+  return solve(views, settings);
+}
+
+SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDisplacementsView>& prescribed, const IterationSettings& settings) const
 {
   if (!Factor)
   {
@@ -186,87 +200,26 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
   }
   checkPrescribed(prescribed);
   // b_r = Phi_r^T F_r^2 dbar_r; the right-hand side of eq. 14 is gamma_f sum_r b_r.
-  std::vector<Displacements> b;
-  Displacements b0 = Displacements::Zero(Basis->size(), 3);
+  const long k = static_cast<long>(Basis->size());
+  std::vector<Displacements> b(prescribed.size(), Displacements(k, 3));
+  Displacements b0 = Displacements::Zero(k, 3);
   for (std::size_t r = 0; r < prescribed.size(); ++r)
   {
-    b.push_back(RegionScale[r] * multiplyTransposed(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], prescribed[r]));
-    b0 += Weights.fix * b.back();
+    PointDisplacements product(k, 3);
+    multiplyRows(RegionTransposed[r], prescribed[r], 0, k, product.data());
+    b[r] = RegionScale[r] * product;
+    b0 += Weights.fix * b[r];
   }
   Solution solution;
-  Displacements& w = solution.w;
-  if (!Constraints)
+  if (Constraints)
   {
-    w = Factor->solve(b0);
+    iterateConstraints(b0, settings, solution);
   }
   else
   {
-    // Section 6: local step (projections of the current positions; the rest shape first), then
-    // the global step (eq. 17) with them: w -> G(w), optionally Anderson-accelerated.
-    using Vector = Eigen::VectorXd;
-    const long size = 3 * static_cast<long>(Basis->size());
-    auto flat = [size](Displacements& m) { return Eigen::Map<Vector>(m.data(), size); };
-    w = Displacements::Zero(Basis->size(), 3);
-    std::vector<PointList> positions = Constraints->positions(w);
-    std::vector<PointList> projections = Constraints->project(positions);
-    std::vector<Vector> previousG, previousF; // the last G(w) and G(w) - w
-    Displacements fallback;                   // G of the iterate before an accelerated step
-    double bestResidual = std::numeric_limits<double>::infinity(); // since the last restart
-    bool accelerated = false;
-    solution.converged = false;
-    for (int i = 0; i < settings.maxIterations && !solution.converged; ++i)
-    {
-      Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(positions, projections));
-      const Vector f = flat(g) - flat(w);
-      solution.iterations = i + 1;
-      if (accelerated && f.norm() > SafeguardGrowth * bestResidual)
-      {
-        // Safeguard: the accelerated step let the fixed-point residual grow; take the plain step
-        // from the previous iterate instead and restart the history.
-        w = fallback;
-        positions = Constraints->positions(w);
-        projections = Constraints->project(positions);
-        previousF.clear();
-        previousG.clear();
-        accelerated = false;
-        bestResidual = std::numeric_limits<double>::infinity();
-        continue;
-      }
-      Displacements next = g;
-      if (settings.andersonDepth > 0 && !previousF.empty())
-      {
-        // min |f - dF gamma| over the differences of the last residuals, next = g - dG gamma
-        const long m = static_cast<long>(previousF.size());
-        Eigen::MatrixXd dF(size, m), dG(size, m);
-        for (long j = 0; j < m; ++j)
-        {
-          dF.col(j) = f - previousF[j];
-          dG.col(j) = flat(g) - previousG[j];
-        }
-        flat(next) = flat(g) - dG * dF.colPivHouseholderQr().solve(f);
-      }
-      if (settings.andersonDepth > 0)
-      {
-        previousF.push_back(f);
-        previousG.push_back(flat(g));
-        if (static_cast<int>(previousF.size()) > settings.andersonDepth)
-        {
-          previousF.erase(previousF.begin());
-          previousG.erase(previousG.begin());
-        }
-      }
-      accelerated = settings.andersonDepth > 0 && previousF.size() > 1;
-      fallback = g;
-      bestResidual = std::min(bestResidual, f.norm());
-      std::vector<PointList> nextPositions = Constraints->positions(next);
-      const std::vector<double> moved = ShapeConstraints::largestDistances(nextPositions, positions);
-      w = next;
-      positions = std::move(nextPositions);
-      projections = Constraints->project(positions);
-      solution.converged = *std::max_element(moved.begin(), moved.end()) <= settings.tolerance * Length;
-    }
-    solution.constraintResidual = ShapeConstraints::largestDistances(positions, projections);
+    solution.w = Factor->solve(b0);
   }
+  const Displacements& w = solution.w;
   if (!w.allFinite())
   {
     throw SolverException("the solution of eq. 14 is not finite");
@@ -279,6 +232,108 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<Displacemen
     solution.rmsResidual.push_back(weight > 0 ? std::sqrt(std::max(0.0, squared) / weight) : 0.0);
   }
   return solution;
+}
+
+void SpaceDeformation::iterateConstraints(const Displacements& b0, const IterationSettings& settings, Solution& solution) const
+{
+  // Section 6: local step (projections of the current positions; the rest shape first), then
+  // the global step (eq. 17) with them: w -> G(w), optionally Anderson-accelerated. Everything
+  // the iteration carries (iterates, history, the cylinder fits' axes) lives here.
+  using Vector = Eigen::VectorXd;
+  const long size = 3 * static_cast<long>(Basis->size());
+  auto flat = [size](const Displacements& m) { return Eigen::Map<const Vector>(m.data(), size); };
+  const int depth = std::max(0, settings.andersonDepth);
+  Displacements& w = solution.w;
+  w = Displacements::Zero(Basis->size(), 3);
+  std::vector<Vec3> axes = Constraints->restAxes();
+  std::vector<PointList> positions = Constraints->positions(w);
+  std::vector<PointList> projections = Constraints->project(positions, axes);
+  std::deque<Vector> previousW, previousG; // the last iterates w_j and their plain steps G(w_j)
+  Displacements fallback;                  // G of the iterate before an accelerated step
+  double bestResidual = std::numeric_limits<double>::infinity(); // since the last restart
+  bool accelerated = false;
+  bool historyHasStart = false; // previousW.front() is w = 0
+  solution.converged = false;
+  solution.estimatedError = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < settings.maxIterations; ++i)
+  {
+    Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(positions, projections));
+    const Vector f = flat(g) - flat(w);
+    solution.iterations = i + 1;
+    if (accelerated && f.norm() > SafeguardGrowth * bestResidual)
+    {
+      // Safeguard: the accelerated step let the fixed-point residual grow; take the plain step
+      // from the previous iterate instead and restart the history.
+      w = fallback;
+      positions = Constraints->positions(w);
+      projections = Constraints->project(positions, axes);
+      previousW.clear();
+      previousG.clear();
+      historyHasStart = false;
+      accelerated = false;
+      bestResidual = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    // Convergence: the plain step's move of the constrained points and the contraction rate rho
+    // seen between this iterate and the last ones; G(w) lies within rho / (1 - rho) x move of
+    // the fixed point (see IterationSettings::tolerance).
+    std::vector<PointList> stepped = Constraints->positions(g);
+    const double move = ShapeConstraints::largestDistance(stepped, positions);
+    double contraction = -1; // unknown
+    // (not from the start w = 0: its step carries the whole deformation to the targets and
+    // says nothing about the contraction near the fixed point)
+    for (std::size_t j = historyHasStart ? 1 : 0; j < previousW.size(); ++j)
+    {
+      const double apart = (flat(w) - previousW[j]).norm();
+      if (apart > 0)
+      {
+        contraction = std::max(contraction, (flat(g) - previousG[j]).norm() / apart);
+      }
+    }
+    const double error = move == 0 ? 0.0
+      : contraction >= 0 && contraction < 1 ? move * contraction / (1 - contraction)
+                                            : std::numeric_limits<double>::infinity();
+    if (error <= settings.tolerance * Length)
+    {
+      w = g;
+      positions = std::move(stepped);
+      projections = Constraints->project(positions, axes);
+      solution.converged = true;
+      solution.estimatedError = error;
+      break;
+    }
+    Displacements next = g;
+    const bool extrapolated = depth > 0 && !previousW.empty();
+    if (extrapolated)
+    {
+      // min |f - dF gamma| over the differences of the last residuals f_j = G(w_j) - w_j,
+      // next = g - dG gamma
+      const long m = static_cast<long>(previousW.size());
+      Eigen::MatrixXd dF(size, m), dG(size, m);
+      for (long j = 0; j < m; ++j)
+      {
+        dF.col(j) = f - (previousG[j] - previousW[j]);
+        dG.col(j) = flat(g) - previousG[j];
+      }
+      Eigen::Map<Vector>(next.data(), size) = flat(g) - dG * dF.colPivHouseholderQr().solve(f);
+    }
+    historyHasStart = historyHasStart || i == 0;
+    previousW.push_back(flat(w));
+    previousG.push_back(flat(g));
+    if (static_cast<int>(previousW.size()) > std::max(1, depth))
+    {
+      previousW.pop_front();
+      previousG.pop_front();
+      historyHasStart = false;
+    }
+    accelerated = extrapolated;
+    fallback = g;
+    bestResidual = std::min(bestResidual, f.norm());
+    positions = extrapolated ? Constraints->positions(next) : std::move(stepped);
+    w = std::move(next);
+    projections = Constraints->project(positions, axes);
+  }
+  solution.constraintResidual = ShapeConstraints::largestDistances(positions, projections);
 }
 
 } // namespace mlsdeform

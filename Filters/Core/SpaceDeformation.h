@@ -50,7 +50,12 @@ struct EnergyWeights
 struct IterationSettings
 {
   int maxIterations = 5000;
-  double tolerance = 1e-7; // stop when no constrained point moved more than this (x length scale)
+  /// Stop when the constrained points are estimated to lie within tolerance x the length scale
+  /// of the iteration's fixed point: a map contracting at rate rho leaves its plain step G(w)
+  /// within rho / (1 - rho) times the step's length of the fixed point, with rho estimated as
+  /// the largest |G(w) - G(w_j)| / |w - w_j| over the last iterates w_j (exact for the linearized
+  /// map in the directions the iteration explores).
+  double tolerance = 1e-7;
   /// Anderson acceleration of the fixed point w -> G(w) over the last andersonDepth steps
   /// (Walker & Ni 2011), safeguarded: an accelerated step after which the fixed-point residual
   /// |G(w) - w| exceeds 3x its smallest value since the last restart is replaced by the plain
@@ -99,15 +104,19 @@ public:
     std::vector<double> constraintResidual; // per constraint: max distance to its projection
     int iterations = 0;                     // local/global iterations (0 without constraints)
     bool converged = true;
+    double estimatedError = 0;              // estimated distance of the constrained points from the fixed point
   };
 
   /// Solves eq. 14 for the prescribed displacements of each region (one row per region
-  /// position, in the order given to setRegions). The only passes over the region points are
-  /// the right-hand sides b_r = Phi_r^T F_r^2 dbar_r; residuals come from |F_r(Phi_r w - dbar_r)|^2 = w^T A_r w - 2 w^T b_r + |F_r dbar_r|^2.
+  /// position, in the order given to setRegions; viewed, not copied). The only passes over the
+  /// region points are the right-hand sides b_r = Phi_r^T F_r^2 dbar_r (Phi_r^T formed by
+  /// setRegions); residuals come from |F_r(Phi_r w - dbar_r)|^2 = w^T A_r w - 2 w^T b_r + |F_r dbar_r|^2.
   /// With constraints, the local/global iteration of section 6 follows: projections of the
-  /// current constrained positions, then eq. 17 with them, until no constrained point moves more
-  /// than tolerance * lengthScale() or maxIterations.
-  Solution solve(const std::vector<Displacements>& prescribed, const IterationSettings& settings = {}) const;
+  /// current constrained positions, then eq. 17 with them, until the estimated distance from its
+  /// fixed point is below tolerance * lengthScale() or maxIterations. The answer depends on the
+  /// arguments and the set-up only (not on earlier solves), so solves may run concurrently.
+  Solution solve(const std::vector<PointDisplacementsView>& prescribed, const IterationSettings& settings = {}) const;
+  Solution solve(const std::vector<PointDisplacements>& prescribed, const IterationSettings& settings = {}) const;
 
   /// The model's length l (for MLS samples, the largest side of the sampled box).
   double lengthScale() const { return Length; }
@@ -118,11 +127,14 @@ public:
   double reciprocalCondition() const { return ReciprocalCondition; }
 
 private:
-  void checkPrescribed(const std::vector<Displacements>& prescribed) const;
+  void checkPrescribed(const std::vector<PointDisplacementsView>& prescribed) const;
+  /// Section 6's local/global iteration from w = 0 for the right-hand side b0 of eq. 14.
+  void iterateConstraints(const Displacements& b0, const IterationSettings& settings, Solution& solution) const;
 
   std::shared_ptr<const ShapeFunctions> Basis;
   EnergyNormals Energy;
   SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
+  std::vector<SparseRowMatrix> RegionTransposed; // Phi_r^T per region, for the right-hand sides
   std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end
   EnergyWeights Weights;

@@ -1,5 +1,11 @@
 // Supernodal sparse Cholesky factorization by CHOLMOD [28] (through Eigen), with CHOLMOD's
 // estimate of the reciprocal condition number to reject singular systems.
+//
+// The BLAS runs on one thread inside: OpenBLAS's threaded dpotrf and dgemm split their work by
+// the number of threads and so round differently (measured: factors that differ in the last
+// bits with 1 and 2 threads), and a design variant must not depend on the machine's cores. The
+// factorization is a small part of a set-up (sampling and the energies dominate), and a solve
+// with three right-hand sides gains little from threads.
 #pragma once
 
 #include "CoreTypes.h"
@@ -8,16 +14,19 @@
 
 namespace mlsdeform
 {
-class SparseCholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix>
+class SparseCholesky : private Eigen::CholmodSupernodalLLT<SparseMatrix>
 {
 public:
-  /// Failures are reported by info() and reciprocalCondition(), not printed by CHOLMOD.
-  SparseCholesky() { this->cholmod().print = 0; }
+  SparseCholesky();
 
-  /// (min diag L / max diag L)^2, a cheap estimate of 1 / cond(K); 0 before a factorization.
-  double reciprocalCondition()
-  {
-    return m_cholmodFactor && info() == Eigen::Success ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0;
-  }
+  /// Factorizes the symmetric matrix A (its lower triangle is read); false when it is not
+  /// positive definite.
+  bool factorize(const SparseMatrix& A);
+
+  /// A^-1 b, after a successful factorize.
+  Displacements solve(const Displacements& b) const;
+
+  /// (min diag L / max diag L)^2, a cheap estimate of 1 / cond(A); 0 before a factorization.
+  double reciprocalCondition();
 };
 } // namespace mlsdeform

@@ -126,42 +126,6 @@ SparseRowMatrix selectRows(const SparseRowMatrix& A, Keep keep)
 }
 }
 
-void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out)
-{
-  const auto* outer = A.outerIndexPtr();
-  const auto* inner = A.innerIndexPtr();
-  const double* value = A.valuePtr();
-#pragma omp parallel for schedule(static)
-  for (long i = begin; i < end; ++i)
-  {
-    double x = 0, y = 0, z = 0;
-    for (auto a = outer[i]; a < outer[i + 1]; ++a)
-    {
-      const double v = value[a];
-      const auto j = inner[a];
-      x += v * X(j, 0);
-      y += v * X(j, 1);
-      z += v * X(j, 2);
-    }
-    double* o = out + 3 * (i - begin);
-    o[0] = x;
-    o[1] = y;
-    o[2] = z;
-  }
-}
-
-Displacements multiplyRows(const SparseRowMatrix& A, const Displacements& X)
-{
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> out(A.rows(), 3);
-  multiplyRows(A, X, 0, A.rows(), out.data());
-  return out;
-}
-
-Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X)
-{
-  return multiplyRows(SparseRowMatrix(A.middleRows(begin, end - begin).transpose()), X);
-}
-
 GramAccumulator::GramAccumulator(long size)
   : Size(size)
   , Sparse(size, size)
@@ -185,12 +149,15 @@ void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const 
     dsyrk_("L", "T", &n, &k, &one, B.data(), &k, &one, DenseLower.data(), &n, 1, 1);
     return;
   }
-  const int chunks = std::max(1, omp_get_max_threads());
+  // chunks of a fixed number of rows, not one per thread: the partial sums, and so the rounding of
+  // their sum, must not depend on the number of threads
+  constexpr long ChunkRows = 8192;
+  const long chunks = std::max(1L, (rows + ChunkRows - 1) / ChunkRows);
   std::vector<SparseMatrix> parts(chunks);
-#pragma omp parallel for schedule(static, 1)
-  for (int c = 0; c < chunks; ++c)
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long c = 0; c < chunks; ++c)
   {
-    const long first = rows * c / chunks, last = rows * (c + 1) / chunks;
+    const long first = c * ChunkRows, last = std::min(rows, first + ChunkRows);
     const SparseRowMatrix part = range.middleRows(first, last - first);
     parts[c] = SparseMatrix(part.transpose() * rowWeight.segment(first, last - first).asDiagonal() * part);
   }

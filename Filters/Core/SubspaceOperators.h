@@ -12,24 +12,51 @@ namespace mlsdeform
 /// their indices are appended to outside when given.
 SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
-/// Rows begin..end of A X for a dense X with three columns, written as (x, y, z) triples to out:
-/// one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at many points).
-void multiplyRows(const SparseRowMatrix& A, const Displacements& X, long begin, long end, double* out);
+/// Rows begin..end of A X for a dense X with three columns (either storage order), written as
+/// (x, y, z) triples to out: one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at
+/// many points). Each entry is summed by one thread in the order of its row, so the result does
+/// not depend on the number of threads.
+template <typename Dense>
+void multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+{
+  const auto* outer = A.outerIndexPtr();
+  const auto* inner = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (long i = begin; i < end; ++i)
+  {
+    double x = 0, y = 0, z = 0;
+    for (auto a = outer[i]; a < outer[i + 1]; ++a)
+    {
+      const double v = value[a];
+      const auto j = inner[a];
+      x += v * X(j, 0);
+      y += v * X(j, 1);
+      z += v * X(j, 2);
+    }
+    double* o = out + 3 * (i - begin);
+    o[0] = x;
+    o[1] = y;
+    o[2] = z;
+  }
+}
 
 /// A X for a dense X with three columns (multiplyRows over all rows).
-Displacements multiplyRows(const SparseRowMatrix& A, const Displacements& X);
-
-/// A(begin:end, :)^T X for a dense X with three columns (one row per row of that range): a
-/// transposed copy of the range, then multiplyRows, so that every entry of the result is summed
-/// by one thread in a fixed order (the same result whatever the number of threads).
-Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Displacements& X);
+template <typename Dense>
+Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Dense>& X)
+{
+  PointDisplacements out(A.rows(), 3);
+  multiplyRows(A, X, 0, A.rows(), out.data());
+  return out;
+}
 
 /// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one non-negative weight per row
 /// of the range), the k x k Gram matrix of a row range (GramAccumulator on that one range).
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
 
 /// Sums Gram matrices A^T diag(weight) A of row blocks. A sparse block is multiplied by sparse
-/// products over row chunks in parallel; a mostly full block (a global basis) by the BLAS's
+/// products over row chunks of a fixed size in parallel, summed in their order (the same result
+/// whatever the number of threads); a mostly full block (a global basis) by the BLAS's
 /// symmetric rank-k update (dsyrk, multithreaded and vectorized in OpenBLAS) into one dense
 /// lower triangle, so that a dense k x k result costs k^2 doubles, not a copy per block.
 class GramAccumulator

@@ -38,7 +38,7 @@ int main(int argc, char* argv[])
       middle.push_back(x);
   }
   std::shuffle(middle.begin(), middle.end(), std::mt19937(1));
-  const std::vector<Displacements> prescribed = { Vec3(0, 0, 0.3).transpose().replicate(regions[0].positions.size(), 1),
+  const std::vector<PointDisplacements> prescribed = { Vec3(0, 0, 0.3).transpose().replicate(regions[0].positions.size(), 1),
     Displacements::Zero(regions[1].positions.size(), 3) };
 
   for (int n : counts)

@@ -7,6 +7,9 @@
 #include "TestGeometry.h"
 
 #include <chrono>
+#include <cstring>
+
+#include <omp.h>
 
 using namespace mlsdeform;
 using testgeometry::maxDistance;
@@ -20,7 +23,7 @@ struct BentBar
   SamplingDomain box = testgeometry::tetrahedralBox(12, Vec3(3, 1, 1));
   Samples samples;
   std::vector<DirichletRegion> regions;
-  std::vector<Displacements> prescribed;
+  std::vector<PointDisplacements> prescribed;
   Vec3 motion;
   explicit BentBar(const Vec3& handleMotion = Vec3(0, 0, 0.5), int surfaceSamples = 300, int volumeSamples = 100)
     : motion(handleMotion)
@@ -57,8 +60,18 @@ struct Result
   SpaceDeformation::Solution solution;
 };
 
+// Two iterations that share a fixed point agree within this fraction of the diagonal: each stops
+// at an estimated distance of tolerance x length from it (IterationSettings::tolerance; the bar's
+// length is 3); the estimate is exact for the linearized iteration only, so 100 x that is
+// allowed, still far below the gap to a different fixed point, which is of the size of the
+// constraint's effect (the unconstrained violation, 1e-2 of the diagonal).
+double sameFixedPoint()
+{
+  return 100 * IterationSettings().tolerance * 3 / std::sqrt(11.0);
+}
+
 Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation,
-  int andersonDepth = 5, double constraintWeight = 10, double tolerance = IterationSettings().tolerance)
+  int andersonDepth = 5, double constraintWeight = 10)
 {
   SpaceDeformation model(bar.samples);
   model.setRegions(bar.regions);
@@ -67,7 +80,6 @@ Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraint
   Result result;
   IterationSettings settings;
   settings.andersonDepth = andersonDepth;
-  settings.tolerance = tolerance;
   result.solution = model.solve(bar.prescribed, settings);
   const PointList& set = constraints.empty() ? PointList() : constraints[0].positions;
   auto moved = [&](const PointList& x) {
@@ -123,26 +135,28 @@ TEST(PlanarityIsKept)
       CHECK(residual <= 0.1 * unconstrained);
       CHECK(r.handleError <= 0.02 * bar.motion.norm() && r.fixedError <= 0.02 * bar.motion.norm());
     }
-  // the accelerated iteration reaches the plain one's answer
+  // The accelerated iteration reaches the plain one's answer, and both formulations have the same
+  // fixed point (the sparse one by its deferred correction; before it they differed by 1.8e-3 of
+  // the diagonal at gamma_c = 10 and 6.6e-3 at 1000).
   for (int f = 0; f < 2; ++f)
   {
     const double accelerated = maxDistance(results[2 + f].constrained, results[f].constrained) / diagonal;
     std::printf("accelerated vs plain: positions differ by %.2g of the diagonal\n", accelerated);
-    CHECK(accelerated <= 1e-4);
+    CHECK(accelerated <= sameFixedPoint());
   }
-  // Both formulations have the same fixed point (the sparse one by its deferred correction), so
-  // they agree to within the iteration tolerance; a stiffer gamma_c converges more slowly and is
-  // run to a tighter one. (Before the correction they differed by 1.8e-3 of the diagonal at
-  // gamma_c = 10 and 6.6e-3 at 1000, whatever the tolerance.)
+  // A stiffer gamma_c converges more slowly (gamma_c = 1000 needs about 10^4 iterations), 100 is
+  // run here.
   const double centeredAtTen = maxDistance(results[2].constrained, results[3].constrained) / diagonal;
-  const double centeredAtThousand = maxDistance(deform(bar, planarity, ConstraintFormulation::Sparse, 5, 1000, 1e-9).constrained,
-                                      deform(bar, planarity, ConstraintFormulation::MeanCentered, 5, 1000, 1e-9).constrained) / diagonal;
-  std::printf("sparse vs mean-centered: positions differ by %.2g (gamma_c = 10), %.2g (gamma_c = 1000) of the diagonal\n",
-    centeredAtTen, centeredAtThousand);
-  CHECK(centeredAtTen <= 5e-5);
-  CHECK(centeredAtThousand <= 5e-5);
+  const Result sparseStiff = deform(bar, planarity, ConstraintFormulation::Sparse, 5, 100);
+  const Result centeredStiff = deform(bar, planarity, ConstraintFormulation::MeanCentered, 5, 100);
+  CHECK(sparseStiff.solution.converged && centeredStiff.solution.converged);
+  const double centeredAtHundred = maxDistance(sparseStiff.constrained, centeredStiff.constrained) / diagonal;
+  std::printf("sparse vs mean-centered: positions differ by %.2g (gamma_c = 10), %.2g (gamma_c = 100) of the diagonal\n",
+    centeredAtTen, centeredAtHundred);
+  CHECK(centeredAtTen <= sameFixedPoint());
+  CHECK(centeredAtHundred <= sameFixedPoint());
   for (int f = 0; f < 2; ++f)
-    CHECK(5 * results[2 + f].solution.iterations <= results[f].solution.iterations);
+    CHECK(5 * results[2 + f].solution.iterations <= results[f].solution.iterations); // acceleration earns its place
 }
 
 TEST(SparseFormulationStaysSparseForTheWholeMesh)
@@ -194,8 +208,9 @@ void checkFigureSix(ConstraintType type, const PointList& set, const BentBar& ba
   const double difference = maxDistance(plain.constrained, fast.constrained) / diagonal;
   std::printf("  plain vs Anderson: positions differ by %.2g of the diagonal, %d vs %d iterations\n", difference,
     plain.solution.iterations, fast.solution.iterations);
-  CHECK(difference <= 1e-4);
-  CHECK(5 * fast.solution.iterations <= plain.solution.iterations);
+  CHECK(difference <= sameFixedPoint());
+  CHECK(5 * fast.solution.iterations <= plain.solution.iterations); // acceleration earns its place
+
 }
 
 PointList onCircle(const Vec3& center, double radius, int count, double height = 0, int layers = 1)
@@ -248,6 +263,76 @@ TEST(RigidIsKept)
         block.push_back(Vec3(1.05 + 0.15 * i, 0.35 + 0.15 * j, 0.35 + 0.15 * k));
   // a block this small needs a finer subspace to stay rigid while the bar bends around it
   checkFigureSix(ConstraintType::Rigid, block, BentBar(Vec3(0, 0, 0.5), 600, 300), &projectToRigid);
+}
+
+namespace
+{
+bool bitwiseEqual(const Displacements& a, const Displacements& b)
+{
+  return a.rows() == b.rows() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
+}
+
+bool bitwiseEqual(const PointList& a, const PointList& b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(Vec3) * a.size()) == 0;
+}
+
+// A cylinder across the bar and a plane on its top: both projections, one of them iterative.
+std::vector<ShapeConstraint> cylinderAndPlane(const BentBar& bar)
+{
+  return { { ConstraintType::Cylinder, onCircle(Vec3(1.5, 0.2, 0.5), 0.3, 24, 0.6, 5), 1.0 },
+    { ConstraintType::Planarity, bar.select([](const Vec3& x) { return x.z() > 1 - 1e-9 && x.x() > 0.5 - 1e-9 && x.x() < 1.25 + 1e-9; }), 1.0 } };
+}
+}
+
+TEST(SameAnswerOnOneAndTwoThreads)
+{
+  // Sampling, operators, factorization and the constraint iteration, bitwise: every parallel
+  // loop writes each result entry from one thread in a fixed order, Gram matrices are summed
+  // over row chunks of a fixed size, and CHOLMOD's BLAS runs on one thread (SparseCholesky.h).
+  struct Run
+  {
+    Samples samples;
+    Displacements w;
+    int iterations = 0;
+  };
+  std::vector<Run> runs;
+  const int threads = omp_get_max_threads();
+  for (int t : { 1, 2 })
+  {
+    omp_set_num_threads(t);
+    const BentBar bar(Vec3(0.3, 0, 0.3));
+    const Result r = deform(bar, cylinderAndPlane(bar), ConstraintFormulation::Sparse);
+    runs.push_back({ bar.samples, r.solution.w, r.solution.iterations });
+  }
+  omp_set_num_threads(threads);
+  std::printf("iterations: %d (1 thread), %d (2 threads)\n", runs[0].iterations, runs[1].iterations);
+  CHECK(bitwiseEqual(runs[0].samples.centers, runs[1].samples.centers));
+  CHECK(bitwiseEqual(runs[0].samples.integrationPoints, runs[1].samples.integrationPoints));
+  CHECK(runs[0].samples.supportRadius == runs[1].samples.supportRadius && runs[0].samples.volume == runs[1].samples.volume);
+  CHECK(runs[0].iterations == runs[1].iterations);
+  CHECK(bitwiseEqual(runs[0].w, runs[1].w));
+}
+
+TEST(AnswerDependsOnItsInputsOnly)
+{
+  // Two handle motions solved in either order on one set-up give the same answers, bitwise: the
+  // iteration keeps no state between solves (the cylinder fit starts from the rest axis).
+  const BentBar bar;
+  SpaceDeformation model(bar.samples);
+  model.setRegions(bar.regions);
+  model.setConstraints(cylinderAndPlane(bar), ConstraintFormulation::Sparse);
+  model.factorize(EnergyWeights{});
+  auto motion = [&](const Vec3& handle) {
+    return std::vector<PointDisplacements>{ handle.transpose().replicate(bar.regions[0].positions.size(), 1),
+      PointDisplacements::Zero(bar.regions[1].positions.size(), 3) };
+  };
+  const auto a = motion(Vec3(0.3, 0, 0.2)), b = motion(Vec3(-0.2, 0.1, 0.4));
+  const Displacements a1 = model.solve(a).w, b1 = model.solve(b).w;
+  const Displacements b2 = model.solve(b).w, a2 = model.solve(a).w;
+  CHECK(bitwiseEqual(a1, a2));
+  CHECK(bitwiseEqual(b1, b2));
+  CHECK(!bitwiseEqual(a1, b1));
 }
 
 TEST_MAIN

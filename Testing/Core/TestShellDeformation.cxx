@@ -27,7 +27,7 @@ SpaceDeformation shell(const SamplingDomain& mesh)
 struct Ends
 {
   std::vector<DirichletRegion> regions{ 2 };
-  std::vector<Displacements> prescribed;
+  std::vector<PointDisplacements> prescribed;
   Ends(const SamplingDomain& mesh, double fixedEnd, double handleBegin, const Vec3& motion)
   {
     for (const Vec3& x : mesh.points)

@@ -31,9 +31,9 @@ struct Scene
         regions[1].positions.push_back(x);
     }
   }
-  std::vector<Displacements> uniform(const Vec3& handle, const Vec3& fixed) const
+  std::vector<PointDisplacements> uniform(const Vec3& handle, const Vec3& fixed) const
   {
-    std::vector<Displacements> d(2);
+    std::vector<PointDisplacements> d(2);
     d[0] = handle.transpose().replicate(regions[0].positions.size(), 1);
     d[1] = fixed.transpose().replicate(regions[1].positions.size(), 1);
     return d;
