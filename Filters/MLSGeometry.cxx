@@ -18,7 +18,6 @@
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <sstream>
 
 namespace mlsgeometry
 {
@@ -182,38 +181,52 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)
   return domain;
 }
 
-std::string pointsSignature(const std::vector<vtkPointSet*>& sets)
+void Stamp::add(vtkObject* object)
 {
-  std::ostringstream s;
-  for (vtkPointSet* set : sets)
-  {
-    vtkPoints* p = set->GetPoints();
-    s << p << ':' << (p ? p->GetMTime() : 0) << ':' << (p ? p->GetData()->GetMTime() : 0) << ':' << set->GetNumberOfPoints() << ';';
-  }
-  return s.str();
+  objects.emplace_back(object, object ? object->GetMTime() : 0);
 }
 
-std::string cellsSignature(const std::vector<vtkPointSet*>& sets)
+Stamp pointsStamp(const std::vector<vtkPointSet*>& sets)
 {
-  std::ostringstream s;
-  auto add = [&s](vtkObject* cells) { s << cells << ':' << (cells ? cells->GetMTime() : 0) << ' '; };
+  Stamp stamp;
+  for (vtkPointSet* set : sets)
+  {
+    stamp.add(set->GetPoints()); // vtkPoints' MTime includes its data array's
+  }
+  return stamp;
+}
+
+Stamp cellsStamp(const std::vector<vtkPointSet*>& sets)
+{
+  Stamp stamp;
+  // a cell array's MTime does not include its storage arrays': both count
+  auto addCells = [&stamp](vtkCellArray* cells) {
+    stamp.add(cells);
+    stamp.add(cells ? cells->GetOffsetsArray() : nullptr);
+    stamp.add(cells ? cells->GetConnectivityArray() : nullptr);
+  };
   for (vtkPointSet* set : sets)
   {
     if (auto* poly = vtkPolyData::SafeDownCast(set))
     {
-      add(poly->GetVerts());
-      add(poly->GetLines());
-      add(poly->GetPolys());
-      add(poly->GetStrips());
+      addCells(poly->GetVerts());
+      addCells(poly->GetLines());
+      addCells(poly->GetPolys());
+      addCells(poly->GetStrips());
     }
     else if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
     {
-      add(grid->GetCells());
-      add(grid->GetCellTypesArray());
+      addCells(grid->GetCells());
+      stamp.add(grid->GetCellTypesArray());
+      stamp.add(grid->GetFaces());
+      stamp.add(grid->GetFaceLocations());
     }
-    s << set->GetNumberOfCells() << ';';
+    else
+    {
+      stamp.add(set); // another point set type: any modification counts
+    }
   }
-  return s.str();
+  return stamp;
 }
 
 vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& positions,

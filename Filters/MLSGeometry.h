@@ -6,11 +6,13 @@
 #include "SpaceDeformation.h"
 
 #include <vtkSmartPointer.h>
+#include <vtkType.h>
 
 #include <string>
 #include <vector>
 
 class vtkDataObject;
+class vtkObject;
 class vtkPointSet;
 class vtkPolyData;
 
@@ -27,13 +29,37 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
 /// there are 3D cells but no 2D cells, the boundary faces of the 3D cells are the surface.
 mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets);
 
-/// A signature of the point coordinates (array identity and modification time) that changes
-/// whenever the points do.
-std::string pointsSignature(const std::vector<vtkPointSet*>& sets);
+/// Identifies versions of VTK data by VTK's own change tracking: the objects and their
+/// modification times. A modification gives an object a newer MTime than any before it, and a
+/// new object starts newer than all existing ones, so equal stamps mean unmodified data.
+struct Stamp
+{
+  std::vector<std::pair<const void*, vtkMTimeType>> objects;
+  void add(vtkObject* object);
+  bool operator==(const Stamp& other) const { return objects == other.objects; }
+  bool operator!=(const Stamp& other) const { return !(*this == other); }
+};
 
-/// A signature of the cells (array identity and modification time) that changes whenever the
-/// connectivity does.
-std::string cellsSignature(const std::vector<vtkPointSet*>& sets);
+/// What a deformation's subspace (shape functions and energies) depends on besides the input's
+/// point coordinates and cells: property values, compared exactly, and the stamps of further
+/// inputs (external samples); and whether it depends on the input's points and cells (internal
+/// sampling, energies on the input's mesh). It is rebuilt when any of them changes.
+struct SubspaceDependencies
+{
+  std::vector<double> settings;
+  Stamp inputs;
+  bool geometry = true;
+  bool operator==(const SubspaceDependencies& other) const
+  {
+    return settings == other.settings && inputs == other.inputs && geometry == other.geometry;
+  }
+};
+
+/// The stamp of the point coordinates of the sets.
+Stamp pointsStamp(const std::vector<vtkPointSet*>& sets);
+
+/// The stamp of the cells (connectivity and types) of the sets.
+Stamp cellsStamp(const std::vector<vtkPointSet*>& sets);
 
 /// Points (with vertices) carrying the given point arrays, one value per point.
 vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& points,

@@ -12,6 +12,7 @@
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
 #include <vtkMath.h>
+#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -20,7 +21,6 @@
 #include <vtkStringArray.h>
 #include <vtkTransform.h>
 
-#include <sstream>
 
 vtkStandardNewMacro(vtkConstraintRegion);
 
@@ -89,11 +89,33 @@ int roleOfPrimitive(int type)
 }
 vtkCxxSetObjectMacro(vtkConstraintRegion, Region, vtkImplicitFunction);
 
-// The selected positions and what they were selected with.
+// What a selection depends on: the selection properties (exact values) and the stamps of the
+// input points, the selection arrays and the region function.
+struct SelectionInputs
+{
+  int mode = -1;
+  bool insideOut = false;
+  double range[2] = { 0, 0 };
+  int primitive = -1;
+  mlsgeometry::Stamp stamp;
+  bool operator==(const SelectionInputs& o) const
+  {
+    return mode == o.mode && insideOut == o.insideOut && range[0] == o.range[0] && range[1] == o.range[1] &&
+      primitive == o.primitive && stamp == o.stamp;
+  }
+};
+
+// The selected positions, what they were selected with, and the output arrays kept from update
+// to update: while only the motion or the weight changes, the output shares the same point
+// cloud (so a deformation downstream knows by its stamp that the positions did not change)
+// and its displacement array is written again when no one else holds it.
 struct vtkConstraintRegion::Selection
 {
-  std::string key;
+  SelectionInputs inputs;
+  bool valid = false;
   mlsdeform::PointList positions;
+  vtkSmartPointer<vtkPolyData> cloud;
+  vtkSmartPointer<vtkDoubleArray> displacement;
 };
 
 vtkConstraintRegion::vtkConstraintRegion()
@@ -189,23 +211,31 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
       }
     }
   }
-  // Select positions, unless only the motion changed since the last selection.
-  std::ostringstream key;
-  key << mlsgeometry::pointsSignature(sets) << ' ' << this->SelectionMode << ' ' << this->InsideOut << ' ' << this->Range[0] << ' '
-      << this->Range[1] << ' ' << this->PrimitiveId << ' ' << this->Region << ' ' << (this->Region ? this->Region->GetMTime() : 0);
+  // Select positions, unless only the motion or the weight changed since the last selection.
+  SelectionInputs inputs;
+  inputs.mode = this->SelectionMode;
+  inputs.insideOut = this->InsideOut;
+  inputs.range[0] = this->Range[0];
+  inputs.range[1] = this->Range[1];
+  inputs.primitive = this->PrimitiveId;
+  inputs.stamp = mlsgeometry::pointsStamp(sets);
+  inputs.stamp.add(this->Region);
   for (vtkDataArray* array : values)
   {
-    key << ' ' << array << ':' << (array ? array->GetMTime() : 0);
+    inputs.stamp.add(array);
   }
-  if (key.str() != this->Selected->key)
+  Selection& selection = *this->Selected;
+  if (!selection.valid || !(inputs == selection.inputs))
   {
-    this->Selected->key.clear();
-    this->Selected->positions =
+    selection.valid = false;
+    selection.positions =
       selectPositions(sets, values, this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId);
-    this->Selected->key = key.str();
+    selection.cloud = mlsgeometry::pointCloud(selection.positions, {});
+    selection.inputs = std::move(inputs);
+    selection.valid = true;
     ++this->NumberOfSelections;
   }
-  const mlsdeform::PointList& selected = this->Selected->positions;
+  const mlsdeform::PointList& selected = selection.positions;
   if (selected.empty() && input->GetNumberOfElements(vtkDataObject::POINT) > 0)
   {
     vtkWarningMacro(<< GetRoleName(role) << " region selects no point.");
@@ -229,22 +259,30 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   motion->RotateY(this->Rotation[1]);
   motion->RotateZ(this->Rotation[2]);
   motion->Translate(pivot.x() + this->Translation[0], pivot.y() + this->Translation[1], pivot.z() + this->Translation[2]);
+  double matrix[16];
+  vtkMatrix4x4::DeepCopy(matrix, motion->GetMatrix());
 
-  output->ShallowCopy(mlsgeometry::pointCloud(selected, {}));
-  vtkNew<vtkDoubleArray> displacement;
+  output->ShallowCopy(selection.cloud);
+  if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)
+  {
+    selection.displacement = vtkSmartPointer<vtkDoubleArray>::New(); // the last one is still in use downstream
+  }
+  vtkDoubleArray* displacement = selection.displacement;
   displacement->SetName("PrescribedDisplacement");
   displacement->SetNumberOfComponents(3);
   displacement->SetNumberOfTuples(static_cast<vtkIdType>(selected.size()));
+  double* d = displacement->GetPointer(0);
+  const bool moves = role == Handle;
   for (std::size_t i = 0; i < selected.size(); ++i)
   {
-    mlsdeform::Vec3 moved = selected[i];
-    if (role == Handle)
+    const mlsdeform::Vec3& x = selected[i];
+    for (int c = 0; c < 3; ++c)
     {
-      motion->TransformPoint(selected[i].data(), moved.data());
+      // (M x + t) - x for the handle; zero for the other roles
+      d[3 * i + c] = moves ? matrix[4 * c] * x[0] + matrix[4 * c + 1] * x[1] + matrix[4 * c + 2] * x[2] + matrix[4 * c + 3] - x[c] : 0.0;
     }
-    const mlsdeform::Vec3 d = moved - selected[i];
-    displacement->SetTuple(static_cast<vtkIdType>(i), d.data());
   }
+  displacement->Modified();
   output->GetPointData()->AddArray(displacement);
 
   vtkNew<vtkIntArray> roleArray;

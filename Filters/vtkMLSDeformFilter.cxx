@@ -11,7 +11,6 @@
 #include <vtkPolyData.h>
 
 #include <cmath>
-#include <sstream>
 
 using namespace mlsdeform;
 
@@ -52,23 +51,29 @@ vtkMLSDeformFilter::vtkMLSDeformFilter()
 {
 }
 
-std::string vtkMLSDeformFilter::SubspaceKey(const std::vector<vtkPointSet*>& inSets, vtkInformationVector** inputVector)
+mlsgeometry::SubspaceDependencies vtkMLSDeformFilter::GetSubspaceDependencies(vtkInformationVector** inputVector)
 {
   vtkPolyData* externalCenters = vtkPolyData::GetData(inputVector[2], 0);
   vtkPolyData* externalIntegration = vtkPolyData::GetData(inputVector[3], 0);
-  std::ostringstream key;
+  mlsgeometry::SubspaceDependencies dependencies;
+  dependencies.settings = { static_cast<double>(this->Basis), static_cast<double>(this->EnergyDiscretization) };
   if (externalCenters)
   {
-    key << "external " << mlsgeometry::pointsSignature({ externalCenters }) << externalCenters->GetPointData()->GetMTime() << " "
-        << (externalIntegration ? mlsgeometry::pointsSignature({ externalIntegration }) + std::to_string(externalIntegration->GetPointData()->GetMTime()) : "");
+    // the samples and integration points with their arrays; the input's mesh only for its energies
+    for (vtkPolyData* samples : { externalCenters, externalIntegration })
+    {
+      dependencies.inputs.add(samples ? samples->GetPoints() : nullptr);
+      dependencies.inputs.add(samples ? samples->GetPointData() : nullptr);
+    }
+    dependencies.geometry = this->EnergyDiscretization == SurfaceVertices;
   }
   else
   {
-    key << "internal " << mlsgeometry::pointsSignature(inSets) << mlsgeometry::cellsSignature(inSets) << this->NumberOfSamples << ' ' << this->VolumeSampleFraction << ' '
-        << this->IntegrationPointRatio << ' ' << this->LloydIterations << ' ' << this->Cover << ' ' << this->RandomSeed;
+    dependencies.settings.insert(dependencies.settings.end(),
+      { static_cast<double>(this->NumberOfSamples), this->VolumeSampleFraction, this->IntegrationPointRatio,
+        static_cast<double>(this->LloydIterations), this->Cover, static_cast<double>(this->RandomSeed) });
   }
-  key << " basis " << this->Basis << " energy " << this->EnergyDiscretization;
-  return key.str();
+  return dependencies;
 }
 
 std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::vector<vtkPointSet*>& inSets, vtkInformationVector** inputVector)

@@ -110,7 +110,7 @@ protected:
   vtkMLSDeformFilter();
   ~vtkMLSDeformFilter() override = default;
 
-  std::string SubspaceKey(const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) override;
+  mlsgeometry::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) override;
   std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
     const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) override;
 

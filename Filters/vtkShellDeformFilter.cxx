@@ -14,9 +14,9 @@ vtkShellDeformFilter::vtkShellDeformFilter()
 {
 }
 
-std::string vtkShellDeformFilter::SubspaceKey(const std::vector<vtkPointSet*>& inSets, vtkInformationVector**)
+mlsgeometry::SubspaceDependencies vtkShellDeformFilter::GetSubspaceDependencies(vtkInformationVector**)
 {
-  return mlsgeometry::pointsSignature(inSets) + mlsgeometry::cellsSignature(inSets);
+  return {}; // the mesh's points and cells only
 }
 
 std::unique_ptr<SpaceDeformation> vtkShellDeformFilter::BuildSubspace(const std::vector<vtkPointSet*>& inSets, vtkInformationVector**)

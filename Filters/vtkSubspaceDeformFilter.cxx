@@ -10,6 +10,7 @@
 #include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
@@ -25,7 +26,7 @@
 
 #include <chrono>
 #include <memory>
-#include <sstream>
+#include <tuple>
 
 using namespace mlsdeform;
 
@@ -37,25 +38,46 @@ double secondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-struct Region
+// One Regions input as last read (paper sections 3 and 6: handle and fixed regions, geometric
+// constraints). Its positions are read again only when the stamp of its points changes, and
+// get a new version only when their values do.
+struct RegionInput
 {
   int role = 0;
   double weight = 1;
+  mlsgeometry::Stamp stamp;
   PointList positions;
-  PointDisplacements prescribed;
+  long version = -1;
+  vtkDataArray* displacement = nullptr; // this update's PrescribedDisplacement
 };
 
-// The Regions inputs: handle and fixed regions, and geometric constraints (section 6).
-struct RegionInputs
+bool isConstraint(int role)
 {
-  std::vector<Region> dirichlet;
-  std::vector<ShapeConstraint> constraints;
-};
+  return role >= vtkConstraintRegion::Planarity && role <= vtkConstraintRegion::Rigid;
+}
 
-RegionInputs readRegions(vtkInformationVector* connections)
+ConstraintType constraintType(int role)
 {
-  RegionInputs inputs;
-  std::vector<Region>& regions = inputs.dirichlet;
+  switch (role)
+  {
+    case vtkConstraintRegion::Circularity:
+      return ConstraintType::Circularity;
+    case vtkConstraintRegion::Cylinder:
+      return ConstraintType::Cylinder;
+    case vtkConstraintRegion::FeatureLine:
+      return ConstraintType::FeatureLine;
+    case vtkConstraintRegion::Rigid:
+      return ConstraintType::Rigid;
+    default:
+      return ConstraintType::Planarity;
+  }
+}
+
+// Reads the Regions inputs into regions (one per connection); versions come from nextVersion.
+void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& regions, long& nextVersion)
+{
+  regions.resize(connections->GetNumberOfInformationObjects());
+  bool handle = false;
   for (int c = 0; c < connections->GetNumberOfInformationObjects(); ++c)
   {
     vtkPolyData* data = vtkPolyData::GetData(connections, c);
@@ -66,67 +88,37 @@ RegionInputs readRegions(vtkInformationVector* connections)
     {
       throw InvalidInputException(which + " is not a ConstraintRegion output (no Role or PrescribedDisplacement)");
     }
-    Region region;
+    RegionInput& region = regions[c];
     region.role = role->GetValue(0);
-    if (vtkDataArray* weight = data->GetFieldData()->GetArray("Weight"))
-    {
-      region.weight = weight->GetTuple1(0);
-    }
-    const vtkIdType n = data->GetNumberOfPoints();
-    if (n == 0)
+    region.displacement = displacement;
+    vtkDataArray* weight = data->GetFieldData()->GetArray("Weight");
+    region.weight = weight ? weight->GetTuple1(0) : 1.0;
+    if (data->GetNumberOfPoints() == 0)
     {
       throw InvalidInputException(which + " (" + vtkConstraintRegion::GetRoleName(region.role) + ") selects no point");
     }
-    region.positions = mlsgeometry::points({ data });
-    requireFinite(region.positions, (which + " positions").c_str());
-    if (region.role >= vtkConstraintRegion::Planarity && region.role <= vtkConstraintRegion::Rigid)
+    mlsgeometry::Stamp stamp = mlsgeometry::pointsStamp({ data });
+    if (stamp != region.stamp)
     {
-      // the roles Planarity ... Rigid follow the order of ConstraintType
-      inputs.constraints.push_back(
-        { static_cast<ConstraintType>(region.role - vtkConstraintRegion::Planarity), std::move(region.positions), region.weight });
-      continue;
-    }
-    region.prescribed.resize(n, 3);
-    if (auto* values = vtkDoubleArray::SafeDownCast(displacement))
-    {
-      region.prescribed = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(values->GetPointer(0), n, 3);
-    }
-    else
-    {
-      for (vtkIdType i = 0; i < n; ++i)
+      PointList positions = mlsgeometry::points({ data });
+      requireFinite(positions, (which + " positions").c_str());
+      if (positions != region.positions || region.version < 0)
       {
-        for (int d = 0; d < 3; ++d)
-        {
-          region.prescribed(i, d) = displacement->GetComponent(i, d);
-        }
+        region.positions = std::move(positions);
+        region.version = nextVersion++;
       }
+      region.stamp = std::move(stamp);
     }
-    if (!region.prescribed.allFinite())
+    if (displacement->GetNumberOfTuples() != static_cast<vtkIdType>(region.positions.size()))
     {
-      throw InvalidInputException(which + ": prescribed displacements are not finite");
+      throw InvalidInputException(which + ": one PrescribedDisplacement per point is needed");
     }
-    regions.push_back(std::move(region));
-  }
-  bool handle = false;
-  for (const Region& r : regions)
-  {
-    handle = handle || r.role == vtkConstraintRegion::Handle;
+    handle = handle || region.role == vtkConstraintRegion::Handle;
   }
   if (!handle)
   {
     throw InvalidInputException("no Handle region among the Regions inputs: nothing would move");
   }
-  return inputs;
-}
-
-bool sameConstraints(const std::vector<ShapeConstraint>& a, const std::vector<ShapeConstraint>& b)
-{
-  bool same = a.size() == b.size();
-  for (std::size_t t = 0; same && t < a.size(); ++t)
-  {
-    same = a[t].type == b[t].type && a[t].weight == b[t].weight && a[t].positions == b[t].positions;
-  }
-  return same;
 }
 
 // The output starts as the unchanged input: shallow copies in new leaf objects, so that setting
@@ -175,12 +167,32 @@ bool writeMoved(vtkDataArray* data, const PointList& points, long offset, const 
   return true;
 }
 
+// An output array of the previous update, to be written again, when it fits and no one but the
+// cache holds it (the output released it when it was reset to the input); else a new one.
+template <typename Object>
+Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
+{
+  if (!kept || !fits || kept->GetReferenceCount() > 1)
+  {
+    kept = vtkSmartPointer<Object>::New();
+  }
+  return kept;
+}
+
 // Field data with one tuple per constraint region: type, points, residual (largest distance to
 // the projection, relative to the bounding-box diagonal), iterations, converged. Returns the
 // largest relative residual.
 double reportConstraints(
-  vtkFieldData* field, const std::vector<ShapeConstraint>& constraints, const SpaceDeformation::Solution& solution, const PointList& points)
+  vtkFieldData* field, const std::vector<RegionInput>& regions, const SpaceDeformation::Solution& solution, const PointList& points)
 {
+  std::vector<const RegionInput*> constraints;
+  for (const RegionInput& r : regions)
+  {
+    if (isConstraint(r.role))
+    {
+      constraints.push_back(&r);
+    }
+  }
   if (constraints.empty())
   {
     return 0;
@@ -196,8 +208,8 @@ double reportConstraints(
   residual->SetName("ConstraintResidual");
   for (std::size_t t = 0; t < constraints.size(); ++t)
   {
-    type->InsertNextValue(constraintName(constraints[t].type));
-    count->InsertNextValue(static_cast<int>(constraints[t].positions.size()));
+    type->InsertNextValue(constraintName(constraintType(constraints[t]->role)));
+    count->InsertNextValue(static_cast<int>(constraints[t]->positions.size()));
     residual->InsertNextValue(solution.constraintResidual[t] / diagonal);
     iterations->InsertNextValue(solution.iterations);
     converged->InsertNextValue(solution.converged ? 1 : 0);
@@ -218,31 +230,47 @@ void addField(vtkFieldData* field, const char* name, double value)
 }
 }
 
+// What was read from the inputs, what the set-up was built from, and the output arrays. Values
+// get versions when they change; each step of the set-up records the versions and exact values
+// it was built from and is redone when they differ (-1: not built).
 struct vtkSubspaceDeformFilter::Cache
 {
-  std::string subspaceKey;
+  long nextVersion = 0;
+  mlsgeometry::Stamp pointsStamp; // of the input points below
+  PointList points;               // the input points, concatenated
+  long pointsVersion = -1;
+  std::vector<RegionInput> regions;
+
+  // 1. the subspace
   std::unique_ptr<SpaceDeformation> model;
-  std::string geometryKey;          // signature of the points below; empty when Phi is not valid
-  PointList points;                 // the input points, concatenated
-  SparseRowMatrix geometrySubspace; // Phi at the input points
-  std::vector<PointList> regionPositions;
-  std::vector<double> regionWeights;
-  std::vector<ShapeConstraint> constraints;
-  int formulation = 0;
+  mlsgeometry::SubspaceDependencies dependencies;
+  mlsgeometry::Stamp cellsStamp;
+  long modelPoints = -1;
+  // 2. Phi at the input points
+  SparseRowMatrix geometrySubspace;
+  long phiPoints = -1;
+  // 3. the regions, 4. the constraints: (version, weight) and (version, type, weight) per region
+  std::vector<std::pair<long, double>> dirichlet;
+  std::vector<std::tuple<long, int, double>> constraints;
+  int formulation = -1;
+  bool regionsSet = false, constraintsSet = false;
+  // 5. the factorization
   bool factorized = false;
   EnergyWeights weights;
   double setupTime = 0;
 
-  /// Forgets everything that depends on the samples.
-  void reset()
+  // the output arrays per point set, written again by the next update when no one else holds them
+  std::vector<vtkSmartPointer<vtkPoints>> moved;
+  std::vector<vtkSmartPointer<vtkDoubleArray>> displacement;
+  std::vector<PointDisplacements> prescribed; // copies of PrescribedDisplacement arrays that are not double
+
+  /// Forgets everything built on the subspace.
+  void resetModel()
   {
     model.reset();
-    geometryKey.clear();
+    modelPoints = phiPoints = -1;
     geometrySubspace = SparseRowMatrix();
-    regionPositions.clear();
-    regionWeights.clear();
-    constraints.clear();
-    factorized = false;
+    regionsSet = constraintsSet = factorized = false;
   }
 };
 
@@ -278,6 +306,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   copyInput(input, output);
+  this->SetErrorCode(vtkErrorCode::NoError);
   int skipped = 0;
   const std::vector<vtkPointSet*> inSets = mlsgeometry::pointSets(input, &skipped);
   const std::vector<vtkPointSet*> outSets = mlsgeometry::pointSets(output);
@@ -301,35 +330,44 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   try
   {
     const auto setupStart = Clock::now();
-    const std::string geometryKey = mlsgeometry::pointsSignature(inSets);
-    if (geometryKey != cache.geometryKey)
+    // The input points: read again when their stamp changes, a new version when their values do.
+    mlsgeometry::Stamp pointsStamp = mlsgeometry::pointsStamp(inSets);
+    if (pointsStamp != cache.pointsStamp)
     {
-      cache.geometryKey.clear();
-      cache.points = mlsgeometry::points(inSets);
-      if (cache.points.empty())
+      PointList points = mlsgeometry::points(inSets);
+      if (points.empty())
       {
         throw InvalidInputException("the input has no points");
       }
-      requireFinite(cache.points, "input points");
+      requireFinite(points, "input points");
+      if (points != cache.points || cache.pointsVersion < 0)
+      {
+        cache.points = std::move(points);
+        cache.pointsVersion = cache.nextVersion++;
+      }
+      cache.pointsStamp = std::move(pointsStamp);
     }
     const PointList& points = cache.points;
-    const RegionInputs inputs = readRegions(inputVector[1]);
-    const std::vector<Region>& regions = inputs.dirichlet;
+    readRegions(inputVector[1], cache.regions, cache.nextVersion);
 
     // 1. The subspace: shape functions and energies.
-    const std::string key = this->SubspaceKey(inSets, inputVector);
-    if (!cache.model || key != cache.subspaceKey)
+    mlsgeometry::SubspaceDependencies dependencies = this->GetSubspaceDependencies(inputVector);
+    mlsgeometry::Stamp cellsStamp = dependencies.geometry ? mlsgeometry::cellsStamp(inSets) : mlsgeometry::Stamp();
+    const long modelPoints = dependencies.geometry ? cache.pointsVersion : 0;
+    if (!cache.model || !(dependencies == cache.dependencies) || cellsStamp != cache.cellsStamp || modelPoints != cache.modelPoints)
     {
-      cache.reset();
+      cache.resetModel();
       cache.model = this->BuildSubspace(inSets, inputVector);
-      cache.subspaceKey = key;
+      cache.dependencies = std::move(dependencies);
+      cache.cellsStamp = std::move(cellsStamp);
+      cache.modelPoints = modelPoints;
       ++this->NumberOfSamplings;
       resampled = true;
     }
     SpaceDeformation& model = *cache.model;
 
     // 2. Phi at the points to deform.
-    if (cache.geometryKey.empty())
+    if (cache.phiPoints != cache.pointsVersion)
     {
       std::vector<int> outside;
       cache.geometrySubspace = subspaceMatrix(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
@@ -338,39 +376,53 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
         throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
           std::to_string(outside[0]) + "): the samples do not cover the input; sample this input or raise Cover");
       }
-      cache.geometryKey = geometryKey;
+      cache.phiPoints = cache.pointsVersion;
     }
 
-    // 3. Regions and the factorization of eq. 14.
-    bool sameRegions = regions.size() == cache.regionPositions.size();
-    for (std::size_t r = 0; sameRegions && r < regions.size(); ++r)
+    // 3. Regions, 4. constraints and 5. the factorization of eq. 14 (17).
+    std::vector<std::pair<long, double>> dirichlet;
+    std::vector<std::tuple<long, int, double>> constraints;
+    for (const RegionInput& r : cache.regions)
     {
-      sameRegions = regions[r].positions == cache.regionPositions[r] && regions[r].weight == cache.regionWeights[r];
-    }
-    if (!sameRegions)
-    {
-      std::vector<DirichletRegion> dirichlet;
-      for (const Region& r : regions)
+      if (isConstraint(r.role))
       {
-        dirichlet.push_back({ r.positions, r.weight });
+        constraints.emplace_back(r.version, r.role, r.weight);
       }
-      cache.regionPositions.clear();
-      cache.factorized = false;
-      model.setRegions(dirichlet);
-      cache.regionWeights.clear();
-      for (const Region& r : regions)
+      else
       {
-        cache.regionPositions.push_back(r.positions);
-        cache.regionWeights.push_back(r.weight);
+        dirichlet.emplace_back(r.version, r.weight);
       }
     }
-    if (!sameConstraints(inputs.constraints, cache.constraints) || this->ConstraintFormulation != cache.formulation)
+    if (!cache.regionsSet || dirichlet != cache.dirichlet)
     {
-      cache.constraints.clear();
-      cache.factorized = false;
-      model.setConstraints(inputs.constraints, static_cast<mlsdeform::ConstraintFormulation>(this->ConstraintFormulation));
-      cache.constraints = inputs.constraints;
+      std::vector<DirichletRegion> regions;
+      for (const RegionInput& r : cache.regions)
+      {
+        if (!isConstraint(r.role))
+        {
+          regions.push_back({ r.positions, r.weight });
+        }
+      }
+      cache.regionsSet = cache.factorized = false;
+      model.setRegions(regions);
+      cache.dirichlet = std::move(dirichlet);
+      cache.regionsSet = true;
+    }
+    if (!cache.constraintsSet || constraints != cache.constraints || this->ConstraintFormulation != cache.formulation)
+    {
+      std::vector<ShapeConstraint> shapes;
+      for (const RegionInput& r : cache.regions)
+      {
+        if (isConstraint(r.role))
+        {
+          shapes.push_back({ constraintType(r.role), r.positions, r.weight });
+        }
+      }
+      cache.constraintsSet = cache.factorized = false;
+      model.setConstraints(shapes, static_cast<mlsdeform::ConstraintFormulation>(this->ConstraintFormulation));
+      cache.constraints = std::move(constraints);
       cache.formulation = this->ConstraintFormulation;
+      cache.constraintsSet = true;
     }
     const EnergyWeights weights{ this->StretchWeight, this->BendWeight, this->FixWeight, this->ConstraintWeight };
     if (!cache.factorized || weights.stretch != cache.weights.stretch || weights.bend != cache.weights.bend ||
@@ -388,12 +440,31 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       cache.setupTime = secondsSince(setupStart);
     }
 
-    // 4. The variation: right-hand side, back-substitution, d(x) = Phi(x) w.
+    // 6. The variation: right-hand side (the PrescribedDisplacement arrays viewed in place),
+    // back-substitution, d(x) = Phi(x) w written into the output arrays.
     const auto solveStart = Clock::now();
     std::vector<PointDisplacementsView> prescribed;
-    for (const Region& r : regions)
+    cache.prescribed.resize(cache.regions.size());
+    for (std::size_t r = 0; r < cache.regions.size(); ++r)
     {
-      prescribed.emplace_back(r.prescribed.data(), r.prescribed.rows(), 3);
+      vtkDataArray* d = cache.regions[r].displacement;
+      if (isConstraint(cache.regions[r].role))
+      {
+        continue;
+      }
+      const vtkIdType n = d->GetNumberOfTuples();
+      if (auto* values = vtkDoubleArray::SafeDownCast(d))
+      {
+        prescribed.emplace_back(values->GetPointer(0), n, 3);
+        continue;
+      }
+      PointDisplacements& copy = cache.prescribed[r];
+      copy.resize(n, 3);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        d->GetTuple(i, copy.row(i).data());
+      }
+      prescribed.emplace_back(copy.data(), n, 3);
     }
     IterationSettings settings;
     settings.maxIterations = this->MaxIterations;
@@ -402,6 +473,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     const SpaceDeformation::Solution solution = model.solve(prescribed, settings);
     const Displacements& w = solution.w;
     ++this->NumberOfSolves;
+    cache.moved.resize(inSets.size());
+    cache.displacement.resize(inSets.size());
     long offset = 0;
     for (std::size_t s = 0; s < inSets.size(); ++s)
     {
@@ -410,13 +483,15 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       {
         continue;
       }
-      vtkNew<vtkDoubleArray> displacement;
+      const int type = inSets[s]->GetPoints()->GetDataType();
+      vtkDoubleArray* displacement = reusable(cache.displacement[s], cache.displacement[s] && cache.displacement[s]->GetNumberOfTuples() == n);
       displacement->SetName("Displacement");
       displacement->SetNumberOfComponents(3);
       displacement->SetNumberOfTuples(n);
       multiplyRows(cache.geometrySubspace, w, offset, offset + n, displacement->GetPointer(0));
-      vtkNew<vtkPoints> moved;
-      moved->SetDataType(inSets[s]->GetPoints()->GetDataType());
+      displacement->Modified();
+      vtkPoints* moved = reusable(cache.moved[s], cache.moved[s] && cache.moved[s]->GetNumberOfPoints() == n && cache.moved[s]->GetDataType() == type);
+      moved->SetDataType(type);
       moved->SetNumberOfPoints(n);
       if (!writeMoved<vtkFloatArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n) &&
         !writeMoved<vtkDoubleArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n))
@@ -427,6 +502,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
           moved->SetPoint(i, x.data());
         }
       }
+      moved->Modified();
       offset += n;
       outSets[s]->SetPoints(moved);
       outSets[s]->GetPointData()->AddArray(displacement);
@@ -435,10 +511,15 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
 
     const std::vector<double>& residuals = solution.rmsResidual;
     double handleResidual = 0, fixedResidual = 0;
-    for (std::size_t r = 0; r < regions.size(); ++r)
+    std::size_t d = 0;
+    for (const RegionInput& r : cache.regions)
     {
-      double& residual = regions[r].role == vtkConstraintRegion::Handle ? handleResidual : fixedResidual;
-      residual = std::max(residual, residuals[r]);
+      if (isConstraint(r.role))
+      {
+        continue;
+      }
+      double& residual = r.role == vtkConstraintRegion::Handle ? handleResidual : fixedResidual;
+      residual = std::max(residual, residuals[d++]);
     }
     vtkFieldData* field = output->GetFieldData();
     addField(field, "NumberOfSamples", static_cast<double>(model.basis().size()));
@@ -450,7 +531,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     addField(field, "ReciprocalCondition", model.reciprocalCondition());
     addField(field, "Resampled", resampled ? 1 : 0);
     addField(field, "Refactorized", refactorized ? 1 : 0);
-    const double constraintResidual = reportConstraints(field, inputs.constraints, solution, points);
+    const double constraintResidual = reportConstraints(field, cache.regions, solution, points);
     if (!solution.converged)
     {
       vtkWarningMacro(<< "The constraints did not converge in MaxIterations = " << this->MaxIterations
@@ -461,9 +542,16 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   }
   catch (const std::exception& e)
   {
-    copyInput(input, output); // leave the output as the unchanged input
+    // The output is the unchanged input, marked for scripts; the request succeeds so that the
+    // pipeline updates again once the input is fixed (a failed request left ParaView's
+    // representation stale after two failures in a row).
+    copyInput(input, output);
+    vtkNew<vtkStringArray> error;
+    error->SetName("DeformationError");
+    error->InsertNextValue(e.what());
+    output->GetFieldData()->AddArray(error);
+    this->SetErrorCode(vtkErrorCode::UserError);
     vtkErrorMacro(<< this->GetClassName() << " failed: " << e.what() << ". The output is the unchanged input.");
-    return 0;
   }
   return 1;
 }

@@ -18,9 +18,18 @@
  * Refactorized (whether this update rebuilt the subspace or refactorized), and per constraint
  * region its type, points, residual, iterations and convergence.
  *
- * Set-up is cached: when only a handle's motion changes, the update is a right-hand side, a
- * back-substitution and a sparse product at the points. Errors leave the output as the
- * unchanged input and are reported in the output window.
+ * Set-up is cached and tracked exactly: property values are compared as they are, input data by
+ * VTK's modification times (and, where new data may hold the same values, by the values). Each
+ * step (sampling, Phi at the points, regions, constraints, factorization) is redone only when
+ * what it depends on changed; when only a handle's motion changes, the update is a right-hand
+ * side, a back-substitution and a sparse product at the points, written into the output arrays
+ * of the previous update when no one else holds them.
+ *
+ * Errors (bad input, a singular system) leave the output as the unchanged input with the field
+ * data string "DeformationError" holding the message, report it in the output window, and set
+ * the error code (GetErrorCode() is vtkErrorCode::UserError; NoError after a success). The
+ * request itself succeeds, so that a pipeline (ParaView's among them) updates normally once the
+ * input is fixed.
  */
 #ifndef vtkSubspaceDeformFilter_h
 #define vtkSubspaceDeformFilter_h
@@ -36,6 +45,10 @@ class vtkPointSet;
 namespace mlsdeform
 {
 class SpaceDeformation;
+}
+namespace mlsgeometry
+{
+struct SubspaceDependencies;
 }
 
 class MLSDEFORMFILTERS_EXPORT vtkSubspaceDeformFilter : public vtkPassInputTypeAlgorithm
@@ -122,8 +135,8 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// A key of everything the subspace depends on: it is rebuilt when the key changes.
-  virtual std::string SubspaceKey(const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) = 0;
+  /// What the subspace depends on (MLSGeometry.h): it is rebuilt when that changes.
+  virtual mlsgeometry::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) = 0;
   /// The shape functions and energies for the input (throws mlsdeform exceptions on bad input);
   /// progress from 0 to 0.6.
   virtual std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
