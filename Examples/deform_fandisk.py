@@ -18,7 +18,7 @@ height = bounds[5] - bounds[4]
 fixed, handle = scene.fixed_and_handle(part, bounds)
 
 deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle])
-deformed.UpdatePipeline()
+scene.update_deformation(deformed)  # raises with the filter's message if the deformation failed
 field = servermanager.Fetch(deformed).GetFieldData()
 summary = {name: field.GetArray(name).GetValue(0) for name in
            ('NumberOfSamples', 'NumberOfIntegrationPoints', 'SetupTime', 'SolveTime',

@@ -70,6 +70,7 @@ planar = scene.box_region(part, 'Planarity', [xmin - margin, ymin - margin, (zmi
                           [xmin + 1e-3 * height, ymax + margin, zmax - 0.25 * height])
 
 free = scene.MLSDeform(Input=part, Regions=[fixed, handle])
+scene.update_deformation(free)
 kept = scene.MLSDeform(Input=part, Regions=[fixed, handle, planar] + features)
 field = scene.report_constraints(kept)
 print('handle residual %.2e, fixed residual %.2e (handle moved by %.3g), solve %.0f ms' % (

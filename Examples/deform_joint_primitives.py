@@ -37,6 +37,7 @@ kept = [scene.ConstraintRegion(Input=detector, SelectionMode='Primitive', Role='
         for p in range(table.GetNumberOfRows())]
 
 free = scene.MLSDeform(Input=detector, Regions=[fixed, handle])
+scene.update_deformation(free)
 constrained = scene.MLSDeform(Input=detector, Regions=[fixed, handle] + kept)
 field = scene.report_constraints(constrained)
 print('handle residual %.2e (lifted by %.3g), fixed residual %.2e' % (

@@ -39,11 +39,21 @@ def fixed_and_handle(part, bounds):
     return fixed, handle
 
 
+def update_deformation(deformed):
+    """Updates a deformation (MLS Deform, Shell Deform) and raises RuntimeError with the filter's
+    message if it failed: a failed deformation's output is its unchanged input carrying a
+    'DeformationError' field-data string (the same message goes to the output window)."""
+    deformed.UpdatePipeline()
+    error = deformed.GetDataInformation().GetFieldDataInformation().GetArrayInformation('DeformationError')
+    if error is not None:
+        raise RuntimeError('%s failed: %s' % (deformed.GetXMLLabel(), error.GetStringValue(0)))
+
+
 def report_constraints(deformed):
     """Prints one line per constraint region of a deformation (type, points, residual relative to
     the diagonal, iterations, converged) and returns the output's field data."""
     from paraview import servermanager
-    deformed.UpdatePipeline()
+    update_deformation(deformed)
     field = servermanager.Fetch(deformed).GetFieldData()
     types = field.GetAbstractArray('ConstraintType')
     for t in range(types.GetNumberOfValues()):

@@ -90,12 +90,14 @@ def figure3(out_dir):
     rows, curvature = [], {}
     for energy, stretch, bend in (('bending', 0, 1), ('stretching', 1, 0)):
         truth = ShellDeform(Input=plane, Regions=[fixed, handle], StretchWeight=stretch, BendWeight=bend)  # noqa: F821
+        fandisk_scene.update_deformation(truth)
         reference = points_of(truth)
         curvature[(energy, 'Shell (ground truth)')] = mean_curvature(truth)
         for label, basis, cover in FIG3_BASES:
             deform = MLSDeform(Input=plane, Regions=[fixed, handle], StretchWeight=stretch, BendWeight=bend,  # noqa: F821
                                Basis=basis, Cover=cover, NumberOfSamples=1000, VolumeSampleFraction=0.0,
                                EnergyDiscretization='SurfaceVertices')
+            fandisk_scene.update_deformation(deform)
             deviation = np.linalg.norm(points_of(deform) - reference, axis=1) / LIFT
             rms, largest = float(np.sqrt(np.mean(deviation ** 2))), float(deviation.max())
             rows.append([energy, label, rms, largest, field(deform, 'SetupTime')])
@@ -184,7 +186,7 @@ def figure4_case(plugin, fandisk, basis, cover, k):
             f.write('5')  # resets the peak resident size (VmHWM), Linux >= 4.0
         before = memory_kib('VmRSS')
         start = time.perf_counter()
-        deform.UpdatePipeline()
+        fandisk_scene.update_deformation(deform)
         result['wall_seconds'] = time.perf_counter() - start
         result['memory_mib'] = (memory_kib('VmHWM') - before) / 1024.0
         result['setup_seconds'] = field(deform, 'SetupTime')
@@ -276,6 +278,7 @@ def figure12(out_dir):
     rows = []
     for label, basis in (('MLS s=5', 'MLS'), ('Triharmonic', 'Triharmonic')):
         deform = MLSDeform(Input=box, Regions=[fixed, handle], Basis=basis, NumberOfSamples=1000)  # noqa: F821
+        fandisk_scene.update_deformation(deform)
         q = quality(deform, box)
         rows.append([label, cells, q['min_sj_before'], q['min_sj_after'], q['inverted_after'], q['max_nonorth_after'],
                      field(deform, 'HandleResidual')])
@@ -321,6 +324,7 @@ def figure13(out_dir):
     fixed = box_region(pipe, 'Fixed', [-1.1, -1.1, -0.01], [1.1, 1.1, 0.01])
     handle = box_region(pipe, 'Handle', [-1.1, -1.1, 5.99], [1.1, 1.1, 6.01], Translation=[1.5, 0, 0])
     deform = MLSDeform(Input=pipe, Regions=[fixed, handle], NumberOfSamples=1000)  # noqa: F821
+    fandisk_scene.update_deformation(deform)
     q = quality(deform, pipe)
     rows = [['MLS s=5', cells, q['min_sj_before'], q['min_sj_after'], q['inverted_after'], q['max_nonorth_after'],
              field(deform, 'HandleResidual')]]

@@ -1,7 +1,10 @@
 // Set-up time, per-variation time and peak memory of vtkMLSDeformFilter on a generated closed
 // surface (a sphere tessellated to the requested number of points): bottom cap fixed, top cap
 // moved. One configuration per process so that the peak memory is that configuration's.
-// Usage: BenchmarkDeformation POINTS K [VARIATIONS]; prints one JSON line.
+// Variations alternate between 1 and 2 OpenMP threads on the same set-up, so that both figures
+// come from the same run, side by side; page faults per variation show whether a variation
+// still touches fresh memory (mesh-sized allocations would fault on every page).
+// Usage: BenchmarkDeformation POINTS K [VARIATIONS per thread count]; prints one JSON line.
 #include "vtkConstraintRegion.h"
 #include "vtkMLSDeformFilter.h"
 
@@ -11,6 +14,9 @@
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkSphereSource.h>
+
+#include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -31,6 +37,19 @@ double peakMemoryMiB()
     if (line.rfind("VmHWM:", 0) == 0)
       return std::stod(line.substr(6)) / 1024.0;
   return -1;
+}
+
+long minorPageFaults()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0 : values[values.size() / 2];
 }
 
 double seconds(std::chrono::steady_clock::time_point start)
@@ -86,25 +105,31 @@ int main(int argc, char* argv[])
   }
   const double integrationPoints = field->GetArray("NumberOfIntegrationPoints")->GetTuple1(0);
 
-  // Variations: new handle motion only (regions re-executed, then solve and evaluation).
-  std::vector<double> times;
-  for (int v = 0; v < variations; ++v)
+  // Variations: new handle motion only (regions re-executed, then solve and evaluation),
+  // alternately on 1 and 2 threads.
+  const int threadCounts[2] = { 1, 2 };
+  std::vector<double> times[2], faults;
+  for (int v = 0; v < 2 * variations; ++v)
   {
-    handle->SetTranslation(0.1, 0.02 * v, 0.2 + 0.01 * v);
+    const int t = v % 2;
+    omp_set_num_threads(threadCounts[t]);
+    handle->SetTranslation(0.1, 0.02 * (v + 1), 0.2 + 0.01 * (v + 1));
+    const long faultsBefore = minorPageFaults();
     start = std::chrono::steady_clock::now();
     handle->Update();
     const double region = seconds(start);
     deform->Update();
-    times.push_back(seconds(start));
-    std::fprintf(stderr, "variation %d: region %.1f ms, filter %.1f ms (solve+evaluate %.1f ms)\n", v, 1000 * region,
-      1000 * (times.back() - region), 1000 * deform->GetOutputDataObject(0)->GetFieldData()->GetArray("SolveTime")->GetTuple1(0));
+    times[t].push_back(seconds(start));
+    faults.push_back(static_cast<double>(minorPageFaults() - faultsBefore));
+    std::fprintf(stderr, "variation %d, %d thread(s): region %.1f ms, filter %.1f ms (solve+evaluate %.1f ms), %.0f page faults\n", v,
+      threadCounts[t], 1000 * region, 1000 * (times[t].back() - region),
+      1000 * deform->GetOutputDataObject(0)->GetFieldData()->GetArray("SolveTime")->GetTuple1(0), faults.back());
   }
-  std::sort(times.begin(), times.end());
-  const double median = times.empty() ? 0 : times[times.size() / 2];
   const bool cached = deform->GetNumberOfSamplings() == 1 && deform->GetNumberOfFactorizations() == 1;
-  std::printf("{\"points\": %lld, \"k\": %d, \"N\": %.0f, \"setup_s\": %.3f, \"variation_median_ms\": %.1f, "
-              "\"variations\": %d, \"peak_memory_MiB\": %.0f, \"cached\": %s}\n",
-    static_cast<long long>(surface->GetNumberOfPoints()), k, integrationPoints, setup, 1000 * median, variations, peakMemoryMiB(),
-    cached ? "true" : "false");
+  std::printf("{\"points\": %lld, \"k\": %d, \"N\": %.0f, \"setup_s\": %.3f, \"variation_median_ms_1_thread\": %.1f, "
+              "\"variation_median_ms_2_threads\": %.1f, \"page_faults_per_variation\": %.0f, \"variations\": %d, "
+              "\"peak_memory_MiB\": %.0f, \"cached\": %s}\n",
+    static_cast<long long>(surface->GetNumberOfPoints()), k, integrationPoints, setup, 1000 * median(times[0]), 1000 * median(times[1]),
+    median(faults), variations, peakMemoryMiB(), cached ? "true" : "false");
   return cached ? 0 : 1;
 }

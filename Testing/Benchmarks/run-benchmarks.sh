@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the deformation benchmark over generated surfaces of 10k to 1M points and k = 1k to 10k,
 # one process per configuration, and prints one JSON line each (set-up time, median time of a
-# variation = new handle motion, peak memory). Sets up and builds first if needed.
+# variation = new handle motion on 1 and on 2 threads side by side, page faults per variation,
+# peak memory). Sets up and builds first if needed.
 # Usage: Testing/Benchmarks/run-benchmarks.sh [quick]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
