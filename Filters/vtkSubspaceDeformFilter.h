@@ -99,8 +99,9 @@ public:
   ///@}
 
   ///@{
-  /// The iteration stops when no constrained point moved more than Tolerance times the model's
-  /// length in one iteration (default 1e-7).
+  /// The constraint iteration stops when its estimated distance from the fixed point, the last
+  /// move times rho/(1-rho) with rho the contraction observed so far, is at most Tolerance times
+  /// the model's length (default 1e-7).
   vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
   vtkGetMacro(Tolerance, double);
   ///@}

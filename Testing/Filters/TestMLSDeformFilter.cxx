@@ -359,7 +359,8 @@ TEST(RecoversAfterFailedUpdates)
 TEST(SameOutputOnOneAndTwoThreads)
 {
   // Sampling, Phi, energies, factorization, constraint iteration and evaluation, through the
-  // filter on a volume mesh with its surface: bitwise the same with 1 and 2 threads.
+  // filter on a volume mesh with its surface: bitwise the same with 1 and 2 threads. N = 12000
+  // integration points: the energies' sums span two of GramAccumulator's 8192-row blocks.
   vtkSmartPointer<vtkUnstructuredGrid> volume = tetrahedralBox(6);
   std::vector<std::vector<double>> outputs;
   const int threads = omp_get_max_threads();
@@ -371,7 +372,9 @@ TEST(SameOutputOnOneAndTwoThreads)
     auto rigid = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Rigid, middle);
     scene.deform->AddRegionConnection(rigid->GetOutputPort());
     scene.deform->SetNumberOfSamples(400);
+    scene.deform->SetIntegrationPointRatio(30);
     scene.deform->Update();
+    CHECK(scene.deform->GetOutputDataObject(0)->GetFieldData()->GetArray("NumberOfIntegrationPoints")->GetTuple1(0) > 8192);
     outputs.push_back(displacementOf(scene.deform));
   }
   omp_set_num_threads(threads);
