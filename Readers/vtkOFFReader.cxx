@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -121,6 +122,11 @@ int vtkOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     vtkErrorMacro(<< "Cannot open OFF file '" << this->FileName << "'.");
     return 0;
   }
+  in.seekg(0, std::ios::end);
+  const long long size = in.tellg();
+  const long long bytes = size >= 0 ? size : std::numeric_limits<long long>::max(); // (not seekable: no bound)
+  in.clear();
+  in.seekg(0);
   try
   {
     Tokens tokens(in);
@@ -136,6 +142,13 @@ int vtkOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     if (nv < 0 || nf < 0)
     {
       throw std::runtime_error("negative vertex or face count");
+    }
+    // A vertex takes at least 6 bytes ("0 0 0\n"), a face at least 4 ("1 0\n"): larger counts
+    // are a damaged header, refused before anything of their size is allocated.
+    if (6.0 * nv + 4.0 * nf > static_cast<double>(bytes))
+    {
+      throw std::runtime_error("the header announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces, more than the file's " +
+        std::to_string(bytes) + " bytes can hold");
     }
     vtkNew<vtkPoints> points;
     points->SetNumberOfPoints(nv);
@@ -192,7 +205,7 @@ int vtkOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     for (long f = 0; f < nf; ++f)
     {
       const long n = tokens.number<long>("face size");
-      if (n < 1)
+      if (n < 1 || 2.0 * n > static_cast<double>(bytes)) // a face of n vertices takes at least 2n bytes
       {
         throw std::runtime_error("face " + std::to_string(f) + " has " + std::to_string(n) + " vertices");
       }

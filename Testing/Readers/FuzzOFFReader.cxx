@@ -1,0 +1,197 @@
+// vtkOFFReader on thousands of mutated files (truncated, huge counts, negative indices, NaN,
+// binary garbage, flipped bits, lost or repeated lines): each either reads as a valid mesh or
+// gives one clear error and an empty output; none crashes (the sanitizer build checks memory).
+#include "../TestHarness.h"
+#include "vtkOFFReader.h"
+
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkExecutive.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct LastError : vtkCommand
+{
+  static LastError* New() { return new LastError; }
+  void Execute(vtkObject*, unsigned long, void* message) override
+  {
+    ++count;
+    text = static_cast<const char*>(message);
+  }
+  int count = 0;
+  std::string text;
+};
+
+// Valid files of every header kind the reader knows: the seeds of the mutations.
+const std::vector<std::string>& seeds()
+{
+  static const std::vector<std::string> files = {
+    "OFF # a cube\n8 6 12\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+    "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n",
+    "COFF\n4 2 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n1 1 0 0.5 0.5 0.5 1\n3 0 1 2 255 0 0\n3 1 3 2\n",
+    "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n",
+    "STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n",
+  };
+  return files;
+}
+
+// One random mutation of text.
+std::string mutate(std::string text, std::mt19937& random)
+{
+  auto position = [&](std::size_t size) { return std::uniform_int_distribution<std::size_t>(0, size)(random); };
+  static const char* tokens[] = { "999999999999", "9223372036854775807", "18446744073709551616", "2147483648", "-1", "-99999", "nan",
+    "NaN", "-nan", "inf", "1e400", "-1e400", "0", "1.5", "0x1F", "#", "", "OFF", "\x01\xff" };
+  if (text.empty())
+  {
+    return text;
+  }
+  switch (std::uniform_int_distribution<int>(0, 5)(random))
+  {
+    case 0: // truncated anywhere
+      return text.substr(0, position(text.size()));
+    case 1: // a token replaced by a huge, negative, non-finite or malformed value
+    {
+      std::vector<std::pair<std::size_t, std::size_t>> spans; // (start, length) of each token
+      for (std::size_t i = 0; i < text.size();)
+      {
+        const std::size_t end = text.find_first_of(" \n", i);
+        const std::size_t stop = end == std::string::npos ? text.size() : end;
+        if (stop > i)
+          spans.push_back({ i, stop - i });
+        i = stop + 1;
+      }
+      if (spans.empty())
+        return text;
+      const auto [start, length] = spans[position(spans.size() - 1)];
+      return text.replace(start, length, tokens[position(std::size(tokens) - 1)]);
+    }
+    case 2: // binary garbage inserted
+    {
+      std::string garbage(std::uniform_int_distribution<int>(1, 64)(random), '\0');
+      for (char& c : garbage)
+        c = static_cast<char>(std::uniform_int_distribution<int>(0, 255)(random));
+      return text.insert(position(text.size()), garbage);
+    }
+    case 3: // bits flipped
+      for (int flips = std::uniform_int_distribution<int>(1, 8)(random); flips > 0; --flips)
+        text[position(text.size() - 1)] ^= static_cast<char>(1 << std::uniform_int_distribution<int>(0, 7)(random));
+      return text;
+    case 4: // a line lost or repeated
+    {
+      const std::size_t begin = text.rfind('\n', position(text.size())) + 1; // (npos + 1 = 0)
+      const std::size_t end = std::min(text.find('\n', begin), text.size() - 1) + 1;
+      const std::string line = text.substr(begin, end - begin);
+      return random() % 2 ? text.erase(begin, end - begin) : text.insert(begin, line);
+    }
+    default: // nothing of the file left
+    {
+      std::string garbage(position(256), '\0');
+      for (char& c : garbage)
+        c = static_cast<char>(std::uniform_int_distribution<int>(0, 255)(random));
+      return garbage;
+    }
+  }
+}
+
+// A mesh a pipeline can use: finite points, every face's ids among them.
+bool valid(vtkPolyData* mesh)
+{
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const double* x = mesh->GetPoint(i);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+      return false;
+  }
+  vtkNew<vtkIdList> ids;
+  vtkCellArray* polygons = mesh->GetPolys();
+  for (vtkIdType c = 0; c < polygons->GetNumberOfCells(); ++c)
+  {
+    polygons->GetCellAtId(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      if (ids->GetId(k) < 0 || ids->GetId(k) >= mesh->GetNumberOfPoints())
+        return false;
+  }
+  return true;
+}
+
+// What reading text as an OFF file gives: the output, and the reader's error messages.
+struct Reading
+{
+  vtkSmartPointer<vtkPolyData> output;
+  int errors = 0;
+  std::string message; // the last one
+};
+
+Reading readText(const std::string& path, const std::string& text)
+{
+  std::ofstream(path, std::ios::binary) << text;
+  vtkNew<vtkOFFReader> reader;
+  vtkNew<LastError> error, pipeline; // the reader's message; the executive's "returned failure"
+  reader->AddObserver(vtkCommand::ErrorEvent, error);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, pipeline);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return { reader->GetOutput(), error->count, error->text };
+}
+
+const std::string path = std::string(TEST_OUTPUT_DIR) + "/fuzz.off";
+}
+
+TEST(HugeCountsAreRefusedBeforeAllocating)
+{
+  // 10^12 vertices would be 24 TB of points; a face of 2e9 vertices 16 GB of ids
+  const Reading vertices = readText(path, "OFF\n999999999999 1 0\n0 0 0\n");
+  std::printf("%s\n", vertices.message.c_str());
+  CHECK(vertices.message.find("announces 999999999999 vertices") != std::string::npos && vertices.output->GetNumberOfPoints() == 0);
+  const Reading face = readText(path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
+  std::printf("%s\n", face.message.c_str());
+  CHECK(face.message.find("face 0 has 2000000000 vertices") != std::string::npos && face.output->GetNumberOfPoints() == 0);
+}
+
+TEST(MutatedFilesGiveAValidMeshOrOneClearError)
+{
+  std::mt19937 random(20261123);
+  int errors = 0, read = 0, unclear = 0, broken = 0;
+  const int files = 5000;
+  for (int f = 0; f < files; ++f)
+  {
+    std::string text = seeds()[f % seeds().size()];
+    for (int m = std::uniform_int_distribution<int>(1, 3)(random); m > 0; --m)
+      text = mutate(text, random);
+    const Reading r = readText(path, text);
+    if (r.errors > 0)
+    {
+      ++errors;
+      // one message, naming the file, and nothing half-read left in the output
+      const bool clear = r.errors == 1 && r.message.find("OFF file '" + path + "'") != std::string::npos &&
+        r.output->GetNumberOfPoints() == 0 && r.output->GetNumberOfCells() == 0;
+      if (!clear && unclear++ < 5)
+        std::printf("unclear error on file %d (%d messages, %lld points): %s\n", f, r.errors, static_cast<long long>(r.output->GetNumberOfPoints()),
+          r.message.c_str());
+    }
+    else
+    {
+      ++read;
+      if (!valid(r.output) && broken++ < 5)
+        std::printf("file %d read without error into an invalid mesh\n", f);
+    }
+  }
+  std::printf("%d mutated files: %d errors, %d read as valid meshes\n", files, errors, read);
+  CHECK(unclear == 0);
+  CHECK(broken == 0);
+  // the mutations reach both outcomes (a fuzzer that only produced errors would test less)
+  CHECK(errors > files / 2 && read > 0);
+}
+
+TEST_MAIN
