@@ -7,7 +7,9 @@
  * RANSAC of Schnabel, Wahl and Klein 2007 (octree-localized sampling, scores within Epsilon and
  * NormalThreshold restricted to the largest connected component at ClusterEpsilon, the
  * probabilistic stopping rule) and refines every primitive by a forward search (Atkinson and
- * Riani 2000), on the **face barycenters and face normals** (Fig. 7: vertex normals on sharp edges
+ * Riani 2000), then lets every primitive gather again the faces it explains, so that noise
+ * neither splits a surface into two primitives nor leaves its most tilted faces out
+ * (EfficientRansac.h), on the **face barycenters and face normals** (Fig. 7: vertex normals on sharp edges
  * point along none of the primitives meeting there).
  *
  * Input: vtkPolyData (its polygons), or any other dataset, whose boundary surface is used (a
@@ -64,7 +66,8 @@ public:
   ///@}
 
   ///@{
-  /// Largest angle between a face normal and its primitive's normal, degrees (default 20).
+  /// Largest angle between a face normal and its primitive's normal, degrees (default 20); a
+  /// primitive whose faces scatter more (noise) admits up to 4 times their RMS angle.
   vtkSetClampMacro(NormalThreshold, double, 0.01, 90.0);
   vtkGetMacro(NormalThreshold, double);
   ///@}

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -87,16 +89,17 @@ private:
   std::vector<std::uint64_t> Sorted;
 };
 
-// The largest connected component of the samples (indices into points): samples whose cells of
-// size clusterEpsilon touch (26-neighbourhood) are connected (Schnabel et al. section 4.4), and
-// so are faces that share a vertex when faces are given (a coarse mesh's faces can be farther
-// apart than clusterEpsilon and still be one surface).
-std::vector<int> largestComponent(const PointList& points, const std::vector<int>& samples, double clusterEpsilon,
+// The connected components of the samples (indices into points): samples whose cells of size
+// clusterEpsilon touch (26-neighbourhood) are connected (Schnabel et al. section 4.4), and so are
+// faces that share a vertex when faces are given (a coarse mesh's faces can be farther apart
+// than clusterEpsilon and still be one surface). Returns the component of every sample position,
+// named by one of its positions.
+std::vector<long> components(const PointList& points, const std::vector<int>& samples, double clusterEpsilon,
   const std::vector<std::vector<int>>* faces, std::vector<int>& vertexOwner)
 {
-  if (samples.size() < 2)
+  if (samples.empty())
   {
-    return samples;
+    return {};
   }
   PointList used;
   for (int i : samples)
@@ -173,21 +176,38 @@ std::vector<int> largestComponent(const PointList& points, const std::vector<int
       }
     }
   }
-  std::vector<long> size(n, 0);
+  std::vector<long> component(n);
   for (long a = 0; a < n; ++a)
   {
-    ++size[find(a)];
-  }
-  const long largest = std::max_element(size.begin(), size.end()) - size.begin();
-  std::vector<int> component;
-  for (long a = 0; a < n; ++a)
-  {
-    if (find(a) == largest)
-    {
-      component.push_back(samples[a]);
-    }
+    component[a] = find(a);
   }
   return component;
+}
+
+// The largest connected component of the samples (components).
+std::vector<int> largestComponent(const PointList& points, const std::vector<int>& samples, double clusterEpsilon,
+  const std::vector<std::vector<int>>* faces, std::vector<int>& vertexOwner)
+{
+  if (samples.size() < 2)
+  {
+    return samples;
+  }
+  const std::vector<long> component = components(points, samples, clusterEpsilon, faces, vertexOwner);
+  std::vector<long> size(samples.size(), 0);
+  for (long c : component)
+  {
+    ++size[c];
+  }
+  const long largest = std::max_element(size.begin(), size.end()) - size.begin();
+  std::vector<int> largestSamples;
+  for (std::size_t a = 0; a < samples.size(); ++a)
+  {
+    if (component[a] == largest)
+    {
+      largestSamples.push_back(samples[a]);
+    }
+  }
+  return largestSamples;
 }
 
 struct Candidate
@@ -212,6 +232,7 @@ public:
     , P(p)
     , CosAlpha(std::cos(p.normalThreshold))
     , Octree(points, valid)
+    , Valid(valid)
     , Available(points.size(), 0)
     , Random(p.seed)
   {
@@ -220,6 +241,9 @@ public:
       Available[i] = 1;
     }
     Diagonal = Octree.box().size().norm();
+    Refinement.floor = P.epsilon / 4;
+    Refinement.cosAlpha = CosAlpha;
+    Refinement.ceiling = P.epsilon;
     if (faces)
     {
       int vertices = 0;
@@ -282,6 +306,7 @@ public:
         break;
       }
     }
+    settle(found);
     return found;
   }
 
@@ -495,6 +520,29 @@ private:
     return largestComponent(Points, compatible, P.clusterEpsilon, Faces, VertexOwner);
   }
 
+  // Occam's razor by Schwarz's Bayesian information criterion ("Estimating the dimension of a
+  // model", Annals of Statistics 6(2), 1978) for nested models on the n members of a curved
+  // primitive of k parameters (parameterCount): the least-squares plane explains them as well
+  // unless n log(RSS_plane / RSS_curved) > (k - 3) log n (a cone of a far apex or a wide cylinder
+  // lies within the tolerance of a noisy flat face and fits its noise a little closer). A
+  // residual sum counts at least n (floor / jump)^2: below that deviation the forward search
+  // tells no fit from another (exact samples of a flat face lie as exactly on a far cone).
+  bool planeExplains(const Primitive& curved, const std::vector<int>& members) const
+  {
+    if (members.size() < 3)
+    {
+      return false; // no plane to compare with
+    }
+    Primitive plane;
+    plane.type = PrimitiveType::Plane;
+    plane = fitLeastSquares(plane, Points, members);
+    const double n = static_cast<double>(members.size()), deviation = Refinement.floor / Refinement.jump;
+    const double least = n * deviation * deviation;
+    const double curvedSum = std::max(least, n * std::pow(distanceStatistics(curved, Points, members).rms, 2));
+    const double planeSum = std::max(least, n * std::pow(distanceStatistics(plane, Points, members).rms, 2));
+    return n * std::log(planeSum / curvedSum) <= (parameterCount(curved.type) - 3) * std::log(n);
+  }
+
   bool extract(const Candidate& candidate, DetectedPrimitive& primitive) const
   {
     Primitive shape = candidate.shape;
@@ -518,11 +566,13 @@ private:
     {
       return false;
     }
-    ForwardSearchSettings settings;
-    settings.floor = P.epsilon / 4;
-    settings.cosAlpha = CosAlpha;
-    settings.ceiling = P.epsilon;
-    const ForwardSearchResult refined = forwardSearch(shape, Points, Normals, component, settings);
+    ForwardSearchResult refined = forwardSearch(shape, Points, Normals, component, Refinement);
+    if (refined.shape.type != PrimitiveType::Plane && P.planes && planeExplains(refined.shape, refined.members))
+    {
+      Primitive plane;
+      plane.type = PrimitiveType::Plane;
+      refined = forwardSearch(fitLeastSquares(plane, Points, refined.members), Points, Normals, component, Refinement);
+    }
     if (static_cast<int>(refined.members.size()) < P.minimumSupport || !plausible(refined.shape))
     {
       return false;
@@ -532,6 +582,182 @@ private:
     primitive.rmsDistance = refined.rmsDistance;
     primitive.maxDistance = refined.maxDistance;
     return true;
+  }
+
+  // The largest normal deviation a primitive admits: the forward search's outlier rule (ForwardSearch.h)
+  // on its members' normal deviations, jump x their RMS angle, at least the normal threshold and
+  // at most 90 degrees. Faces a few times wider than the vertex noise tilt by about noise / width
+  // radians, beyond any fixed threshold for some of them (about 10% beyond 20 degrees at 5x).
+  double admissionAngle(const DetectedPrimitive& primitive) const
+  {
+    double squared = 0;
+    for (int i : primitive.members)
+    {
+      const double cosine = std::abs(Normals[i].dot(primitive.shape.normalAt(Points[i])));
+      squared += std::pow(std::acos(std::min(1.0, cosine)), 2);
+    }
+    const double rms = std::sqrt(squared / static_cast<double>(primitive.members.size()));
+    return std::clamp(Refinement.jump * rms, P.normalThreshold, M_PI / 2);
+  }
+
+  // The samples a primitive explains (Schnabel et al.'s refitting: the compatible samples of the
+  // final fit, gathered again): its members and the samples within its admission distance
+  // (ForwardSearch.h) and admission angle, in the connected components of its members. Increasing.
+  std::vector<int> explained(const DetectedPrimitive& primitive) const
+  {
+    const Primitive& shape = primitive.shape;
+    const double reach = admissionDistance(Refinement, primitive.rmsDistance);
+    const double cosAngle = std::cos(admissionAngle(primitive));
+    const long n = static_cast<long>(Valid.size());
+    std::vector<char> flag(n);
+#pragma omp parallel for schedule(static)
+    for (long a = 0; a < n; ++a)
+    {
+      const int i = Valid[a];
+      flag[a] = shape.distance(Points[i]) <= reach && std::abs(Normals[i].dot(shape.normalAt(Points[i]))) >= cosAngle;
+    }
+    std::vector<int> admitted;
+    for (long a = 0; a < n; ++a)
+    {
+      if (flag[a])
+      {
+        admitted.push_back(Valid[a]);
+      }
+    }
+    std::vector<int> candidates;
+    std::set_union(admitted.begin(), admitted.end(), primitive.members.begin(), primitive.members.end(), std::back_inserter(candidates));
+    const std::vector<long> component = components(Points, candidates, P.clusterEpsilon, Faces, VertexOwner);
+    std::vector<char> reached(candidates.size(), 0);
+    for (std::size_t a = 0, m = 0; a < candidates.size(); ++a)
+    {
+      if (m < primitive.members.size() && candidates[a] == primitive.members[m])
+      {
+        reached[component[a]] = 1;
+        ++m;
+      }
+    }
+    std::vector<int> samples;
+    for (std::size_t a = 0; a < candidates.size(); ++a)
+    {
+      if (reached[component[a]])
+      {
+        samples.push_back(candidates[a]);
+      }
+    }
+    return samples;
+  }
+
+  // After the greedy extraction, which never revisits a primitive (Schnabel et al. section 4.2):
+  //   1. a primitive of whose members the other primitives explain all but fewer than the
+  //      minimum support is redundant (a piece of a surface that noise split off, a cone tangent
+  //      to two flat faces found before them) and goes, the smallest first;
+  //   2. a sample no kept primitive holds goes to the kept primitive that explains it with the
+  //      least distance relative to its admission distance (noisy faces beyond the normal
+  //      threshold, the members of a redundant primitive);
+  //   3. a primitive that gained samples is fit again to its members by least squares.
+  void settle(std::vector<DetectedPrimitive>& found) const
+  {
+    const int count = static_cast<int>(found.size());
+    std::vector<std::vector<int>> explains(count);
+    std::vector<int> explainers(Points.size(), 0); // kept primitives that explain a sample
+    for (int p = 0; p < count; ++p)
+    {
+      explains[p] = explained(found[p]);
+      for (int i : explains[p])
+      {
+        ++explainers[i];
+      }
+    }
+    std::vector<int> bySize(count);
+    std::iota(bySize.begin(), bySize.end(), 0);
+    std::stable_sort(bySize.begin(), bySize.end(), [&](int a, int b) { return found[a].members.size() < found[b].members.size(); });
+    std::vector<char> kept(count, 1), own(Points.size(), 0);
+    for (int p : bySize)
+    {
+      for (int i : explains[p])
+      {
+        own[i] = 1;
+      }
+      int unexplained = 0;
+      for (int i : found[p].members)
+      {
+        unexplained += explainers[i] - own[i] == 0;
+      }
+      for (int i : explains[p])
+      {
+        own[i] = 0;
+      }
+      if (unexplained < P.minimumSupport)
+      {
+        kept[p] = 0;
+        for (int i : explains[p])
+        {
+          --explainers[i];
+        }
+      }
+    }
+    std::vector<int> owner(Points.size(), -1);
+    std::vector<double> closeness(Points.size(), std::numeric_limits<double>::infinity());
+    for (int p = 0; p < count; ++p)
+    {
+      if (!kept[p])
+      {
+        continue;
+      }
+      for (int i : found[p].members)
+      {
+        owner[i] = p;
+        closeness[i] = -1; // held: stays
+      }
+    }
+    for (int p = 0; p < count; ++p)
+    {
+      if (!kept[p])
+      {
+        continue;
+      }
+      const double reach = admissionDistance(Refinement, found[p].rmsDistance);
+      for (int i : explains[p])
+      {
+        const double relative = found[p].shape.distance(Points[i]) / reach;
+        if (relative < closeness[i])
+        {
+          closeness[i] = relative;
+          owner[i] = p;
+        }
+      }
+    }
+    std::vector<std::vector<int>> members(count);
+    for (int i : Valid)
+    {
+      if (owner[i] >= 0)
+      {
+        members[owner[i]].push_back(i);
+      }
+    }
+    std::vector<DetectedPrimitive> settled;
+    for (int p = 0; p < count; ++p)
+    {
+      if (!kept[p])
+      {
+        continue;
+      }
+      DetectedPrimitive primitive = std::move(found[p]);
+      if (members[p].size() > primitive.members.size())
+      {
+        const Primitive refit = fitLeastSquares(primitive.shape, Points, members[p]);
+        if (plausible(refit))
+        {
+          primitive.shape = refit;
+        }
+        primitive.members = std::move(members[p]);
+        const DistanceStatistics statistics = distanceStatistics(primitive.shape, Points, primitive.members);
+        primitive.rmsDistance = statistics.rms;
+        primitive.maxDistance = statistics.max;
+      }
+      settled.push_back(std::move(primitive));
+    }
+    found = std::move(settled);
   }
 
   void removeMembers(const std::vector<int>& members)
@@ -565,7 +791,9 @@ private:
   RansacParameters P;
   double CosAlpha;
   double Diagonal = 0;
+  ForwardSearchSettings Refinement; // of every extracted primitive
   MortonOctree Octree;
+  std::vector<int> Valid; // the samples with a unit normal, increasing
   std::vector<char> Available;
   std::vector<int> Remaining; // available samples in random order: the scoring subsets
   std::vector<long> SubsetEnd;

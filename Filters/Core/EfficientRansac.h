@@ -18,8 +18,13 @@
 // forms within epsilon) and cones outside the angle range of Primitives.h are not kept.
 // Extraction refits the best candidate to its compatible component by least squares (twice,
 // which lets an inexact candidate from noisy normals grow onto its surface), then the forward
-// search settles its members and parameters. Deterministic for a seed: random draws are serial,
-// only the scoring runs in parallel.
+// search settles its members and parameters; a curved primitive whose members a plane explains
+// as well by Schwarz's information criterion becomes that plane. After the extraction, every
+// primitive gathers again the connected samples within its admission distance and its
+// noise-aware admission angle (Schnabel et al.'s refitting); a primitive that the others explain
+// but for fewer than minimumSupport members goes (a piece of a surface that noise split off, a
+// cone tangent to two faces), and samples no primitive holds join the one that explains them.
+// Deterministic for a seed: random draws are serial, only the scoring runs in parallel.
 #pragma once
 
 #include "ForwardSearch.h"

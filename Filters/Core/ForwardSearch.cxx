@@ -67,7 +67,7 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
     const double rms = std::sqrt(squared / m);
     // the closest candidate outside the subset: an outlier when it jumps above the subset (or
     // when the subset itself no longer fits: a member with a mismatched normal)
-    if (!std::isfinite(rms) || distance[order[m]] > std::max(settings.floor, settings.jump * rms))
+    if (!std::isfinite(rms) || distance[order[m]] > admissionDistance(settings, rms))
     {
       break;
     }
@@ -75,7 +75,7 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
     long next = m + std::max(1L, static_cast<long>(settings.growth * m));
     next = std::min(next, n);
     long limit = m;
-    while (limit < next && distance[order[limit]] <= std::max(settings.floor, settings.jump * rms))
+    while (limit < next && distance[order[limit]] <= admissionDistance(settings, rms))
     {
       ++limit;
     }
@@ -88,14 +88,9 @@ ForwardSearchResult forwardSearch(const Primitive& start, const PointList& point
   result.shape = shape;
   result.members = subset(m);
   std::sort(result.members.begin(), result.members.end());
-  double squared = 0;
-  for (int i : result.members)
-  {
-    const double d = shape.distance(points[i]); // members' normals match: checked at their entry
-    squared += d * d;
-    result.maxDistance = std::max(result.maxDistance, d);
-  }
-  result.rmsDistance = std::sqrt(squared / static_cast<double>(result.members.size()));
+  const DistanceStatistics statistics = distanceStatistics(shape, points, result.members);
+  result.rmsDistance = statistics.rms;
+  result.maxDistance = statistics.max;
   return result;
 }
 } // namespace mlsdeform

@@ -15,6 +15,7 @@
 
 #include "Primitives.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace mlsdeform
@@ -34,6 +35,13 @@ struct ForwardSearchSettings
   double cosAlpha = 0;     // cosine of the normal threshold
   double ceiling = std::numeric_limits<double>::infinity(); // candidates farther never enter
 };
+
+/// The distance up to which the search admits a candidate to a subset of the given RMS
+/// distance: max(floor, jump x rms), never beyond the ceiling.
+inline double admissionDistance(const ForwardSearchSettings& settings, double rms)
+{
+  return std::min(settings.ceiling, std::max(settings.floor, settings.jump * rms));
+}
 
 /// Refines start on the candidates (indices into points and their unit normals, all within the
 /// RANSAC tolerance of start). Returns the members found and the fit to them.

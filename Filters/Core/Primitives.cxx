@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mlsdeform
@@ -81,11 +82,6 @@ Primitive perturbed(const Primitive& base, const Eigen::VectorXd& theta)
       break;
   }
   return s;
-}
-
-int parameterCount(PrimitiveType type)
-{
-  return type == PrimitiveType::Sphere ? 4 : type == PrimitiveType::Cylinder ? 5 : type == PrimitiveType::Cone ? 6 : 0;
 }
 
 Primitive fitPlane(const Primitive& start, const PointList& points, const std::vector<int>& subset)
@@ -203,6 +199,11 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
   current.radius *= spread;
   return current;
 }
+}
+
+int parameterCount(PrimitiveType type)
+{
+  return type == PrimitiveType::Sphere ? 4 : type == PrimitiveType::Cylinder ? 5 : type == PrimitiveType::Cone ? 6 : 3;
 }
 
 const char* primitiveTypeName(PrimitiveType type)
@@ -372,9 +373,25 @@ std::optional<Primitive> fitMinimal(PrimitiveType type, const Vec3 (&p)[3], cons
   return s;
 }
 
+DistanceStatistics distanceStatistics(const Primitive& shape, const PointList& points, const std::vector<int>& subset)
+{
+  DistanceStatistics statistics;
+  double squared = 0;
+  for (int i : subset)
+  {
+    const double d = shape.distance(points[i]);
+    squared += d * d;
+    statistics.max = std::max(statistics.max, d);
+  }
+  statistics.rms = subset.empty() ? 0 : std::sqrt(squared / static_cast<double>(subset.size()));
+  return statistics;
+}
+
 Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset)
 {
-  if (static_cast<int>(subset.size()) < std::max(3, parameterCount(start.type) + 1))
+  // three points determine a plane; Levenberg-Marquardt needs more samples than parameters
+  const int needed = start.type == PrimitiveType::Plane ? 3 : parameterCount(start.type) + 1;
+  if (static_cast<int>(subset.size()) < needed)
   {
     return start;
   }

@@ -23,6 +23,10 @@ enum class PrimitiveType
 /// "Plane", "Cylinder", "Sphere", "Cone".
 const char* primitiveTypeName(PrimitiveType type);
 
+/// The parameters that determine a primitive of the type (its degrees of freedom): plane 3
+/// (normal and offset), sphere 4, cylinder 5 (axis direction 2, axis point 2, radius), cone 6.
+int parameterCount(PrimitiveType type);
+
 struct Primitive
 {
   PrimitiveType type = PrimitiveType::Plane;
@@ -58,6 +62,13 @@ struct Primitive
 /// the samples determine none (collinear points, parallel normals, a cone flatter or
 /// narrower than MinimumConeAngle) or when one of the three samples is not compatible with it.
 std::optional<Primitive> fitMinimal(PrimitiveType type, const Vec3 (&p)[3], const Vec3 (&n)[3], double epsilon, double cosAlpha);
+
+/// The RMS and the largest distance of the subset of points from the surface (0 for none).
+struct DistanceStatistics
+{
+  double rms = 0, max = 0;
+};
+DistanceStatistics distanceStatistics(const Primitive& shape, const PointList& points, const std::vector<int>& subset);
 
 /// Cones with a half angle outside [MinimumConeAngle, pi/2 - MinimumConeAngle] are left to the
 /// cylinder and the plane, which they approximate.

@@ -152,6 +152,29 @@ inline Part blockWithFeatures(double h, int n)
   return part;
 }
 
+/// The part of separate primitives (no face of one touches another): the six faces of a box
+/// [0,2] x [0,1.5] x [0,1], an open cylinder, a sphere zone (latitudes -50 to 50 degrees) and an
+/// open cone, side by side along x (diagonal about 7.9). Triangles have legs of at least h: the
+/// round patches get as many segments as keep their narrowest cells (the sphere's at 50 degrees
+/// latitude, the cone's small end) at least h wide.
+inline Part separatePrimitives(double h)
+{
+  Part part;
+  addRectangle(part, Vec3(0, 0, 0), Vec3(0, 1.5, 0), Vec3(2, 0, 0), h);
+  addRectangle(part, Vec3(0, 0, 1), Vec3(2, 0, 0), Vec3(0, 1.5, 0), h);
+  addRectangle(part, Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 0, 1), h);
+  addRectangle(part, Vec3(0, 1.5, 0), Vec3(0, 0, 1), Vec3(2, 0, 0), h);
+  addRectangle(part, Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1.5, 0), h);
+  addRectangle(part, Vec3(2, 0, 0), Vec3(0, 1.5, 0), Vec3(0, 0, 1), h);
+  auto segments = [&](double radius) { return std::max(3, static_cast<int>(std::floor(2 * M_PI * radius / h))); };
+  addCylinder(part, Vec3(3.2, 0.75, 0), Vec3::UnitZ(), 0.5, 0, 1.2, segments(0.5), h);
+  const double latitude = 50 * M_PI / 180;
+  addSphere(part, Vec3(4.9, 0.75, 0.6), 0.6, -latitude, latitude, segments(0.6 * std::cos(latitude)));
+  const double angle = 30 * M_PI / 180, near = 0.6, far = 1.4;
+  addCone(part, Vec3(6.8, 0.75, 1.4), -Vec3::UnitZ(), angle, near, far, segments(near * std::tan(angle)), h);
+  return part;
+}
+
 /// Moves every vertex by Gaussian noise of standard deviation sigma per coordinate.
 inline void addNoise(Part& part, double sigma, unsigned seed)
 {
