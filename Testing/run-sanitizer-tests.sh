@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# The C++ tests (core, filters, reader with its fuzz test, benchmark smoke runs) built with
+# AddressSanitizer + UndefinedBehaviorSanitizer in build-sanitize/ (or $MLSDEFORM_SANITIZE_BUILD):
+# any invalid memory access, leak or undefined operation fails the test that caused it.
+# Testing/run-tests.sh runs this after the main suite; needs the packages of Testing/setup.sh.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${MLSDEFORM_SANITIZE_BUILD:-$root/build-sanitize}
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMLSDEFORM_SANITIZE=ON -DMLSDEFORM_BUILD_EXAMPLES=OFF \
+  > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
+cmake --build "$build" -j "$(nproc)"
+cd "$build"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --output-on-failure -j "$(nproc)"
