@@ -471,7 +471,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     settings.tolerance = this->Tolerance;
     settings.andersonDepth = this->Acceleration == Anderson ? 5 : 0;
     const SpaceDeformation::Solution solution = model.solve(prescribed, settings);
-    const Displacements& w = solution.w;
+    const PointDisplacements w = solution.w; // row-major: a shape function's x, y, z share a cache line
     ++this->NumberOfSolves;
     cache.moved.resize(inSets.size());
     cache.displacement.resize(inSets.size());

@@ -220,7 +220,7 @@ PointList projectToCylinder(const PointList& x, Vec3& axis)
   {
     const Vec3 u = best.unitOrthogonal(), v = best.cross(u);
     bool improved = false;
-    for (const Vec3 move : { Vec3(u), Vec3(-u), Vec3(v), Vec3(-v) })
+    for (const Vec3& move : { Vec3(u), Vec3(-u), Vec3(v), Vec3(-v) })
     {
       const Vec3 W = (best + step * move).normalized();
       const double error = cylinderError(y, W, center, r2);
