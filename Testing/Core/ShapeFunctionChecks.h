@@ -25,6 +25,13 @@ inline Eigen::VectorXd denseValues(const mlsdeform::ShapeFunctions& basis, const
 
 /// Largest differences between the analytic gradients/Laplacians and finite differences (steps
 /// 1e-6 and 1e-4), with the largest analytic values as scales, over the points not skipped.
+/// What the tests allow, and why: with values computed to delta (their round-off; <= 1e-12 for
+/// the bases tested, see TestMLSBasis) and supports of radius sigma >= 0.16,
+/// - central gradient, h1 = 1e-6: round-off delta / h1 <= 1e-6, truncation h1^2 / 6 |phi^(3)| ~
+///   1e-12 x scale / sigma^2 ~ 1e-10 x scale: below 1e-6 x scale when the scale is >= 1;
+/// - 3-point Laplacian, h2 = 1e-4: round-off 3 x 4 delta / h2^2 <= 1.2e-3, truncation
+///   3 x h2^2 / 12 |phi^(4)| ~ 2.5e-9 x scale / sigma^2 ~ 1e-7 x scale: below 1e-3 x scale for
+///   scales >= 10 (the Laplacian scales are >= 15 here; a wrong term is off by O(scale)).
 struct DerivativeErrors
 {
   double gradient = 0, laplacian = 0, gradientScale = 0, laplacianScale = 0;

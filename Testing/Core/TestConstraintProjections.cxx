@@ -43,6 +43,12 @@ PointList onCylinder(int count, double radius, double height, unsigned seed, boo
 }
 }
 
+// Two kinds of bound below. Data that satisfy a constraint are moved by round-off only: sums of
+// n terms of size |x| (the coordinates are <= 5) round to n eps |x| (eps = 2.2e-16), times the
+// condition of the fit. Noisy data (normal noise sigma per coordinate) give fits whose parameters
+// scatter by sigma / sqrt(n) over the point spread; their bounds are a few such standard
+// deviations, well below what the unprojected (noisy) data would show.
+
 TEST(PlaneProjection)
 {
   PointList x;
@@ -50,22 +56,34 @@ TEST(PlaneProjection)
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < 200; ++i)
     x.push_back(Tilt * Vec3(u(random), u(random), 0) + Offset);
+  // round-off: 200 terms x eps x |x| <= 3.5 = 1.6e-13 in the covariance; the normal (eigenvalue 0,
+  // the others ~ 1/3) is as well conditioned as that
+  std::printf("plane moved by %.2e\n", maxDistance(projectToPlane(x), x));
   CHECK(maxDistance(projectToPlane(x), x) < 1e-12);
   const PointList projected = projectToPlane(perturbed(x, 0.01, 2));
-  CHECK(maxDistance(projectToPlane(projected), projected) < 1e-12); // on a plane now
+  CHECK(maxDistance(projectToPlane(projected), projected) < 1e-12); // on a plane now (round-off as above)
   const Vec3 normal = Tilt * Vec3::UnitZ();
   double offPlane = 0;
   for (const Vec3& p : projected)
     offPlane = std::max(offPlane, std::abs(normal.dot(p - projected[0])));
-  CHECK(offPlane < 0.01); // and that plane is close to the original one
+  // and that plane is close to the original one: each tilt component of the fitted normal has the
+  // standard deviation sigma / (sqrt(n) x rms extent 0.58) = 1.2e-3 rad; 4 of them (4.9e-3 rad)
+  // over the patch's diameter 2.83 is 0.014 < 2 sigma, while the unprojected points scatter by
+  // ~4 sigma = 0.04
+  std::printf("projected points off the original plane: %.2e\n", offPlane);
+  CHECK(offPlane < 2 * 0.01);
 }
 
 TEST(CircleProjection)
 {
   const PointList x = onCylinder(100, 0.7, 0, 3, true); // evenly spaced: the mean is the center
-  CHECK(maxDistance(projectToCircle(x), x) < 1e-9);
+  // round-off: 100 terms x eps x |x| <= 3 = 6.7e-14 in the fit's sums; its 3 x 3 normal matrix
+  // is well conditioned (entries ~ n r^2 / 2 and n); Gauss-Newton then steps by round-off only
+  std::printf("circle moved by %.2e\n", maxDistance(projectToCircle(x), x));
+  CHECK(maxDistance(projectToCircle(x), x) < 1e-12);
   const PointList projected = projectToCircle(perturbed(x, 0.01, 4));
-  CHECK(maxDistance(projectToCircle(projected), projected) < 1e-9);
+  std::printf("projected circle moved by %.2e\n", maxDistance(projectToCircle(projected), projected));
+  CHECK(maxDistance(projectToCircle(projected), projected) < 1e-12);
   // equidistant from the center, radius close to the original
   Vec3 center = Vec3::Zero();
   for (const Vec3& p : projected)
@@ -77,25 +95,39 @@ TEST(CircleProjection)
     maxR = std::max(maxR, (p - center).norm());
   }
   std::printf("projected radius %.6f .. %.6f\n", minR, maxR);
-  CHECK(maxR - minR < 0.05 && std::abs(maxR - 0.7) < 0.02);
+  // The projection moves each point along the circle by its tangential noise, so the mean of the
+  // projected points is off the fitted centre by ~sigma / sqrt(n) = 1e-3 (one standard
+  // deviation), and the fitted radius is off 0.7 by the mean radial noise, also ~sigma / sqrt(n):
+  // both bounds are sigma = 0.01, about 5 standard deviations of the offsets they add up, while
+  // unprojected noisy points would spread in radius by ~5 sigma = 0.05.
+  CHECK(maxR - minR < 0.01 && std::abs(maxR - 0.7) < 0.01);
 }
 
 TEST(CylinderProjection)
 {
   const PointList x = onCylinder(400, 0.7, 2.0, 5);
   Vec3 axis = Vec3::Zero();
-  // the axis minimizes a squared error: it is found to about sqrt(machine epsilon)
-  CHECK(maxDistance(projectToCylinder(x, axis), x) < 1e-6);
+  // Exact data: the pattern search stops at the step 1e-10 rad, and its error function resolves far
+  // finer steps (every term vanishes at the axis, up to eps |x|^2), so the axis is within a few
+  // steps of the true one; that turns points |p - centre| <= 1.22 away by a few 1.2e-10.
+  std::printf("cylinder moved by %.2e\n", maxDistance(projectToCylinder(x, axis), x));
+  CHECK(maxDistance(projectToCylinder(x, axis), x) < 1e-9);
   const Vec3 trueAxis = Tilt * Vec3::UnitZ();
   const double angle = std::acos(std::min(1.0, std::abs(axis.dot(trueAxis)))) * 180 / M_PI;
   std::printf("fitted axis off by %.2e degrees\n", angle);
-  CHECK(angle < 1e-4);
+  // the angle is read through acos of a dot product k ulps below 1: sqrt(2 k eps) rad, 2.4e-6
+  // degrees for k = 4 (the axis itself is ~1e-10 rad off); 1e-5 degrees allows k = 70
+  CHECK(angle < 1e-5);
   // noisy data: projected onto a cylinder close to the original; the fit restarts from the axis
   Vec3 noisyAxis = Vec3::Zero();
   const PointList projected = projectToCylinder(perturbed(x, 0.01, 6), noisyAxis);
   Vec3 again = noisyAxis;
-  CHECK(maxDistance(projectToCylinder(projected, again), projected) < 1e-6);
-  CHECK(std::acos(std::min(1.0, std::abs(noisyAxis.dot(trueAxis)))) * 180 / M_PI < 1.0);
+  std::printf("projected cylinder moved by %.2e, noisy axis off by %.3f degrees\n", maxDistance(projectToCylinder(projected, again), projected), std::acos(std::min(1.0, std::abs(noisyAxis.dot(trueAxis)))) * 180 / M_PI);
+  CHECK(maxDistance(projectToCylinder(projected, again), projected) < 1e-9); // exact data, as above
+  // The noise tilts the fitted axis: radial noise sigma at heights of standard deviation
+  // 2 / sqrt(12) = 0.58 gives each tilt component a standard deviation sigma / (sqrt(n / 2) x 0.58)
+  // = 1.2e-3 rad = 0.07 degrees; 0.5 degrees is 7 of them.
+  CHECK(std::acos(std::min(1.0, std::abs(noisyAxis.dot(trueAxis)))) * 180 / M_PI < 0.5);
 }
 
 TEST(SimilarityAndRigidProjections)
@@ -108,21 +140,28 @@ TEST(SimilarityAndRigidProjections)
     similar.push_back(1.3 * R * p + Vec3(1, 2, 3));
     rigid.push_back(R * p + Vec3(1, 2, 3));
   }
-  CHECK(maxDistance(projectToSimilarity(rest, similar), similar) < 1e-10);
-  CHECK(maxDistance(projectToRigid(rest, rigid), rigid) < 1e-10);
+  // round-off: the cross-covariance sums 50 terms of size |x| <= 5 (50 x eps x 5 = 5.5e-14), and
+  // its SVD is well conditioned (the rest shape spans 3 dimensions about equally): 1e-12
+  std::printf("similarity moved by %.2e, rigid by %.2e\n", maxDistance(projectToSimilarity(rest, similar), similar), maxDistance(projectToRigid(rest, rigid), rigid));
+  CHECK(maxDistance(projectToSimilarity(rest, similar), similar) < 1e-12);
+  CHECK(maxDistance(projectToRigid(rest, rigid), rigid) < 1e-12);
   // a scaled target: the rigid projection keeps every distance of the rest shape
   const PointList kept = projectToRigid(rest, similar);
   double distortion = 0;
   for (std::size_t i = 1; i < rest.size(); ++i)
     distortion = std::max(distortion, std::abs((kept[i] - kept[0]).norm() - (rest[i] - rest[0]).norm()));
-  CHECK(distortion < 1e-10);
+  std::printf("distortion %.2e\n", distortion);
+  CHECK(distortion < 1e-12); // a rotation of the rest shape: round-off as above
   // a noisy target: the similarity projection keeps every distance ratio
   const PointList shaped = projectToSimilarity(rest, perturbed(similar, 0.05, 8));
   const double scale = (shaped[1] - shaped[0]).norm() / (rest[1] - rest[0]).norm();
   double ratio = 0;
   for (std::size_t i = 2; i < rest.size(); ++i)
     ratio = std::max(ratio, std::abs((shaped[i] - shaped[0]).norm() - scale * (rest[i] - rest[0]).norm()));
-  CHECK(ratio < 1e-10 && std::abs(scale - 1.3) < 0.05);
+  std::printf("ratio %.2e scale %.4f\n", ratio, scale);
+  // ratios: round-off as above; the scale fitted to 50 points with noise sigma = 0.05 about the rms
+  // radius 1.04 of the rest shape scatters by sigma / (sqrt(n) x 1.04) = 6.8e-3: 0.035 is 5 of that
+  CHECK(ratio < 1e-12 && std::abs(scale - 1.3) < 0.035);
 }
 
 TEST_MAIN

@@ -8,6 +8,11 @@
 
 using namespace mlsdeform;
 
+// Every bound here is round-off: the exact values are known, and the measures are a few dozen
+// floating-point operations on coordinates of size <= 2, each rounding by at most eps = 2.2e-16
+// relative. Coordinates and results that are dyadic rationals (0.5, 0.25, 2, ...) are computed
+// exactly; for the others, k operations on values of size v give at most about k eps v.
+
 namespace
 {
 // The six quadrilateral faces of the box [x0, x1] x [0, 1] x [0, 1] with corner points appended.
@@ -32,12 +37,15 @@ TEST(FaceCentresAndAreas)
   const PointList points = { Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(1, 1, 0), Vec3(1, 2, 0), Vec3(0, 2, 0), Vec3(1, 0, 0),
     Vec3(0, 1, 0) };
   const FaceGeometry square = faceGeometry(points, { 0, 6, 3, 7 });
+  // dyadic corners: exact in binary, 1e-15 = a few ulps of 1 (eps = 2.2e-16)
   CHECK((square.centre - Vec3(0.5, 0.5, 0)).norm() < 1e-15 && (square.area - Vec3(0, 0, 1)).norm() < 1e-15);
   const FaceGeometry hexagon = faceGeometry(points, { 0, 1, 2, 3, 4, 5 });
   std::printf("L-shape: centre (%.15g, %.15g), area %.15g\n", hexagon.centre.x(), hexagon.centre.y(), hexagon.area.z());
+  // sums of 6 triangle terms of size <= 4 (and 5/6 is not dyadic): 6 x 4 x eps = 5e-15
   CHECK((hexagon.centre - Vec3(5.0 / 6, 5.0 / 6, 0)).norm() < 1e-14);
   CHECK((hexagon.area - Vec3(0, 0, 3)).norm() < 1e-14);
   const FaceGeometry triangle = faceGeometry(points, { 0, 5, 1 }); // clockwise seen from +z
+  // 3 terms of size <= 4: 3 x 4 x eps = 2.7e-15
   CHECK((triangle.area - Vec3(0, 0, -2)).norm() < 1e-14);
   CHECK((triangle.centre - Vec3(2.0 / 3, 2.0 / 3, 0)).norm() < 1e-14);
 }
@@ -47,11 +55,14 @@ TEST(CellCentresAndVolumes)
   PointList points;
   const auto box = boxFaces(points, 0, 2);
   const CellGeometry b = cellGeometry(points, box);
+  // 6 pyramids of 4 triangles each, values <= 2: 24 x 2 x eps = 1.1e-14 at worst; the corners
+  // are dyadic, so nearly every step is exact
   CHECK((b.centre - Vec3(1, 0.5, 0.5)).norm() < 1e-14);
   CHECK(std::abs(b.volume - 2) < 1e-14);
   // a tetrahedron: centroid = mean of the corners, volume 1/6
   const PointList tet = { Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1) };
   const CellGeometry t = cellGeometry(tet, { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } });
+  // values <= 1 over 4 faces of 3 triangles; 1e-15 = 4.5 ulps of 1
   CHECK((t.centre - Vec3(0.25, 0.25, 0.25)).norm() < 1e-15);
   CHECK(std::abs(t.volume - 1.0 / 6) < 1e-15);
 }
@@ -64,9 +75,12 @@ TEST(NonOrthogonalityAndSkewness)
   const auto right = boxFaces(points, 1, 2);
   const CellGeometry P = cellGeometry(points, left), N = cellGeometry(points, right);
   const FaceGeometry shared = faceGeometry(points, left[1]); // outward of the owner: towards the neighbour
-  CHECK((shared.area - Vec3(1, 0, 0)).norm() < 1e-15);
-  CHECK(std::abs(nonOrthogonality(P.centre, N.centre, shared.area)) < 1e-6);
-  CHECK(std::abs(skewness(P.centre, N.centre, shared, points, left[1])) < 1e-12);
+  CHECK((shared.area - Vec3(1, 0, 0)).norm() < 1e-15); // dyadic: exact
+  // acos near 1 turns a cosine k ulps below 1 into sqrt(2 k eps) rad: k = 2 gives 1.7e-6 degrees
+  // (here the centres and the area are dyadic and the cosine is exactly 1)
+  CHECK(std::abs(nonOrthogonality(P.centre, N.centre, shared.area)) < 2e-6);
+  // |sv| is a difference of dyadic values, 0 exactly; 1e-14 = ~45 eps as for the case below
+  CHECK(std::abs(skewness(P.centre, N.centre, shared, points, left[1])) < 1e-14);
   // Neighbour centre moved by h along y: d = (1, h, 0), so the angle is atan(h) and the line
   // P-N crosses the face h/2 from its centre, whose extent along y is 0.5: skewness h.
   const double h = 0.3;
@@ -74,8 +88,11 @@ TEST(NonOrthogonalityAndSkewness)
   const double angle = nonOrthogonality(P.centre, moved, shared.area);
   const double skew = skewness(P.centre, moved, shared, points, left[1]);
   std::printf("non-orthogonality %.12g (atan(h) = %.12g degrees), skewness %.12g (h = %g)\n", angle, std::atan(h) * 180 / M_PI, skew, h);
-  CHECK(std::abs(angle - std::atan(h) * 180 / M_PI) < 1e-10);
-  CHECK(std::abs(skew - h) < 1e-12);
+  // the cosine 1/sqrt(1 + h^2) to a few ulps, times d(acos)/d(cos) = 1/sin(16.7 deg) = 3.5, times
+  // 180/pi: 4.4e-14 degrees per ulp; 1e-12 degrees allows ~20 ulps
+  CHECK(std::abs(angle - std::atan(h) * 180 / M_PI) < 1e-12);
+  // ~20 operations on values <= 2 (one division by the face extent 0.5): 20 x 2 x 2 x eps = 1.8e-14
+  CHECK(std::abs(skew - h) < 4e-14);
 }
 
 TEST(InteriorFacesAreMatchedAndOriented)
@@ -102,7 +119,7 @@ TEST(InteriorFacesAreMatchedAndOriented)
   const std::vector<int> orientation = faceOrientation(points, cells, faces);
   CHECK(orientation[0] == -1);
   const FaceMeasures before = faceMeasures(points, cells, faces, orientation);
-  CHECK(before.nonOrthogonality[0] < 1e-6 && before.skewness[0] < 1e-12);
+  CHECK(before.nonOrthogonality[0] < 2e-6 && before.skewness[0] < 1e-14); // as in NonOrthogonalityAndSkewness
   // Fold the neighbour over the owner (its far face to x = -1): its centre is now on the
   // owner's side, so the face, kept in its original orientation, is above 90 degrees.
   PointList folded = points;
@@ -111,7 +128,7 @@ TEST(InteriorFacesAreMatchedAndOriented)
       folded[v(2, j, k)].x() = -1;
   const FaceMeasures after = faceMeasures(folded, cells, faces, orientation);
   std::printf("folded neighbour: non-orthogonality %.6g degrees\n", after.nonOrthogonality[0]);
-  CHECK(after.nonOrthogonality[0] > 90);
+  CHECK(after.nonOrthogonality[0] > 90); // the definition of a folded face: d . S < 0
   // a face shared by three cells is not a valid mesh
   cells.push_back(CellFaces{ cells[1][0] });
   CHECK_THROWS(interiorFaces(cells), std::invalid_argument);

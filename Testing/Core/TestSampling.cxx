@@ -77,6 +77,9 @@ TEST(FarthestPointSelectionSpreadsAndSkipsDuplicates)
     selected.push_back(dense[i]);
   const PointList random(dense.begin(), dense.begin() + 100);
   std::printf("spacing: farthest points %g, random points %g\n", minimumSpacing(selected), minimumSpacing(random));
+  // Farthest points are spaced like a covering: 100 balls covering the unit cube need a radius
+  // >= (3 / (400 pi))^(1/3) = 0.134, while the closest pair of 100 uniform points is expected
+  // Gamma(4/3) (4/3 pi C(100, 2))^(-1/3) = 0.032 apart: a factor 4 in expectation, 3 required.
   CHECK(minimumSpacing(selected) > 3 * minimumSpacing(random));
   // Only three distinct positions: no more than three can be chosen.
   PointList duplicates;
@@ -99,8 +102,10 @@ TEST(LloydRelaxationMovesSitesToCentroids)
     c0 += dense[i] / 500;
     c1 += dense[500 + i] / 500;
   }
-  CHECK((sites[0] - c0).norm() < 1e-12);
-  CHECK((sites[1] - c1).norm() < 1e-12);
+  // Exact after the first step (the clusters are 4 apart); both means sum 500 terms of size <= 6:
+  // 500 eps 6 = 6.7e-13 per coordinate each, 2.3e-12 for the norm of their difference.
+  CHECK((sites[0] - c0).norm() < 3e-12);
+  CHECK((sites[1] - c1).norm() < 3e-12);
 }
 
 TEST(VolumeSamplingCoversTheDomain)
@@ -110,12 +115,13 @@ TEST(VolumeSamplingCoversTheDomain)
   CHECK(samples.centers.size() == 200);
   CHECK(samples.numberOfSurfaceCenters == 150);
   CHECK(samples.integrationPoints.size() == 800);
-  CHECK_NEAR(samples.domainVolume, 2.0, 1e-12);
+  CHECK_NEAR(samples.domainVolume, 2.0, 1e-12); // 384 tetrahedra of volume 1/192 summed: 384 eps 2 = 1.7e-13
   double total = 0;
   for (double v : samples.volume)
     total += v;
-  CHECK_NEAR(total, 2.0, 1e-9);
-  // every sampled position lies in at least s = 5 supports
+  // the 10 x (50 + 200 + 600) = 8500 volume dense samples add 2 / 8500 each: 8500 eps 2 = 3.8e-12
+  CHECK_NEAR(total, 2.0, 1e-11);
+  // every sampled position lies in at least s = 5 supports (the cover parameter, section 5)
   const MLSBasis basis(samples.centers, samples.supportRadius);
   ShapeFunctionValues phi;
   std::size_t fewest = 1000;
@@ -133,6 +139,9 @@ TEST(VolumeSamplingCoversTheDomain)
   for (int j = 0; j < 200; ++j)
     (j < 150 ? surface : volume) += boundaryDistance(samples.centers[j]) / (j < 150 ? 150 : 50);
   std::printf("mean distance to the boundary: surface samples %g, volume samples %g\n", surface, volume);
+  // Surface samples start on the boundary (distance 0) and the relaxation, which weights the surface
+  // higher, moves them by a fraction of their spacing; volume samples sit at interior distances
+  // (uniform points in this box: 0.146 on average, farthest points more): a factor 2 separates them.
   CHECK(surface < 0.5 * volume);
 }
 
@@ -141,12 +150,18 @@ TEST(SurfaceOnlyInputSamplesPaddedBox)
   const SamplingDomain plane = testgeometry::triangulatedPlane(10, 10, 1, 1);
   const Samples samples = sampleDomain(plane, smallParameters());
   const double pad = 0.1 * std::sqrt(2.0);
-  CHECK_NEAR(samples.domainVolume, (1 + 2 * pad) * (1 + 2 * pad) * 2 * pad, 1e-12);
+  // a product of three side lengths <= 1.3, each a few roundings: ~10 eps 1.3 = 3e-15
+  CHECK_NEAR(samples.domainVolume, (1 + 2 * pad) * (1 + 2 * pad) * 2 * pad, 1e-14);
   double maxHeight = 0;
   for (const Vec3& c : samples.centers)
     maxHeight = std::max(maxHeight, std::abs(c.z()));
-  CHECK(maxHeight > 0.3 * pad);     // volume samples fill the space around the plane
-  CHECK(maxHeight <= pad + 1e-12); // and stay in the padded box
+  std::printf("largest height %g of the padding %g\n", maxHeight, pad);
+  // volume samples fill the space around the plane: fewer than all 50 lie in the middle 30% of the
+  // slab (uniform ones would with probability 0.3^50)
+  CHECK(maxHeight > 0.3 * pad);
+  // and stay in the padded box: Lloyd centroids are means of up to 8500 dense samples with
+  // |z| <= pad, which round to at most 8500 eps pad = 2.6e-13 beyond it
+  CHECK(maxHeight <= pad + 1e-12);
 }
 
 TEST(SameSeedSameSamples)

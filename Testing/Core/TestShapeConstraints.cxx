@@ -62,12 +62,30 @@ struct Result
 
 // Two iterations that share a fixed point agree within this fraction of the diagonal: each stops
 // at an estimated distance of tolerance x length from it (IterationSettings::tolerance; the bar's
-// length is 3); the estimate is exact for the linearized iteration only, so 100 x that is
-// allowed, still far below the gap to a different fixed point, which is of the size of the
-// constraint's effect (the unconstrained violation, 1e-2 of the diagonal).
+// length is 3), 2 x 1e-7 x 3 / sqrt(11) = 1.8e-7 of the diagonal for the two. The estimate,
+// move x rho / (1 - rho), is exact for the linearized iteration only, and with rho near 1 (1e3
+// plain iterations) an error in 1 - rho scales it: 100 x the tolerance allows 1 - rho to be
+// overestimated 50-fold in each run. That is still far below the gap to a different fixed point,
+// of the size of the constraint's effect (the formulations differed by 1.8e-3 of the diagonal
+// before the deferred correction; the unconstrained violation is 1e-2).
 double sameFixedPoint()
 {
   return 100 * IterationSettings().tolerance * 3 / std::sqrt(11.0);
+}
+
+// A kept constraint (Fig. 6 a, b). The residual is not an iteration or round-off figure: the
+// constraint is a penalty (gamma_c = 10), so the fixed point balances it against bending, and the
+// residual is whatever that balance leaves; the paper gives no figure. What is required:
+// - the constraint does the work, an order of magnitude below the unconstrained violation;
+// - the residual is 1e-3 of the diagonal at most (all five types here: 0.5e-3 to 0.9e-3);
+// - the targets stay met: gamma_f = 1000 outweighs gamma_b + gamma_c = 11 by 90, so their misfit
+//   is of the order of 1% of the motion or less; 2% = twice that ratio.
+void checkKept(double residual, double unconstrained, double handleError, double fixedError, double motion)
+{
+  const double diagonal = std::sqrt(11.0);
+  CHECK(residual <= 0.1 * unconstrained);
+  CHECK(residual <= 1e-3 * diagonal);
+  CHECK(handleError <= 0.02 * motion && fixedError <= 0.02 * motion);
 }
 
 Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation,
@@ -131,9 +149,7 @@ TEST(PlanarityIsKept)
         unconstrained / diagonal, r.solution.iterations, r.solution.converged ? "converged" : "not converged", seconds, r.handleError,
         r.fixedError);
       CHECK(r.solution.converged);
-      CHECK(residual <= 1e-3 * diagonal);
-      CHECK(residual <= 0.1 * unconstrained);
-      CHECK(r.handleError <= 0.02 * bar.motion.norm() && r.fixedError <= 0.02 * bar.motion.norm());
+      checkKept(residual, unconstrained, r.handleError, r.fixedError, bar.motion.norm());
     }
   // The accelerated iteration reaches the plain one's answer, and both formulations have the same
   // fixed point (the sparse one by its deferred correction; before it they differed by 1.8e-3 of
@@ -156,7 +172,7 @@ TEST(PlanarityIsKept)
   CHECK(centeredAtTen <= sameFixedPoint());
   CHECK(centeredAtHundred <= sameFixedPoint());
   for (int f = 0; f < 2; ++f)
-    CHECK(5 * results[2 + f].solution.iterations <= results[f].solution.iterations); // acceleration earns its place
+    CHECK(5 * results[2 + f].solution.iterations <= results[f].solution.iterations); // acceleration earns its place (Fig. 6 c: the requirement)
 }
 
 TEST(SparseFormulationStaysSparseForTheWholeMesh)
@@ -176,7 +192,9 @@ TEST(SparseFormulationStaysSparseForTheWholeMesh)
   const double k = static_cast<double>(basis.size());
   const double sparseFill = sparse.normalMatrix().nonZeros() / (k * k), centeredFill = centered.normalMatrix().nonZeros() / (k * k);
   std::printf("fill of the k x k constraint matrix: sparse %.3f, mean-centered %.3f\n", sparseFill, centeredFill);
-  CHECK(centeredFill > 0.3);               // dense over the plane's samples
+  // dense over the plane's samples: the 750 surface samples lie on the plane, so mean-centering
+  // couples at least all of them, a fill of 0.75^2 = 0.56 or more
+  CHECK(centeredFill > 0.5);
   CHECK(sparseFill < 0.3 * centeredFill);  // sparse stays sparse
   CHECK(sparse.normalMatrix().nonZeros() / k < 300);
 }
@@ -201,9 +219,7 @@ void checkFigureSix(ConstraintType type, const PointList& set, const BentBar& ba
       constraintName(type), r == &plain ? "plain" : "Anderson", residual / diagonal, unconstrained / diagonal, r->solution.iterations,
       r->handleError / motion.norm(), r->fixedError / motion.norm());
     CHECK(r->solution.converged);
-    CHECK(residual <= 1e-3 * diagonal);
-    CHECK(residual <= 0.1 * unconstrained);
-    CHECK(r->handleError <= 0.02 * motion.norm() && r->fixedError <= 0.02 * motion.norm());
+    checkKept(residual, unconstrained, r->handleError, r->fixedError, motion.norm());
   }
   const double difference = maxDistance(plain.constrained, fast.constrained) / diagonal;
   std::printf("  plain vs Anderson: positions differ by %.2g of the diagonal, %d vs %d iterations\n", difference,

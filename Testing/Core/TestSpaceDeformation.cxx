@@ -6,10 +6,14 @@
 #include "TestGeometry.h"
 #include "../TestHarness.h"
 
+#include <limits>
+
 using namespace mlsdeform;
 
 namespace
 {
+const double Epsilon = std::numeric_limits<double>::epsilon(); // 2.2e-16
+
 struct Scene
 {
   SamplingDomain box = testgeometry::tetrahedralBox(6, Vec3(3, 1, 1));
@@ -66,8 +70,13 @@ TEST(GramMatricesOfDenseAndSparseBlocks)
   GramAccumulator gram(k);
   for (const auto& [begin, end] : { std::pair<long, long>(0, 120), std::pair<long, long>(120, 200), std::pair<long, long>(200, 300) })
     gram.add(A, begin, end, weight.segment(begin, end - begin));
-  CHECK((Eigen::MatrixXd(gram.sum()) - expected).norm() <= 1e-12 * expected.norm());
-  CHECK((Eigen::MatrixXd(weightedGram(A, 0, 120, weight.head(120))) - dense.topRows(120).transpose() * weight.head(120).asDiagonal() * dense.topRows(120)).norm() <= 1e-12 * expected.norm());
+  // Round-off: each entry sums at most 300 products, to 300 eps x the sum of their magnitudes
+  // (|A|^T W |A|), in the accumulator and in the reference alike.
+  const Eigen::MatrixXd magnitude = dense.cwiseAbs().transpose() * weight.asDiagonal() * dense.cwiseAbs();
+  const double roundOff = 2 * rows * Epsilon * magnitude.norm();
+  std::printf("round-off bound %.2e, error %.2e\n", roundOff, (Eigen::MatrixXd(gram.sum()) - expected).norm());
+  CHECK((Eigen::MatrixXd(gram.sum()) - expected).norm() <= roundOff);
+  CHECK((Eigen::MatrixXd(weightedGram(A, 0, 120, weight.head(120))) - dense.topRows(120).transpose() * weight.head(120).asDiagonal() * dense.topRows(120)).norm() <= roundOff);
 }
 
 TEST(VolumetricNormalsAreGramMatricesOfTheDerivativeRows)
@@ -95,9 +104,15 @@ TEST(VolumetricNormalsAreGramMatricesOfTheDerivativeRows)
     }
     const EnergyNormals normals = volumetricEnergyNormals(*basis, q, V, 0.5, 2.0);
     const Eigen::MatrixXd GG = G.transpose() * G, LL = L.transpose() * L;
+    // Round-off as in GramMatricesOfDenseAndSparseBlocks: sums over the 3n (n) rows, to that many
+    // eps x |G|^T |G| (|L|^T |L|), in both computations.
+    const double stretchRoundOff = 2 * 3 * n * Epsilon * (G.cwiseAbs().transpose() * G.cwiseAbs()).norm();
+    const double bendRoundOff = 2 * n * Epsilon * (L.cwiseAbs().transpose() * L.cwiseAbs()).norm();
+    std::printf("stretch: error %.2e (round-off bound %.2e), bend: error %.2e (%.2e)\n", (Eigen::MatrixXd(normals.stretch) - GG).norm(),
+      stretchRoundOff, (Eigen::MatrixXd(normals.bend) - LL).norm(), bendRoundOff);
     CHECK(normals.points == n);
-    CHECK((Eigen::MatrixXd(normals.stretch) - GG).norm() <= 1e-10 * GG.norm());
-    CHECK((Eigen::MatrixXd(normals.bend) - LL).norm() <= 1e-10 * LL.norm());
+    CHECK((Eigen::MatrixXd(normals.stretch) - GG).norm() <= stretchRoundOff);
+    CHECK((Eigen::MatrixXd(normals.bend) - LL).norm() <= bendRoundOff);
   }
 }
 
@@ -113,8 +128,13 @@ TEST(CommonTranslationMovesEveryPointByIt)
     const Displacements w = model.solve(scene.uniform(t, t)).w;
     const Displacements d = evaluate(model, w, scene.box.points);
     const double error = (d.rowwise() - t.transpose()).rowwise().norm().maxCoeff() / t.norm();
-    std::printf("gamma_s %g gamma_b %g: max relative error %g, rcond %g\n", weights.stretch, weights.bend, error, model.reciprocalCondition());
-    CHECK(error <= 1e-8);
+    // Exact in exact arithmetic (MLS reproduces constants, on which every energy vanishes), so the
+    // solve's round-off: k eps cond for k coefficients, with CHOLMOD's estimate 1 / rcond of the
+    // condition (the values are partitions of unity of the coefficients' errors).
+    const double roundOff = static_cast<double>(model.basis().size()) * Epsilon / model.reciprocalCondition();
+    std::printf("gamma_s %g gamma_b %g: max relative error %g, rcond %g, round-off bound %g\n", weights.stretch, weights.bend, error,
+      model.reciprocalCondition(), roundOff);
+    CHECK(error <= roundOff);
   }
 }
 
@@ -143,11 +163,19 @@ TEST(HandleAndFixedTargetsAreMet)
   {
     const Displacements d = evaluate(model, w, scene.regions[r].positions);
     const double measured = std::sqrt((d - prescribed[r]).squaredNorm() / d.rows());
-    std::printf("region %d: rms residual %g, measured %g (of %g)\n", r, solution.rmsResidual[r], measured, lift.norm());
-    CHECK_NEAR(solution.rmsResidual[r], measured, 1e-6 * lift.norm());
-    CHECK((d - prescribed[r]).rowwise().norm().maxCoeff() <= 0.01 * lift.norm());
+    const double largest = (d - prescribed[r]).rowwise().norm().maxCoeff();
+    std::printf("region %d: rms residual %g, measured %g, largest %g (of %g)\n", r, solution.rmsResidual[r], measured, largest, lift.norm());
+    // The quadratic form w^T A w - 2 w^T b + |dbar|^2 is a difference of terms of size |lift|^2
+    // (the middle one doubled), each a sum over k coefficients: its round-off 4 k eps |lift|^2
+    // becomes sqrt(4 k eps) |lift| = 5e-7 |lift| in the root (half the digits are lost).
+    CHECK_NEAR(solution.rmsResidual[r], measured, std::sqrt(4 * static_cast<double>(model.basis().size()) * Epsilon) * lift.norm());
+    // The bending optimum is the linear field lift x / 3 (no Laplacian), which MLS reproduces:
+    // only the stretching floor (1e-6 gamma_b against gamma_f = 1000, relative 1e-9) and round-off
+    // keep the targets from being met exactly; 1e-6 of the lift is far above both and far below
+    // any real miss.
+    CHECK(largest <= 1e-6 * lift.norm());
   }
-  // the middle moves part of the way, monotonically along the bar
+  // the middle moves part of the way, monotonically along the bar (the linear field: 1/4, 1/2, 3/4)
   const Displacements d = evaluate(model, w, { Vec3(0.75, 0.5, 0.5), Vec3(1.5, 0.5, 0.5), Vec3(2.25, 0.5, 0.5) });
   CHECK(0 < d(0, 2) && d(0, 2) < d(1, 2) && d(1, 2) < d(2, 2) && d(2, 2) < 0.5);
 }

@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 
 #include <omp.h>
@@ -50,11 +51,17 @@ TEST(PlaneBendingStretchingAndMix)
     const double fixedError = targetError(plane, out, FixedBox, 0.0).max;
     const TargetError handle = targetError(plane, out, HandleBox, Lift);
     const double handleError = handle.max;
-    // the reported residual is the RMS measured at the points (float output: 1e-6 of the lift)
-    CHECK_NEAR(fieldValue(out, "HandleResidual"), handle.rms, 1e-6 * Lift);
+    // the reported residual is the RMS measured at the points: it comes from a quadratic form that
+    // loses half the digits (sqrt(4 k eps) of the lift, see TestSpaceDeformation's
+    // HandleAndFixedTargetsAreMet), and the float output rounds coordinates < 2 to 2^-24 x 2
+    const double k = fieldValue(out, "NumberOfSamples");
+    CHECK_NEAR(fieldValue(out, "HandleResidual"), handle.rms,
+      std::sqrt(4 * k * std::numeric_limits<double>::epsilon()) * Lift + std::ldexp(1.0, -23));
     roughness[c.name] = profileRoughness(out);
     std::printf("%s: fixed error %.3g, handle error %.3g (of %g), profile roughness %.3g, setup %.3f s\n", c.name, fixedError,
       handleError, Lift, roughness[c.name], fieldValue(out, "SetupTime"));
+    // the targets outweigh the energies by gamma_f / (gamma_s + gamma_b) >= 1000 / 1.6: their misfit
+    // is of the order of that ratio of the lift, 0.16%; 1% is 6 times it
     CHECK(fixedError <= 0.01 * Lift);
     CHECK(handleError <= 0.01 * Lift);
     // between the strips the middle row rises monotonically (up to the quadrature noise of the
@@ -64,8 +71,11 @@ TEST(PlaneBendingStretchingAndMix)
       monotone = monotone && out->GetPoint(i)[2] >= out->GetPoint(i - 1)[2] - 5e-3 * Lift;
     CHECK(monotone);
   }
+  // Stretching kinks the profile at both strips by the slope 0.3 / 0.8 over one step h = 1/32:
+  // 2 (0.375 h)^2 = 2.7e-4. Bending gives about a clamped cubic, |z''| <= 6 x 0.3 / 0.8^2 = 2.8
+  // falling linearly to -2.8: 25 x (2.8 h^2)^2 / 3 = 6.2e-5 = 0.23 x that; half is required.
   CHECK(roughness["bending"] < 0.5 * roughness["stretching"]);
-  CHECK(roughness["mix"] < roughness["stretching"]);
+  CHECK(roughness["mix"] < roughness["stretching"]); // adding bending smooths (Fig. 1)
 }
 
 TEST(BasisAndEnergyDiscretization)
@@ -130,6 +140,9 @@ TEST(SurfaceAndVolumeDeformedTogether)
       moved = std::max(moved, std::abs(s[2] - surface->GetPoint(i)[2]));
     }
     std::printf("%s: largest surface/volume mismatch %g of diagonal, largest motion %g\n", composite->GetClassName(), mismatch / diagonal, moved);
+    // the same points, coefficients and basis: equal up to the sums' round-off (n eps |d| ~ 1e-14
+    // for n ~ 50 terms, |d| <= 0.3); 1e-9 of the diagonal is far above it and far below a real
+    // mismatch (a point deformed as another is off by the motion's variation, ~0.1)
     CHECK(mismatch <= 1e-9 * diagonal);
     CHECK(moved > 0.2);
     CHECK(outVolume->GetPointData()->GetArray("Displacement") && outSurface->GetPointData()->GetArray("Displacement"));
@@ -198,6 +211,8 @@ TEST(HandleMotionReusesTheSetUp)
   for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
     for (int d = 0; d < 3; ++d)
       difference = std::max(difference, std::abs(a->GetPoint(i)[d] - b->GetPoint(i)[d]));
+  // the same seed, samples and factorization: the same arithmetic, equal up to a few ulps of the
+  // coordinates (< 2: 2.2e-16 x 2 each); 1e-12 is far below any change of the solution
   CHECK(difference <= 1e-12);
   // moving the region's box selects again (and refactorizes: other positions)
   const double wider[6] = { 0.85, 1.1, -0.1, 1.1, -0.1, 0.1 };
@@ -399,7 +414,7 @@ TEST(ExternalSamplesMatchInternalSampling)
   double difference = 0;
   for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
     difference = std::max(difference, std::abs(a->GetPoint(i)[2] - b->GetPoint(i)[2]));
-  CHECK(difference <= 1e-12);
+  CHECK(difference <= 1e-12); // the same samples and arithmetic: equal up to a few ulps, as above
   CHECK(vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(0))->GetNumberOfPoints() == 1000);
   CHECK(vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(1))->GetNumberOfPoints() == 4000);
 }
@@ -418,8 +433,12 @@ TEST(CommonTranslationMovesEveryPointByIt)
   for (vtkIdType i = 0; i < d->GetNumberOfTuples(); ++i)
     for (int c = 0; c < 3; ++c)
       error = std::max(error, std::abs(d->GetComponent(i, c) - t[c]));
-  std::printf("largest deviation from the common translation: %g of %g\n", error, std::sqrt(0.14));
-  CHECK(error <= 1e-8 * std::sqrt(0.14));
+  // exact in exact arithmetic (MLS reproduces constants, on which every energy vanishes): the
+  // solve's round-off k eps cond, with CHOLMOD's estimate 1 / rcond (as in TestSpaceDeformation)
+  vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+  const double roundOff = fieldValue(out, "NumberOfSamples") * std::numeric_limits<double>::epsilon() / fieldValue(out, "ReciprocalCondition");
+  std::printf("largest deviation from the common translation: %g of %g (round-off bound %g)\n", error, std::sqrt(0.14), roundOff);
+  CHECK(error <= roundOff * std::sqrt(0.14));
 }
 
 TEST(ConstraintRegionsInThePipeline)
@@ -460,6 +479,10 @@ TEST(ConstraintRegionsInThePipeline)
     inside += plane->GetPoint(i)[0] >= middle[0] && plane->GetPoint(i)[0] <= middle[1];
   CHECK(fieldValue(out, "ConstraintPoints") == inside);
   CHECK(fieldValue(out, "ConstraintConverged") == 1);
+  // a kept constraint, as in TestShapeConstraints' checkKept: the residual is the penalty's
+  // balance, required an order of magnitude below the unconstrained violation and 1e-3 of the
+  // diagonal; the targets outweigh gamma_b + gamma_c = 11 by 90, so their misfit is ~1% of the
+  // motion, 2% twice that
   CHECK(fieldValue(out, "ConstraintResidual") <= 1e-3);
   CHECK(constrained <= 1e-3 * std::sqrt(2.0) && constrained <= 0.1 * unconstrained);
   CHECK(targetError(plane, vtkPointSet::SafeDownCast(out), HandleBox, Lift).max <= 0.02 * Lift);

@@ -33,7 +33,12 @@ TEST(StretchingIsLinearBetweenTheStrips)
   }
   std::printf("largest deviation from the linear profile: %.3g of the lift; handle residual %.3g\n", error / Lift,
     fieldValue(out, "HandleResidual"));
-  CHECK(error < 1e-4 * Lift);
+  // Exactly linear, with soft targets (as in TestShellDeformation's StretchingInterpolatesLinearly):
+  // the stretching (A / T) s^2 of the free part (A = 0.8125, T = 2048, s = (Lift - 2 delta) / 0.8125)
+  // pulls each strip's innermost column (33 of its 132 points) by delta, against
+  // gamma_f (33 / 132) delta^2 per strip: delta = 4 s / (T gamma_f) = 7.2e-7 = 2.4e-6 of the lift.
+  // 1e-5 of the lift leaves a factor 4 for this first-order estimate.
+  CHECK(error < 1e-5 * Lift);
   CHECK(fieldValue(out, "NumberOfSamples") == 1089);
 }
 
@@ -52,8 +57,12 @@ TEST(BendingMeetsTheTargetsSmoothly)
     roughness[stretch] = profileRoughness(out);
     std::printf("%s: fixed error %.3g, handle error %.3g, roughness %.3g\n", stretch ? "stretching" : "bending", fixedError, handleError,
       roughness[stretch]);
+    // the targets outweigh the energy by gamma_f / (gamma_s + gamma_b) = 1000: misfit ~0.1% of the
+    // lift; 1% is 10 times it
     CHECK(fixedError <= 0.01 * Lift && handleError <= 0.01 * Lift);
   }
+  // a kink against a clamped cubic: 0.23 of the stretched profile's roughness (see
+  // TestMLSDeformFilter's PlaneBendingStretchingAndMix); half is required
   CHECK(roughness[0] < 0.5 * roughness[1]);
 }
 
@@ -67,7 +76,7 @@ TEST(HandleMotionReusesTheSetUp)
   auto* out = vtkPolyData::SafeDownCast(scene.deform->GetOutput());
   CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 1);
   CHECK(scene.deform->GetNumberOfSolves() == 2);
-  CHECK(targetError(plane, out, HandleBox, 2 * Lift).max <= 0.01 * Lift);
+  CHECK(targetError(plane, out, HandleBox, 2 * Lift).max <= 0.01 * Lift); // the weight ratio, as above
 }
 
 TEST(VolumeMeshIsRejected)

@@ -68,12 +68,15 @@ c = p.mean(axis=0)
 a = math.radians(30)
 R = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
 expected = (p - c) @ R.T + c + [0.05, 0, 0] - p
+# double arithmetic on coordinates < 1 in both: round-off of the centroid's 6475-term sum
+# (6475 eps = 1.4e-12) and a few operations more; 1e-9 is far below any wrong motion
 check(np.abs(d - expected).max() < 1e-9, 'handle motion = rotation about the centroid + translation')
 check(out.GetFieldData().GetAbstractArray('RoleName').GetValue(0) == 'Handle', 'the region carries its role')
 
 elevation = Elevation(Input=part, LowPoint=[0, 0, zmin], HighPoint=[0, 0, zmax])
 by_array = ConstraintRegion(Input=elevation, Role='Fixed', SelectionMode='ArrayRange',
                             SelectionArray=['POINTS', 'Elevation'], Range=[0.0, 0.1])
+# (+ 1e-12: the elevation is computed in another order, which rounds differently by a few eps)
 check(sm.Fetch(by_array).GetNumberOfPoints() == np.count_nonzero((x[:, 2] - zmin) / height <= 0.1 + 1e-12),
       'ArrayRange selects the points whose array value lies in Range')
 everything = ConstraintRegion(Input=part, Role='Fixed', SelectionMode='AllPoints')
@@ -96,9 +99,13 @@ deformed = MLSDeform(Input=part, Regions=[fixed, handle])
 result = sm.Fetch(deformed)
 moved = vtk_to_numpy(result.GetPoints().GetData())
 displacement = vtk_to_numpy(result.GetPointData().GetArray('Displacement'))
+# float points: each coordinate (< height here) rounds to 2^-24 of it, 6e-8 height; 1e-6 height allows 16 ulps
 check(np.abs(moved - x - displacement).max() < 1e-6 * height, 'points moved by the Displacement array (float precision)')
+# targets weigh gamma_f = 1000 against gamma_b = 1: their misfit is of the order of 0.1% of the
+# motion (fandisk's curved handle, fixed by a box, bends more than the plane of the C++ tests);
+# 5% is 50 times that and still far below a handle left behind (100%)
 check(field(deformed, 'HandleResidual') < 0.05 * 0.1 * height, 'handle reaches its target within 5%%: %.3g' % field(deformed, 'HandleResidual'))
-check(np.abs(displacement[x[:, 2] <= zmin + 0.1 * height]).max() < 0.05 * 0.1 * height, 'fixed points stay within 5% of the motion')
+check(np.abs(displacement[x[:, 2] <= zmin + 0.1 * height]).max() < 0.05 * 0.1 * height, 'fixed points stay within 5% of the motion (as above)')
 check(np.abs(vtk_to_numpy(sm.Fetch(part).GetPoints().GetData()) - x).max() == 0, 'the input is unchanged')
 handle.Translation = [0.1 * height, 0, 0]
 deformed.UpdatePipeline()
