@@ -73,19 +73,23 @@ double sameFixedPoint()
   return 100 * IterationSettings().tolerance * 3 / std::sqrt(11.0);
 }
 
-// A kept constraint (Fig. 6 a, b). The residual is not an iteration or round-off figure: the
-// constraint is a penalty (gamma_c = 10), so the fixed point balances it against bending, and the
-// residual is whatever that balance leaves; the paper gives no figure. What is required:
-// - the constraint does the work, an order of magnitude below the unconstrained violation;
-// - the residual is 1e-3 of the diagonal at most (all five types here: 0.5e-3 to 0.9e-3);
-// - the targets stay met: gamma_f = 1000 outweighs gamma_b + gamma_c = 11 by 90, so their misfit
-//   is of the order of 1% of the motion or less; 2% = twice that ratio.
+// A kept constraint (Fig. 6 a, b), by the penalty balances of the paper's weights (section 7).
+// Every term is a mean square of a length (SpaceDeformation.h), so a violation v of a mode whose
+// energy stiffness is a (about gamma_b for a mode smooth on the model's scale) settles where
+// a (v0 - v) = gamma_c v: v = v0 a / (a + gamma_c) < v0 a / gamma_c. The bound is that first-order
+// balance, gamma_b / gamma_c x the unconstrained violation v0 measured in the same test (it holds
+// for a <= gamma_b gamma_c / (gamma_c - gamma_b) = 1.11 gamma_b); it replaces the former fixed
+// 1e-3 of the diagonal (the same balance for v0 ~ 1e-2 of the diagonal). The targets balance the
+// same way: what pulls them off is at most gamma_b + gamma_c, against gamma_f, so their misfit
+// is below (gamma_b + gamma_c) / gamma_f = 1.1% of the motion (was 2%). That balance is one of mean
+// squares; the strips move rigidly, which the subspace reproduces, so their misfit is about
+// uniform and the largest one checked here is the RMS to first order.
 void checkKept(double residual, double unconstrained, double handleError, double fixedError, double motion)
 {
-  const double diagonal = std::sqrt(11.0);
-  CHECK(residual <= 0.1 * unconstrained);
-  CHECK(residual <= 1e-3 * diagonal);
-  CHECK(handleError <= 0.02 * motion && fixedError <= 0.02 * motion);
+  const EnergyWeights w; // the weights deform() uses
+  CHECK(residual <= w.bend / w.constraint * unconstrained);
+  const double targets = (w.bend + w.constraint) / w.fix * motion;
+  CHECK(handleError <= targets && fixedError <= targets);
 }
 
 Result deform(const BentBar& bar, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation,
@@ -179,7 +183,7 @@ TEST(SparseFormulationStaysSparseForTheWholeMesh)
 {
   // A planarity constraint on every point of a plane (section 6.1): mean-centering couples all
   // samples of the plane, the sparse formulation only neighbours and the pivot's samples (a
-  // bounded number per row, about 270 here, whatever k is).
+  // bounded number per row whatever k is).
   const SamplingDomain plane = testgeometry::triangulatedPlane(40, 40, 1, 1);
   SamplingParameters p;
   p.numberOfSurfaceSamples = 750;
@@ -195,8 +199,26 @@ TEST(SparseFormulationStaysSparseForTheWholeMesh)
   // dense over the plane's samples: the 750 surface samples lie on the plane, so mean-centering
   // couples at least all of them, a fill of 0.75^2 = 0.56 or more
   CHECK(centeredFill > 0.5);
-  CHECK(sparseFill < 0.3 * centeredFill);  // sparse stays sparse
-  CHECK(sparse.normalMatrix().nonZeros() / k < 300);
+  // Sparse stays sparse, by its structure: row i of C Phi is phi(x_i) - phi(x_p) (p the pivot), so
+  // (C Phi)^T (C Phi) couples two samples only if their supports overlap (|c_j - c_m| < r_j + r_m)
+  // or one of them is among the pivot's samples (at most s_max, the most samples at any point of
+  // the set): nnz <= overlapping pairs + 2 s_max k, a bounded number per row whatever k is.
+  double overlapping = 0;
+  for (std::size_t j = 0; j < basis.size(); ++j)
+    for (std::size_t m = 0; m < basis.size(); ++m)
+      overlapping += (samples.centers[j] - samples.centers[m]).norm() < basis.supportRadii()[j] + basis.supportRadii()[m];
+  ShapeFunctionValues phi;
+  std::size_t mostSamples = 0;
+  for (const Vec3& x : plane.points)
+  {
+    basis.evaluate(x, phi, false);
+    mostSamples = std::max(mostSamples, phi.index.size());
+  }
+  const double structural = overlapping + 2 * static_cast<double>(mostSamples) * k;
+  std::printf("sparse non-zeros per row %.1f, structural bound %.1f (overlapping pairs %.1f per row, s_max %zu)\n",
+    sparse.normalMatrix().nonZeros() / k, structural / k, overlapping / k, mostSamples);
+  CHECK(sparse.normalMatrix().nonZeros() <= structural);
+  CHECK(structural < centeredFill * k * k); // the bound itself is below the centered fill here
 }
 
 namespace

@@ -220,10 +220,15 @@ TEST(SurfaceVertexSubspacesApproachTheShell)
     rms[b] = std::sqrt((d - reference).rowwise().squaredNorm().mean()) / lift;
   }
   std::printf("RMS deviation from the shell / lift: MLS %.4f, Wendland %.4f, triharmonic %.4f\n", rms[0], rms[1], rms[2]);
-  // The subspaces' discretization error, O(h^2 |z''|): sample spacing h = 1 / sqrt(1000) = 0.032,
-  // and the bent profile is about a clamped cubic over the free length 0.8, |z''| <= 6 lift /
-  // 0.8^2 = 9.4 lift: h^2 |z''| = 0.94% of the lift; 2% allows a constant of 2 in the O().
-  CHECK(rms[0] < 0.02);
+  // MLS: the subspace's discretization error, O(h^2 |z''|) with linear interpolation's constant
+  // 1/8 (as for Fig. 3 in check_comparisons.py): sample spacing h = 1 / sqrt(1000) = 0.032, and
+  // the bent profile is about a clamped cubic over the free length 0.8, |z''| <= 6 lift / 0.8^2 =
+  // 9.4 lift: h^2 |z''| / 8 = 1.2e-3 of the lift (was 2%).
+  const double h = 1 / std::sqrt(1000.0), curvature = 6 / (0.8 * 0.8);
+  CHECK(rms[0] < h * h * curvature / 8);
+  // Triharmonic RBFs: no O(h^2) statement (a global basis minimizing another energy); the bound
+  // is the requirement of Fig. 3 ("triharmonic RBFs work well for minimizing bending"), read as
+  // the comparisons' 2% RMS target (Examples/paper_comparisons.py, check_comparisons.py).
   CHECK(rms[2] < 0.02);
   CHECK(rms[0] < rms[1]); // Fig. 3: compact RBFs with cover s = 5 show artifacts, MLS does not
 }

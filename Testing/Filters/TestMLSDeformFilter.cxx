@@ -60,16 +60,24 @@ TEST(PlaneBendingStretchingAndMix)
     roughness[c.name] = profileRoughness(out);
     std::printf("%s: fixed error %.3g, handle error %.3g (of %g), profile roughness %.3g, setup %.3f s\n", c.name, fixedError,
       handleError, Lift, roughness[c.name], fieldValue(out, "SetupTime"));
-    // the targets outweigh the energies by gamma_f / (gamma_s + gamma_b) >= 1000 / 1.6: their misfit
-    // is of the order of that ratio of the lift, 0.16%; 1% is 6 times it
-    CHECK(fixedError <= 0.01 * Lift);
-    CHECK(handleError <= 0.01 * Lift);
-    // between the strips the middle row rises monotonically (up to the quadrature noise of the
-    // stretching energy, 0.5% of the lift)
-    bool monotone = true;
+    // the targets' penalty balance (as in TestShapeConstraints' checkKept): what pulls them off is
+    // at most gamma_s + gamma_b, against gamma_f, so their misfit is below that ratio of the lift
+    // (0.1% to 0.16%; was 1%)
+    const double targets = (c.stretch + c.bend) / scene.deform->GetFixWeight() * Lift;
+    CHECK(fixedError <= targets);
+    CHECK(handleError <= targets);
+    // between the strips the middle row rises monotonically: the continuous profiles do (a clamped
+    // cubic, a linear ramp, their mix), and the subspace moves each point off them by at most its
+    // discretization error h^2 |z''| / 8 (k = 1000 samples on the unit plane, h = 1 / sqrt(1000),
+    // |z''| <= 6 / 0.8^2 of the lift for the cubic, the most curved; as in check_comparisons.py's
+    // Fig. 3): a drop between neighbours is at most twice that, 2.3e-3 of the lift (was 5e-3, called
+    // quadrature noise). The float output rounds monotonically and adds no drop.
+    double drop = 0;
     for (vtkIdType i = 16 * 33 + 4; i <= 16 * 33 + 28; ++i)
-      monotone = monotone && out->GetPoint(i)[2] >= out->GetPoint(i - 1)[2] - 5e-3 * Lift;
-    CHECK(monotone);
+      drop = std::max(drop, out->GetPoint(i - 1)[2] - out->GetPoint(i)[2]);
+    std::printf("  largest drop along the middle row %.3g of the lift\n", drop / Lift);
+    const double h = 1 / std::sqrt(k), curvature = 6 / (0.8 * 0.8);
+    CHECK(drop <= 2 * h * h * curvature / 8 * Lift);
   }
   // Stretching kinks the profile at both strips by the slope 0.3 / 0.8 over one step h = 1/32:
   // 2 (0.375 h)^2 = 2.7e-4. Bending gives about a clamped cubic, |z''| <= 6 x 0.3 / 0.8^2 = 2.8
@@ -102,9 +110,15 @@ TEST(BasisAndEnergyDiscretization)
         fieldValue(out, "NumberOfSamples"), handle, fixed, Lift);
       CHECK(fieldValue(out, "NumberOfSamples") == 300 + (global ? 4 : 0));
       CHECK(scene.deform->GetNumberOfFactorizations() == subspaces);
-      // compact RBFs reproduce no constants: 300 of them reach a translated strip only roughly
-      // (the artifacts of Fig. 3 at cover 5)
-      const double tolerance = basis == vtkMLSDeformFilter::Wendland || basis == vtkMLSDeformFilter::Gaussian ? 0.2 : 0.02;
+      // Bases that reproduce linear functions (MLS; global RBFs with their polynomial): the targets'
+      // balance gamma_b / gamma_f of the lift (TestShapeConstraints' checkKept) plus the
+      // subspace's discretization error h^2 |z''| / 8 of the bent profile (h = 1 / sqrt(300),
+      // |z''| <= 6 / 0.8^2 of the lift: 3.9e-3), 4.9e-3 of the lift (was 2%).
+      // Compact RBFs reproduce no constants: 300 of them reach a translated strip only roughly (the
+      // artifacts of Fig. 3 at cover 5); 20% of the lift has no derivation (left as it was).
+      const double h = 1 / std::sqrt(300.0), curvature = 6 / (0.8 * 0.8);
+      const double reproducing = scene.deform->GetBendWeight() / scene.deform->GetFixWeight() + h * h * curvature / 8;
+      const double tolerance = basis == vtkMLSDeformFilter::Wendland || basis == vtkMLSDeformFilter::Gaussian ? 0.2 : reproducing;
       CHECK(handle <= tolerance * Lift && fixed <= tolerance * Lift);
     }
   // the vertex energies need triangles
@@ -479,13 +493,16 @@ TEST(ConstraintRegionsInThePipeline)
     inside += plane->GetPoint(i)[0] >= middle[0] && plane->GetPoint(i)[0] <= middle[1];
   CHECK(fieldValue(out, "ConstraintPoints") == inside);
   CHECK(fieldValue(out, "ConstraintConverged") == 1);
-  // a kept constraint, as in TestShapeConstraints' checkKept: the residual is the penalty's
-  // balance, required an order of magnitude below the unconstrained violation and 1e-3 of the
-  // diagonal; the targets outweigh gamma_b + gamma_c = 11 by 90, so their misfit is ~1% of the
-  // motion, 2% twice that
-  CHECK(fieldValue(out, "ConstraintResidual") <= 1e-3);
-  CHECK(constrained <= 1e-3 * std::sqrt(2.0) && constrained <= 0.1 * unconstrained);
-  CHECK(targetError(plane, vtkPointSet::SafeDownCast(out), HandleBox, Lift).max <= 0.02 * Lift);
+  // a kept constraint, by the penalty balances of TestShapeConstraints' checkKept: the residual
+  // (reported and measured, both of the diagonal) below gamma_b / gamma_c x the unconstrained
+  // violation measured here (was 1e-3 of the diagonal and 0.1 x), the handle's misfit below
+  // (gamma_s + gamma_b + gamma_c) / gamma_f of the lift (was 2%)
+  vtkMLSDeformFilter* deform = scene.deform;
+  const double balance = deform->GetBendWeight() / deform->GetConstraintWeight();
+  CHECK(fieldValue(out, "ConstraintResidual") <= balance * unconstrained / std::sqrt(2.0));
+  CHECK(constrained <= balance * unconstrained);
+  CHECK(targetError(plane, vtkPointSet::SafeDownCast(out), HandleBox, Lift).max <=
+    (deform->GetStretchWeight() + deform->GetBendWeight() + deform->GetConstraintWeight()) / deform->GetFixWeight() * Lift);
   CHECK(messages->Errors.empty() && messages->Warnings.empty());
 }
 
@@ -535,7 +552,9 @@ TEST(VolumeMeshWithoutSurfaceCells)
   }
   std::printf("mean distance to the boundary: surface samples %g, volume samples %g\n", surfaceDistance, volumeDistance);
   CHECK(centers->GetNumberOfPoints() == 250);
-  CHECK(surfaceDistance < 0.02 && volumeDistance > 0.1);
+  // surface samples stay within their Voronoi cells' depth, half the volume samples' distance (the
+  // bisector, see TestSampling's VolumeSamplingCoversTheDomain; was < 0.02 and > 0.1)
+  CHECK(surfaceDistance < 0.5 * volumeDistance);
 }
 
 // ---- bad input: a clear error, the output is the unchanged input, nothing crashes ----

@@ -180,6 +180,7 @@ TEST(FandiskLargePlanesAndCylindersAreFound)
   vtkPolyData* surface = d.surface;
   const std::vector<Row>& found = d.found;
   std::printf("fandisk: %zu primitives, %.1f%% of the faces\n", found.size(), 100 * coverage(surface));
+  // the detection issue's requirement: "at least 95% of faces assigned to the right primitive"
   CHECK(coverage(surface) > 0.95);
   CHECK(fandisk->GetMTime() == before && !fandisk->GetCellData()->GetArray("PrimitiveId")); // input untouched
   // the flat back (y = max): all its faces in one plane with normal y
@@ -190,10 +191,16 @@ TEST(FandiskLargePlanesAndCylindersAreFound)
   CHECK(faces > 2000 && back.size() == 1 && *back.begin() >= 0);
   if (back.size() == 1 && *back.begin() >= 0)
     CHECK(found[*back.begin()].type == "Plane" && parallel(found[*back.begin()].normal, mlsdeform::Vec3::UnitY(), 0.01));
-  // the fan's cylinders: at least four of 100+ faces, axes near y or x, radius below the part
+  // the fan's cylinders: at least four of 100+ faces, radius below the part; "on fandisk and
+  // joint the large planes and cylinders are found" is the detection issue's requirement. Their
+  // fit: every face kept lies within Epsilon x the diagonal of its primitive (the detector's
+  // inlier test), and the final least-squares fit only lowers the RMS below that (was 3e-3).
+  const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) + std::pow(bounds[5] - bounds[4], 2));
+  const double inlier = d.detector->GetEpsilon() * diagonal;
   int cylinders = 0;
   for (const Row& r : found)
-    cylinders += r.type == "Cylinder" && r.faces >= 100 && r.rms < 3e-3 && r.radius < 1;
+    cylinders += r.type == "Cylinder" && r.faces >= 100 && r.rms < inlier && r.radius < 1;
+  std::printf("fandisk: %d cylinders of 100+ faces within the inlier distance %.3g\n", cylinders, inlier);
   CHECK(cylinders >= 4);
 }
 
@@ -204,7 +211,7 @@ TEST(JointPlanesAndCylindersAreFound)
   vtkPolyData* surface = d.surface;
   const std::vector<Row>& found = d.found;
   std::printf("joint: %zu primitives, %.1f%% of the faces\n", found.size(), 100 * coverage(surface));
-  CHECK(coverage(surface) > 0.9);
+  CHECK(coverage(surface) > 0.95); // the detection issue's requirement, as for fandisk (was 0.9)
   // top (y = max) and bottom (y = min) faces: one plane each
   double bounds[6];
   joint->GetBounds(bounds);
@@ -323,8 +330,10 @@ TEST(JointSceneOfFigure10KeepsTheDetectedPrimitives)
   vtkDataArray* converged = out->GetFieldData()->GetArray("ConstraintConverged");
   vtkDataArray* residual = out->GetFieldData()->GetArray("ConstraintResidual");
   CHECK(converged && converged->GetNumberOfTuples() == static_cast<vtkIdType>(found.size()));
+  // each kept primitive still passes the detector's inlier test: its largest distance from its
+  // projection, a fraction of the diagonal like Epsilon, below Epsilon (was 1e-3)
   for (vtkIdType c = 0; converged && c < converged->GetNumberOfTuples(); ++c)
-    CHECK(converged->GetTuple1(c) == 1 && residual->GetTuple1(c) < 1e-3);
+    CHECK(converged->GetTuple1(c) == 1 && residual->GetTuple1(c) < d.detector->GetEpsilon());
   // the cylinders of the deformed parts, fit anew: RMS distance of their vertices
   vtkDataArray* ids = surface->GetPointData()->GetArray("PrimitiveIds");
   auto cylinderRms = [&](vtkPointSet* deformed, int primitive) {
@@ -350,8 +359,13 @@ TEST(JointSceneOfFigure10KeepsTheDetectedPrimitives)
     return std::sqrt(squared / x.size());
   };
   vtkPointSet* unconstrained = vtkPointSet::SafeDownCast(free->GetOutputDataObject(0));
-  // every cylinder stays one within 0.5% of the lift, and one that the free deformation bends
-  // (by more than that) is kept at least 5 times closer
+  // Every cylinder stays one by the detector's own inlier test (its RMS within Epsilon x the
+  // diagonal; was 0.5% of the lift). One that the free deformation bends by more than its targets'
+  // misfit, (gamma_s + gamma_b) / gamma_f of the lift (TestShapeConstraints' checkKept; was 0.5% of
+  // the lift), is kept within the penalty balance gamma_b / gamma_c of its free RMS (was 0.2 x).
+  const double inlier = d.detector->GetEpsilon() * std::sqrt(std::pow(b[1] - b[0], 2) + std::pow(b[3] - b[2], 2) + std::pow(b[5] - b[4], 2));
+  const double balance = constrained->GetBendWeight() / constrained->GetConstraintWeight();
+  const double misfit = (free->GetStretchWeight() + free->GetBendWeight()) / free->GetFixWeight() * lift;
   int cylinders = 0, bent = 0;
   for (std::size_t p = 0; p < found.size(); ++p)
   {
@@ -360,11 +374,11 @@ TEST(JointSceneOfFigure10KeepsTheDetectedPrimitives)
     ++cylinders;
     const double kept = cylinderRms(out, static_cast<int>(p)), loose = cylinderRms(unconstrained, static_cast<int>(p));
     std::printf("cylinder %zu: RMS distance from its refit %.2e kept, %.2e free\n", p, kept, loose);
-    CHECK(kept < 5e-3 * lift);
-    if (loose > 5e-3 * lift)
+    CHECK(kept < inlier);
+    if (loose > misfit)
     {
       ++bent;
-      CHECK(kept < 0.2 * loose);
+      CHECK(kept < balance * loose);
     }
   }
   CHECK(cylinders >= 2 && bent >= 1);

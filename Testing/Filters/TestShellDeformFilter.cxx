@@ -57,9 +57,11 @@ TEST(BendingMeetsTheTargetsSmoothly)
     roughness[stretch] = profileRoughness(out);
     std::printf("%s: fixed error %.3g, handle error %.3g, roughness %.3g\n", stretch ? "stretching" : "bending", fixedError, handleError,
       roughness[stretch]);
-    // the targets outweigh the energy by gamma_f / (gamma_s + gamma_b) = 1000: misfit ~0.1% of the
-    // lift; 1% is 10 times it
-    CHECK(fixedError <= 0.01 * Lift && handleError <= 0.01 * Lift);
+    // the targets' penalty balance (TestShapeConstraints' checkKept): what pulls them off is at most
+    // gamma_s + gamma_b, against gamma_f, so their misfit is below that ratio of the lift, 0.1%
+    // (was 1%)
+    const double targets = (scene.deform->GetStretchWeight() + scene.deform->GetBendWeight()) / scene.deform->GetFixWeight() * Lift;
+    CHECK(fixedError <= targets && handleError <= targets);
   }
   // a kink against a clamped cubic: 0.23 of the stretched profile's roughness (see
   // TestMLSDeformFilter's PlaneBendingStretchingAndMix); half is required
@@ -76,7 +78,10 @@ TEST(HandleMotionReusesTheSetUp)
   auto* out = vtkPolyData::SafeDownCast(scene.deform->GetOutput());
   CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 1);
   CHECK(scene.deform->GetNumberOfSolves() == 2);
-  CHECK(targetError(plane, out, HandleBox, 2 * Lift).max <= 0.01 * Lift); // the weight ratio, as above
+  // the targets' balance, as above, for the motion 2 x Lift (was 1% of Lift)
+  const double targets = (scene.deform->GetStretchWeight() + scene.deform->GetBendWeight()) / scene.deform->GetFixWeight() * 2 * Lift;
+  std::printf("handle error %.3g (balance %.3g)\n", targetError(plane, out, HandleBox, 2 * Lift).max, targets);
+  CHECK(targetError(plane, out, HandleBox, 2 * Lift).max <= targets);
 }
 
 TEST(VolumeMeshIsRejected)

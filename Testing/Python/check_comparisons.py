@@ -28,6 +28,10 @@ def rows(name):
 fig3 = {(r['energy'], r['basis']): (float(r['rms_deviation']), float(r['max_deviation'])) for r in rows('fig3_deviation.csv')}
 bases = ['MLS s=5', 'Wendland s=5', 'Wendland s=50', 'Gaussian s=5', 'Gaussian s=50', 'Biharmonic', 'Triharmonic']
 check(all((e, b) in fig3 for e in ('bending', 'stretching') for b in bases), 'Fig. 3: every basis, bending and stretching')
+# a requirement, not a derived bound: the paper's claim that MLS with s = 5 matches the surface
+# deformation ("high quality results already with a cover of s = 5", section 4), read as the
+# comparisons' 2% RMS target (plotted by Examples/paper_comparisons.py); the discretization bound
+# below is far tighter
 check(fig3[('bending', 'MLS s=5')][0] < 0.02, 'Fig. 3 target: MLS s=5 bending within 2%% RMS (%.5f)' % fig3[('bending', 'MLS s=5')][0])
 # Discretization errors of the k = 1000 MLS subspace on the unit plane (sample spacing
 # h = 1 / sqrt(1000) = 0.032, support radius r = sqrt(5 / (1000 pi)) = 0.04 at cover 5), in units
@@ -41,8 +45,12 @@ check(fig3[('bending', 'MLS s=5')][0] < 1.2e-3,
       'Fig. 3: MLS s=5 bending RMS within its O(h^2) discretization error 1.2e-3 (%.2e)' % fig3[('bending', 'MLS s=5')][0])
 check(fig3[('stretching', 'MLS s=5')][0] < 2.5e-3,
       'Fig. 3: MLS s=5 stretching RMS within the rounding of the kinks, 2.5e-3 (%.2e)' % fig3[('stretching', 'MLS s=5')][0])
-# the paper: compact RBFs with s = 5 show artifacts (clearly: twice the largest deviation of MLS),
-# triharmonic RBFs fail at stretching (an order of magnitude worse)
+# Requirements of the paper's claims, read as factors: compact RBFs with s = 5 show artifacts
+# ("a small radius of s = 5 leads to artifacts", section 4: read as twice the largest deviation of
+# MLS), triharmonic RBFs fail at stretching ("they fail to model stretching-dominant materials":
+# read as an order of magnitude worse). The second is also what the kink rounding above predicts:
+# a globally smooth basis rounds the kinks over the free length 0.8 instead of the support radius
+# 0.04, 20 times more.
 for basis in ('Wendland s=5', 'Gaussian s=5'):
     check(fig3[('bending', basis)][1] > 2 * fig3[('bending', 'MLS s=5')][1],
           'Fig. 3: %s deviates more than MLS s=5 (max %.5f vs %.5f)' % (basis, fig3[('bending', basis)][1], fig3[('bending', 'MLS s=5')][1]))
@@ -55,6 +63,8 @@ check(os.path.getsize(os.path.join(out_dir, 'fig3_mean_curvature.png')) > 10000,
 fig4 = {(r['basis'], int(r['k'])): (float(r['setup_seconds']), float(r['memory_mib'])) for r in rows('fig4_performance.csv')}
 check(fig4[('MLS s=5', 1000)][0] < fig4[('Biharmonic', 1000)][0] and fig4[('MLS s=5', 1000)][0] < fig4[('Wendland s=50', 1000)][0],
       'Fig. 4: MLS s=5 sets up faster than Biharmonic and Wendland s=50 at k = 1000')
+# a requirement: the paper's Fig. 4 claim that global RBFs' dense matrices need more memory than the
+# compact MLS system, read as "less than half"
 check(fig4[('MLS s=5', 1000)][1] < 0.5 * fig4[('Biharmonic', 1000)][1] and fig4[('MLS s=5', 1000)][1] < 0.5 * fig4[('Wendland s=50', 1000)][1],
       'Fig. 4: MLS s=5 needs less than half their memory at k = 1000 (%.0f MiB)' % fig4[('MLS s=5', 1000)][1])
 # linear growth doubles the memory from k = 1000 to 2000, the dense bases' quadratic growth would
@@ -69,8 +79,10 @@ for method in ('MLS s=5', 'Triharmonic'):
           'Fig. 12 target: %s inverts no element (min scaled Jacobian %.3f)' % (method, float(fig12[method]['min_scaled_jacobian_after'])))
 check(float(fig12['MLS s=5']['min_scaled_jacobian_after']) >= float(fig12['Triharmonic']['min_scaled_jacobian_after']),
       'Fig. 12 target: MLS min scaled Jacobian at least the triharmonic one')
-check(float(fig12['MLS s=5']['min_scaled_jacobian_after']) > 0.5 * float(fig12['MLS s=5']['min_scaled_jacobian_before']),
-      'Fig. 12: MLS keeps at least half the original min scaled Jacobian (recorded: all of it)')
+# the paper's Fig. 12 figures: MLS keeps 0.05 of the original 0.12 (was half of it, which the paper
+# does not claim)
+check(float(fig12['MLS s=5']['min_scaled_jacobian_after']) > 0.05 / 0.12 * float(fig12['MLS s=5']['min_scaled_jacobian_before']),
+      'Fig. 12: MLS keeps at least the paper\'s fraction 0.05 / 0.12 of the original min scaled Jacobian (recorded: all of it)')
 
 # Fig. 13: the hexahedral pipe
 fig13 = rows('fig13_hex_pipe.csv')[0]
@@ -78,6 +90,8 @@ fig13 = rows('fig13_hex_pipe.csv')[0]
 # scaled Jacobian is cos(pi / 24) = 0.99144, up to the round-off of a few dozen operations
 check(abs(float(fig13['min_scaled_jacobian_before']) - math.cos(math.pi / 24)) < 1e-12,
       'Fig. 13: the generated pipe (min scaled Jacobian cos(pi / 24) = 0.99144)')
+# 0.9 has no derivation yet: the paper's 0.98 -> 0.954 (RBF 0.951) is for its own pipe and
+# parameter change, whose retained fraction 0.973 this generated pipe and bend (0.970) need not meet
 check(int(fig13['inverted_after']) == 0 and float(fig13['min_scaled_jacobian_after']) > 0.9,
       'Fig. 13: bent pipe keeps min scaled Jacobian above 0.9 (%.3f, recorded 0.962)' % float(fig13['min_scaled_jacobian_after']))
 with open(os.path.join(out_dir, 'report.md')) as f:

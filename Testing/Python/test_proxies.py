@@ -101,11 +101,14 @@ moved = vtk_to_numpy(result.GetPoints().GetData())
 displacement = vtk_to_numpy(result.GetPointData().GetArray('Displacement'))
 # float points: each coordinate (< height here) rounds to 2^-24 of it, 6e-8 height; 1e-6 height allows 16 ulps
 check(np.abs(moved - x - displacement).max() < 1e-6 * height, 'points moved by the Displacement array (float precision)')
-# targets weigh gamma_f = 1000 against gamma_b = 1: their misfit is of the order of 0.1% of the
-# motion (fandisk's curved handle, fixed by a box, bends more than the plane of the C++ tests);
-# 5% is 50 times that and still far below a handle left behind (100%)
-check(field(deformed, 'HandleResidual') < 0.05 * 0.1 * height, 'handle reaches its target within 5%%: %.3g' % field(deformed, 'HandleResidual'))
-check(np.abs(displacement[x[:, 2] <= zmin + 0.1 * height]).max() < 0.05 * 0.1 * height, 'fixed points stay within 5% of the motion (as above)')
+# the targets' penalty balance (TestShapeConstraints' checkKept): what pulls them off is at most
+# gamma_s + gamma_b, against gamma_f, so their misfit is below that ratio of the motion, 0.1%
+# (was 5% for the largest misfit). The balance is one of mean squares (each region's term is a
+# mean), so it bounds the RMS misfit; the largest one adds the subspace's discretization error.
+balance = (deformed.StretchWeight + deformed.BendWeight) / deformed.FixWeight * 0.1 * height
+check(field(deformed, 'HandleResidual') < balance, 'handle reaches its target within the balance %.3g: %.3g' % (balance, field(deformed, 'HandleResidual')))
+fixed_rms = np.sqrt((displacement[x[:, 2] <= zmin + 0.1 * height] ** 2).sum(axis=1).mean())
+check(fixed_rms < balance, 'fixed points stay within the balance (RMS %.3g)' % fixed_rms)
 check(np.abs(vtk_to_numpy(sm.Fetch(part).GetPoints().GetData()) - x).max() == 0, 'the input is unchanged')
 handle.Translation = [0.1 * height, 0, 0]
 deformed.UpdatePipeline()
@@ -124,9 +127,11 @@ check(shell.FixWeight == 1000 and shell.BendWeight == 1 and shell.ConstraintForm
       'ShellDeform has the shared properties and defaults')
 shell_result = sm.Fetch(shell)
 check(field(shell, 'NumberOfSamples') == 6475, 'ShellDeform: one unknown per vertex')
-check(field(shell, 'HandleResidual') < 0.05 * 0.1 * height, 'ShellDeform: handle reaches its target within 5%%: %.3g' % field(shell, 'HandleResidual'))
+shell_balance = (shell.StretchWeight + shell.BendWeight) / shell.FixWeight * 0.1 * height  # as for MLSDeform (was 5%)
+check(field(shell, 'HandleResidual') < shell_balance, 'ShellDeform: handle reaches its target within the balance %.3g: %.3g' % (shell_balance, field(shell, 'HandleResidual')))
 shell_moved = vtk_to_numpy(shell_result.GetPoints().GetData())
-check(np.abs(shell_moved - x)[x[:, 2] <= zmin + 0.1 * height].max() < 0.05 * 0.1 * height, 'ShellDeform: fixed points stay')
+shell_fixed_rms = np.sqrt(((shell_moved - x)[x[:, 2] <= zmin + 0.1 * height] ** 2).sum(axis=1).mean())
+check(shell_fixed_rms < shell_balance, 'ShellDeform: fixed points stay (RMS %.3g)' % shell_fixed_rms)
 
 # Deformation Quality on a tetrahedral volume, with and without a deformation.
 volume = Tetrahedralize(Input=Wavelet(WholeExtent=[0, 4, 0, 4, 0, 4]))
