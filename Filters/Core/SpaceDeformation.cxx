@@ -205,6 +205,11 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDispla
   Displacements b0 = Displacements::Zero(k, 3);
   for (std::size_t r = 0; r < prescribed.size(); ++r)
   {
+    if (!prescribed[r].any())
+    {
+      b[r].setZero(); // a fixed region: the product would be zeros, at the cost of a pass over Phi_r
+      continue;
+    }
     PointDisplacements product(k, 3);
     multiplyRows(RegionTransposed[r], prescribed[r], 0, k, product.data());
     b[r] = RegionScale[r] * product;
