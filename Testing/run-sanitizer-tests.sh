@@ -2,9 +2,11 @@
 # The C++ tests (core, filters, reader with its fuzz test, benchmark smoke runs) built with
 # AddressSanitizer + UndefinedBehaviorSanitizer in build-sanitize/ (or $MLSDEFORM_SANITIZE_BUILD):
 # any invalid memory access, leak or undefined operation fails the test that caused it.
-# Testing/run-tests.sh runs this after the main suite; needs the packages of Testing/setup.sh.
+# Testing/run-tests.sh runs this after the main suite. Installs what is missing first
+# (Testing/setup.sh, which also builds the main build; cheap when nothing changed).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bash "$root/Testing/setup.sh" > /dev/null
 build=${MLSDEFORM_SANITIZE_BUILD:-$root/build-sanitize}
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMLSDEFORM_SANITIZE=ON -DMLSDEFORM_BUILD_EXAMPLES=OFF \
