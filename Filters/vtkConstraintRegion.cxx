@@ -132,8 +132,8 @@ vtkConstraintRegion::~vtkConstraintRegion()
 
 const char* vtkConstraintRegion::GetRoleName(int role)
 {
-  static const char* names[] = { "Handle", "Fixed", "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid", "FromPrimitive" };
-  return role >= Handle && role <= FromPrimitive ? names[role] : "Unknown";
+  static const char* names[] = { "Handle", "Fixed", "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid", "FromPrimitive", "Slip" };
+  return role >= Handle && role <= Slip ? names[role] : "Unknown";
 }
 
 void vtkConstraintRegion::SetSelectionArray(const char* name)

@@ -7,6 +7,8 @@
  *  - Handle: the positions move by the handle transform (Translation, Rotation, Scale about Center);
  *  - Fixed: the positions stay in place;
  *  - Planarity, Circularity, Cylinder, FeatureLine, Rigid: geometric constraints (section 6);
+ *  - Slip: the positions stay on their (least-squares) rest plane and slide freely within it: a
+ *    ground, symmetry, inlet or outlet plane of a CFD domain;
  *  - FromPrimitive (with SelectionMode Primitive): the constraint that keeps the selected
  *    primitive of a vtkPrimitiveDetector output (section 6.3): Planarity for a plane, Cylinder for
  *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
@@ -40,7 +42,8 @@ public:
     Cylinder,
     FeatureLine,
     Rigid,
-    FromPrimitive
+    FromPrimitive,
+    Slip // after FromPrimitive: the values of saved states stay
   };
   static const char* GetRoleName(int role);
 
@@ -54,7 +57,7 @@ public:
 
   ///@{
   /// The region's role (default Handle).
-  vtkSetClampMacro(Role, int, Handle, FromPrimitive);
+  vtkSetClampMacro(Role, int, Handle, Slip);
   vtkGetMacro(Role, int);
   ///@}
 

@@ -53,7 +53,7 @@ struct RegionInput
 
 bool isConstraint(int role)
 {
-  return role >= vtkConstraintRegion::Planarity && role <= vtkConstraintRegion::Rigid;
+  return (role >= vtkConstraintRegion::Planarity && role <= vtkConstraintRegion::Rigid) || role == vtkConstraintRegion::Slip;
 }
 
 ConstraintType constraintType(int role)
@@ -68,6 +68,8 @@ ConstraintType constraintType(int role)
       return ConstraintType::FeatureLine;
     case vtkConstraintRegion::Rigid:
       return ConstraintType::Rigid;
+    case vtkConstraintRegion::Slip:
+      return ConstraintType::Slip;
     default:
       return ConstraintType::Planarity;
   }
@@ -118,6 +120,73 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
   if (!handle)
   {
     throw InvalidInputException("no Handle region among the Regions inputs: nothing would move");
+  }
+}
+
+// A Slip region's plane and where its points are: every point of the input that lies on the
+// plane within the region's bounds is one of them (a space deformation knows positions only, so
+// a patch and the volume mesh that share a point treat it alike).
+struct SlipPlane
+{
+  Plane plane;
+  BoundingBox bounds; // the region's box, enlarged by the plane's tolerance
+  double tolerance = 0;
+
+  bool holds(const Vec3& x) const
+  {
+    return (x.array() >= bounds.lower.array()).all() && (x.array() <= bounds.upper.array()).all() &&
+      std::abs(plane.normal.dot(x - plane.point)) <= tolerance;
+  }
+};
+
+// The Slip regions' planes; throws InvalidInputException for a region that is not planar (its
+// points farther than 1e-6 of its diagonal from their plane: round-off of float coordinates
+// is 1e-7).
+std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions)
+{
+  std::vector<SlipPlane> planes;
+  for (std::size_t c = 0; c < regions.size(); ++c)
+  {
+    if (regions[c].role != vtkConstraintRegion::Slip)
+    {
+      continue;
+    }
+    SlipPlane slip;
+    slip.bounds = boundingBox(regions[c].positions);
+    const double diagonal = slip.bounds.size().norm();
+    slip.plane = fitPlane(regions[c].positions);
+    if (regions[c].positions.size() < 3 || slip.plane.farthest > 1e-6 * diagonal)
+    {
+      throw InvalidInputException("Regions input #" + std::to_string(c) + " (Slip) is not a plane: its points lie up to " +
+        std::to_string(slip.plane.farthest / diagonal) + " of their diagonal from their least-squares plane (at most 1e-6)");
+    }
+    slip.tolerance = slip.plane.farthest + 1e-9 * diagonal;
+    slip.bounds.lower.array() -= slip.tolerance;
+    slip.bounds.upper.array() += slip.tolerance;
+    planes.push_back(slip);
+  }
+  return planes;
+}
+
+// The displacement of every point on a slip plane loses its normal component: the iteration
+// leaves them within its tolerance of the plane, this puts them on it (as OpenFOAM's slip does).
+void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points, long offset, vtkIdType n, double* d)
+{
+  if (planes.empty())
+  {
+    return;
+  }
+#pragma omp parallel for schedule(static)
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (const SlipPlane& slip : planes)
+    {
+      if (slip.holds(points[offset + i]))
+      {
+        Eigen::Map<Vec3> displacement(d + 3 * i);
+        displacement -= slip.plane.normal.dot(displacement) * slip.plane.normal;
+      }
+    }
   }
 }
 
@@ -349,6 +418,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     }
     const PointList& points = cache.points;
     readRegions(inputVector[1], cache.regions, cache.nextVersion);
+    const std::vector<SlipPlane> slips = slipPlanes(cache.regions);
 
     // 1. The subspace: shape functions and energies.
     mlsgeometry::SubspaceDependencies dependencies = this->GetSubspaceDependencies(inputVector);
@@ -489,6 +559,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       displacement->SetNumberOfComponents(3);
       displacement->SetNumberOfTuples(n);
       multiplyRows(cache.geometrySubspace, w, offset, offset + n, displacement->GetPointer(0));
+      slideOnPlanes(slips, points, offset, n, displacement->GetPointer(0));
       displacement->Modified();
       vtkPoints* moved = reusable(cache.moved[s], cache.moved[s] && cache.moved[s]->GetNumberOfPoints() == n && cache.moved[s]->GetDataType() == type);
       moved->SetDataType(type);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mlsdeform
@@ -96,19 +97,30 @@ Vec3 direction(double theta, double phi)
 }
 } // namespace
 
+Plane fitPlane(const PointList& x)
+{
+  Plane plane;
+  plane.point = mean(x);
+  plane.normal = principalFrame(x, plane.point).col(2);
+  for (const Vec3& p : x)
+  {
+    plane.farthest = std::max(plane.farthest, std::abs(plane.normal.dot(p - plane.point)));
+  }
+  return plane;
+}
+
 PointList projectToPlane(const PointList& x)
 {
-  if (x.size() < 3)
-  {
-    return x;
-  }
-  const Vec3 c = mean(x);
-  const Vec3 n = principalFrame(x, c).col(2);
+  return x.size() < 3 ? x : projectTo(fitPlane(x), x);
+}
+
+PointList projectTo(const Plane& plane, const PointList& x)
+{
   PointList out;
   out.reserve(x.size());
   for (const Vec3& p : x)
   {
-    out.push_back(p - n.dot(p - c) * n);
+    out.push_back(plane.project(p));
   }
   return out;
 }

@@ -7,8 +7,27 @@
 
 namespace mlsdeform
 {
-/// Onto the least-squares plane (normal: the covariance's smallest principal direction).
+/// A plane through point with unit normal; farthest: the largest distance of the points it was
+/// fitted to.
+struct Plane
+{
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  double farthest = 0;
+
+  /// x moved along the normal onto the plane.
+  Vec3 project(const Vec3& x) const { return x - normal.dot(x - point) * normal; }
+};
+
+/// The least-squares plane of at least 3 points: through their mean, normal along the
+/// covariance's smallest principal direction.
+Plane fitPlane(const PointList& x);
+
+/// Onto the least-squares plane (fitPlane).
 PointList projectToPlane(const PointList& x);
+
+/// Onto a given plane: the slip constraint, whose points slide within their rest plane.
+PointList projectTo(const Plane& plane, const PointList& x);
 
 /// Onto the least-squares plane, then onto the least-squares circle in it (algebraic fit of
 /// Kasa, refined by Gauss-Newton on the geometric distances).

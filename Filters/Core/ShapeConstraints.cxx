@@ -27,7 +27,7 @@ std::size_t minimumPoints(ConstraintType type)
 
 const char* constraintName(ConstraintType type)
 {
-  static const char* names[] = { "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid" };
+  static const char* names[] = { "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid", "Slip" };
   return names[static_cast<int>(type)];
 }
 
@@ -77,7 +77,7 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     };
     // 1^T Phi_t / n, the mean row of the mean-centered formulation: dense over the set's samples.
     Eigen::SparseVector<double> meanRow(Phi.cols());
-    if (formulation == ConstraintFormulation::MeanCentered)
+    if (formulation == ConstraintFormulation::MeanCentered && c.type != ConstraintType::Slip)
     {
       const Eigen::VectorXd dense = Phi.transpose() * Eigen::VectorXd::Constant(n, 1.0 / n);
       meanRow = dense.sparseView();
@@ -85,7 +85,11 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     long rows = 0;
     for (long i = 0; i < n; ++i)
     {
-      if (formulation == ConstraintFormulation::Sparse)
+      if (c.type == ConstraintType::Slip)
+      {
+        addRow(rows, i, 1.0); // x_i itself: C_t = I
+      }
+      else if (formulation == ConstraintFormulation::Sparse)
       {
         if (i == set.pivot)
         {
@@ -108,6 +112,10 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     if (c.type == ConstraintType::Cylinder)
     {
       projectToCylinder(c.positions, set.restAxis); // a zero axis: the fit searches all directions
+    }
+    if (c.type == ConstraintType::Slip)
+    {
+      set.restPlane = fitPlane(c.positions);
     }
     SparseRowMatrix centeredSubspace(rows, static_cast<long>(basis.size()));
     centeredSubspace.setFromTriplets(entries.begin(), entries.end());
@@ -175,6 +183,9 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
       case ConstraintType::Rigid:
         projections.push_back(projectToRigid(rest, y));
         break;
+      case ConstraintType::Slip:
+        projections.push_back(projectTo(set.restPlane, y));
+        break;
     }
   }
   return projections;
@@ -194,6 +205,11 @@ Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& posi
     for (long i = 0; i < n; ++i)
     {
       v.row(i) = (projections[t][i] - rest[i]).transpose();
+    }
+    if (set.constraint.type == ConstraintType::Slip)
+    {
+      rhs += set.scale * multiplyRows(set.transposedSubspace, v); // C_t = I: v = P_t - x_t
+      continue;
     }
     v.rowwise() -= v.colwise().mean();
     if (Formulation == ConstraintFormulation::Sparse)

@@ -12,8 +12,14 @@
 // sparse right-hand side therefore also carries n u u^T Phi_t w of the current w (a deferred
 // correction): the matrix stays the sparse one of section 6.1, and the fixed point of the
 // iteration is exactly the mean-centered one.
+//
+// The slip constraint (a ground, symmetry, inlet or outlet plane of a CFD domain) is not a shape
+// but a place: its points stay on their rest plane and slide freely within it. Its C_t is the
+// identity (a translation normal to the plane must cost), and P_t projects onto the rest plane,
+// so the local step asks for the tangential part of the current displacement only.
 #pragma once
 
+#include "ConstraintProjections.h"
 #include "ShapeFunctions.h"
 
 namespace mlsdeform
@@ -24,7 +30,8 @@ enum class ConstraintType
   Circularity,
   Cylinder,
   FeatureLine,
-  Rigid
+  Rigid,
+  Slip
 };
 const char* constraintName(ConstraintType type);
 
@@ -85,6 +92,7 @@ private:
     int pivot = 0;                    // p of the sparse formulation
     double scale = 1;                 // weight_t / n_t
     Vec3 restAxis = Vec3::Zero();     // the cylinder fit's axis of the rest positions
+    Plane restPlane;                  // the slip constraint's plane of the rest positions
   };
   PointList positionsOf(const Set& set, const Displacements& w) const;
 
