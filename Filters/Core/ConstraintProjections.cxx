@@ -102,6 +102,13 @@ Plane fitPlane(const PointList& x)
   Plane plane;
   plane.point = mean(x);
   plane.normal = principalFrame(x, plane.point).col(2);
+  for (int a = 0; a < 3; ++a)
+  {
+    if ((plane.normal - plane.normal[a] * Vec3::Unit(a)).norm() <= 1e-9)
+    {
+      plane.normal = Vec3::Unit(a);
+    }
+  }
   for (const Vec3& p : x)
   {
     plane.farthest = std::max(plane.farthest, std::abs(plane.normal.dot(p - plane.point)));

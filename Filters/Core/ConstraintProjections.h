@@ -20,7 +20,9 @@ struct Plane
 };
 
 /// The least-squares plane of at least 3 points: through their mean, normal along the
-/// covariance's smallest principal direction.
+/// covariance's smallest principal direction. A normal within 1e-9 of a coordinate axis is
+/// that axis exactly (a ground or symmetry plane of a CFD domain: motions within it then keep
+/// that coordinate exactly).
 Plane fitPlane(const PointList& x);
 
 /// Onto the least-squares plane (fitPlane).

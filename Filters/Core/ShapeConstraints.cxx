@@ -5,6 +5,7 @@
 #include "SubspaceOperators.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace mlsdeform
 {
@@ -35,6 +36,10 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
   : Formulation(formulation)
   , Normal(basis.size(), basis.size())
 {
+  for (SparseMatrix& A : AxisNormals)
+  {
+    A.resize(basis.size(), basis.size());
+  }
   for (std::size_t t = 0; t < constraints.size(); ++t)
   {
     const ShapeConstraint& c = constraints[t];
@@ -116,11 +121,18 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     if (c.type == ConstraintType::Slip)
     {
       set.restPlane = fitPlane(c.positions);
+      for (int a = 0; a < 3; ++a)
+      {
+        set.slipAxis = std::abs(set.restPlane.normal[a]) == 1 ? a : set.slipAxis;
+      }
     }
     SparseRowMatrix centeredSubspace(rows, static_cast<long>(basis.size()));
     centeredSubspace.setFromTriplets(entries.begin(), entries.end());
     set.scale = c.weight / n;
-    Normal += SparseMatrix(set.scale * (centeredSubspace.transpose() * centeredSubspace));
+    SparseMatrix& normal = set.slipAxis >= 0 ? AxisNormals[set.slipAxis] : Normal;
+    normal += SparseMatrix(set.scale * (centeredSubspace.transpose() * centeredSubspace));
+    AxisSlips = AxisSlips || set.slipAxis >= 0;
+    Iterative = Iterative || set.slipAxis < 0;
     Sets.push_back(std::move(set));
   }
 }
@@ -205,6 +217,10 @@ Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& posi
     for (long i = 0; i < n; ++i)
     {
       v.row(i) = (projections[t][i] - rest[i]).transpose();
+    }
+    if (set.slipAxis >= 0)
+    {
+      continue; // its target d_a = 0 adds nothing
     }
     if (set.constraint.type == ConstraintType::Slip)
     {

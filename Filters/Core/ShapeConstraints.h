@@ -16,7 +16,9 @@
 // The slip constraint (a ground, symmetry, inlet or outlet plane of a CFD domain) is not a shape
 // but a place: its points stay on their rest plane and slide freely within it. Its C_t is the
 // identity (a translation normal to the plane must cost), and P_t projects onto the rest plane,
-// so the local step asks for the tangential part of the current displacement only.
+// so the local step asks for the tangential part of the current displacement only. A slip plane
+// normal to a coordinate axis a is exact and needs no iteration: its term asks d_a = 0 at its
+// points, which touches the system of coordinate a only (axisNormal(a)).
 #pragma once
 
 #include "ConstraintProjections.h"
@@ -56,8 +58,17 @@ public:
   /// few points for its type or positions outside every support.
   ShapeConstraints(const ShapeFunctions& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation);
 
-  /// sum_t weight_t / n_t (C_t Phi_t)^T (C_t Phi_t), the constraint part of eq. 17 (k x k).
+  /// sum_t weight_t / n_t (C_t Phi_t)^T (C_t Phi_t), the constraint part of eq. 17 (k x k),
+  /// over the sets other than axis-normal slip planes.
   const SparseMatrix& normalMatrix() const { return Normal; }
+
+  /// sum weight_t / n_t Phi_t^T Phi_t over the slip planes normal to axis a: the part of eq. 17
+  /// for coordinate a only (the target is d_a = 0); zero when there is none.
+  const SparseMatrix& axisNormal(int a) const { return AxisNormals[a]; }
+  bool hasAxisSlips() const { return AxisSlips; }
+
+  /// Whether the local/global iteration is needed: any set other than an axis-normal slip.
+  bool iterative() const { return Iterative; }
 
   /// Every set's current positions y_t = x_t + Phi_t w.
   std::vector<PointList> positions(const Displacements& w) const;
@@ -93,11 +104,14 @@ private:
     double scale = 1;                 // weight_t / n_t
     Vec3 restAxis = Vec3::Zero();     // the cylinder fit's axis of the rest positions
     Plane restPlane;                  // the slip constraint's plane of the rest positions
+    int slipAxis = -1;                // the axis a slip plane is normal to, or -1
   };
   PointList positionsOf(const Set& set, const Displacements& w) const;
 
   std::vector<Set> Sets;
   ConstraintFormulation Formulation;
   SparseMatrix Normal;
+  SparseMatrix AxisNormals[3];
+  bool AxisSlips = false, Iterative = false;
 };
 } // namespace mlsdeform

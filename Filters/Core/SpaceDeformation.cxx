@@ -126,13 +126,13 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
     RegionNormals.push_back(weightedGram(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], Eigen::VectorXd::Constant(n, RegionScale[r])));
     RegionTransposed.emplace_back(RegionSubspace.middleRows(RegionBegin[r], n).transpose());
   }
-  Factor.reset();
+  Factors.clear();
 }
 
 void SpaceDeformation::setConstraints(const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
 {
   Constraints = constraints.empty() ? nullptr : std::make_unique<ShapeConstraints>(*Basis, constraints, formulation);
-  Factor.reset();
+  Factors.clear();
 }
 
 void SpaceDeformation::factorize(const EnergyWeights& requested)
@@ -154,17 +154,40 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
     const Eigen::VectorXd ridge = Eigen::VectorXd::Constant(System.rows(), Energy.ridge * System.diagonal().maxCoeff());
     System += SparseMatrix(ridge.asDiagonal());
   }
-  Factor = std::make_unique<SparseCholesky>();
-  const bool positiveDefinite = Factor->factorize(System);
-  ReciprocalCondition = Factor->reciprocalCondition();
-  if (!positiveDefinite || !(ReciprocalCondition > SingularReciprocalCondition))
+  // slip planes normal to an axis: that coordinate's own system
+  const int systems = Constraints && Constraints->hasAxisSlips() ? 3 : 1;
+  Factors.clear();
+  ReciprocalCondition = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < systems; ++a)
   {
-    Factor.reset();
-    throw SolverException("the deformation system (eq. 14) is singular (reciprocal condition " +
-      std::to_string(ReciprocalCondition) +
-      "): the handle and fixed regions and the energies do not determine every MLS coefficient; "
-      "use a positive StretchWeight or BendWeight, or more integration points");
+    auto factor = std::make_unique<SparseCholesky>();
+    const bool positiveDefinite =
+      systems == 1 ? factor->factorize(System) : factor->factorize(System + weights.constraint * Constraints->axisNormal(a));
+    ReciprocalCondition = std::min(ReciprocalCondition, factor->reciprocalCondition());
+    if (!positiveDefinite || !(ReciprocalCondition > SingularReciprocalCondition))
+    {
+      Factors.clear();
+      throw SolverException("the deformation system (eq. 14) is singular (reciprocal condition " +
+        std::to_string(ReciprocalCondition) +
+        "): the handle and fixed regions and the energies do not determine every MLS coefficient; "
+        "use a positive StretchWeight or BendWeight, or more integration points");
+    }
+    Factors.push_back(std::move(factor));
   }
+}
+
+Displacements SpaceDeformation::solveSystem(const Displacements& b) const
+{
+  if (Factors.size() == 1)
+  {
+    return Factors[0]->solve(b);
+  }
+  Displacements x(b.rows(), 3);
+  for (int a = 0; a < 3; ++a)
+  {
+    x.col(a) = Factors[a]->solveColumn(b.col(a));
+  }
+  return x;
 }
 
 void SpaceDeformation::checkPrescribed(const std::vector<PointDisplacementsView>& prescribed) const
@@ -194,7 +217,7 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDispla
 
 SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDisplacementsView>& prescribed, const IterationSettings& settings) const
 {
-  if (!Factor)
+  if (Factors.empty())
   {
     throw SolverException("solve() before a successful factorize()");
   }
@@ -216,13 +239,19 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDispla
     b0 += Weights.fix * b[r];
   }
   Solution solution;
-  if (Constraints)
+  if (Constraints && Constraints->iterative())
   {
     iterateConstraints(b0, settings, solution);
   }
   else
   {
-    solution.w = Factor->solve(b0);
+    solution.w = solveSystem(b0);
+    if (Constraints) // axis-normal slip planes only: exact, their residuals for the record
+    {
+      std::vector<Vec3> axes = Constraints->restAxes();
+      const std::vector<PointList> positions = Constraints->positions(solution.w);
+      solution.constraintResidual = ShapeConstraints::largestDistances(positions, Constraints->project(positions, axes));
+    }
   }
   const Displacements& w = solution.w;
   if (!w.allFinite())
@@ -262,7 +291,7 @@ void SpaceDeformation::iterateConstraints(const Displacements& b0, const Iterati
   solution.estimatedError = std::numeric_limits<double>::infinity();
   for (int i = 0; i < settings.maxIterations; ++i)
   {
-    Displacements g = Factor->solve(b0 + Weights.constraint * Constraints->rightHandSide(positions, projections));
+    Displacements g = solveSystem(b0 + Weights.constraint * Constraints->rightHandSide(positions, projections));
     const Vector f = flat(g) - flat(w);
     solution.iterations = i + 1;
     if (accelerated && f.norm() > SafeguardGrowth * bestResidual)

@@ -128,6 +128,8 @@ public:
 
 private:
   void checkPrescribed(const std::vector<PointDisplacementsView>& prescribed) const;
+  /// The system's solution for the right-hand sides b (one column per coordinate).
+  Displacements solveSystem(const Displacements& b) const;
   /// Section 6's local/global iteration from w = 0 for the right-hand side b0 of eq. 14.
   void iterateConstraints(const Displacements& b0, const IterationSettings& settings, Solution& solution) const;
 
@@ -142,7 +144,9 @@ private:
   std::unique_ptr<ShapeConstraints> Constraints;
   double Length = 1;
   SparseMatrix System;             // the matrix of eq. 14 (17)
-  std::unique_ptr<SparseCholesky> Factor;
+  /// The factor of eq. 14 (17): one for all three coordinates, or one per coordinate when slip
+  /// planes normal to an axis add to that coordinate's system only.
+  std::vector<std::unique_ptr<SparseCholesky>> Factors;
   double ReciprocalCondition = 0;
 };
 } // namespace mlsdeform

@@ -62,6 +62,12 @@ Displacements SparseCholesky::solve(const Displacements& b) const
   return Eigen::CholmodSupernodalLLT<SparseMatrix>::solve(b);
 }
 
+Eigen::VectorXd SparseCholesky::solveColumn(const Eigen::VectorXd& b) const
+{
+  SerialBlas serial;
+  return Eigen::CholmodSupernodalLLT<SparseMatrix>::solve(b);
+}
+
 double SparseCholesky::reciprocalCondition()
 {
   return m_cholmodFactor && this->info() == Eigen::Success ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0;

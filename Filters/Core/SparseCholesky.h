@@ -25,6 +25,7 @@ public:
 
   /// A^-1 b, after a successful factorize.
   Displacements solve(const Displacements& b) const;
+  Eigen::VectorXd solveColumn(const Eigen::VectorXd& b) const;
 
   /// (min diag L / max diag L)^2, a cheap estimate of 1 / cond(A); 0 before a factorization.
   double reciprocalCondition();
