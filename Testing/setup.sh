@@ -2,7 +2,7 @@
 # Sets up a Debian 12 machine for MLSDeform and builds it: installs the Debian packages that are
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
 # Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb, and for the paper comparisons gmsh
-# and matplotlib), then configures and builds into build/ (or
+# and matplotlib, OpenFOAM for the CFD round-trip tests and examples), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -19,6 +19,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libblas-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
   gmsh python3-matplotlib
+  openfoam
 )
 missing=()
 for package in "${packages[@]}"; do

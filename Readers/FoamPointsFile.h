@@ -1,0 +1,31 @@
+// An OpenFOAM points file (constant/polyMesh/points): a FoamFile header and a vectorField of
+// double (or, with arch "scalar=32", float) coordinates, in ascii or binary format, plain or
+// gzip-compressed (points.gz). Read so that the same format can be written back with new
+// coordinates.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mlsdeform
+{
+struct FoamPointsFile
+{
+  std::string path;        // the file read: .../points or .../points.gz
+  std::string header;      // everything before the point count, written back unchanged
+  bool binary = false;     // format binary
+  bool compressed = false; // points.gz
+  int scalarBytes = 8;     // from arch "scalar=64" (8) or "scalar=32" (4)
+  std::vector<double> xyz; // 3 coordinates per point
+  std::size_t size() const { return xyz.size() / 3; }
+};
+
+/// Reads polyMesh/points or polyMesh/points.gz of the polyMesh directory. Throws
+/// std::runtime_error with the file and the reason when there is none or it cannot be parsed.
+FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory);
+
+/// Writes the points xyz (3 per point) into directory/points (or points.gz when the original
+/// was compressed) with the original's header and format. Ascii coordinates are written in
+/// the shortest form that reads back as the same double. Throws std::runtime_error.
+void writeFoamPoints(const std::string& directory, const FoamPointsFile& original, const std::vector<double>& xyz);
+} // namespace mlsdeform
