@@ -1,0 +1,107 @@
+"""Issue 12: an OpenFOAM snappyHexMesh case (Examples/OpenFOAM/sphereChannel, built here with
+blockMesh and snappyHexMesh) read, deformed and written back, with Decompose polyhedra on and
+off. Usage: pvpython test_openfoam_roundtrip.py PLUGIN EXAMPLES_OPENFOAM_DIR WORK_DIR"""
+import os
+import subprocess
+import sys
+
+import numpy as np
+from paraview import servermanager
+from paraview.simple import LoadPlugin
+from vtk.util.numpy_support import vtk_to_numpy
+
+plugin, examples, work = sys.argv[1:4]
+LoadPlugin(plugin, remote=False)
+sys.path.insert(0, examples)
+import openfoam_variant  # noqa: E402
+
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what)
+    if not condition:
+        failures.append(what)
+
+
+def openfoam(command, case):
+    """Runs an OpenFOAM command in case; returns its output."""
+    return subprocess.run(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc >/dev/null 2>&1; cd "%s" && %s' % (case, command)],
+                          capture_output=True, text=True).stdout
+
+
+def points_file(case):
+    """The double coordinates of an ascii constant/polyMesh/points (n x 3)."""
+    text = open(os.path.join(case, 'constant', 'polyMesh', 'points')).read()
+    body = text[text.index('\n(', text.index('FoamFile')) + 2:]
+    rows = [line.strip()[1:-1].split() for line in body.splitlines() if line.startswith('(')]
+    return np.array([[float(v) for v in row] for row in rows])
+
+
+def blocks(data):
+    """name -> leaf of a multiblock."""
+    out = {}
+    it = data.NewIterator()
+    it.InitTraversal()
+    while not it.IsDoneWithTraversal():
+        out[it.GetCurrentMetaData().Get(data.NAME())] = it.GetCurrentDataObject()
+        it.GoToNextItem()
+    return out
+
+
+def failed_checks(log):
+    for line in log.splitlines():
+        if 'Failed' in line and 'mesh checks' in line:
+            return int(line.split()[1])
+    return 0 if 'Mesh OK.' in log else -1
+
+
+case = os.path.join(work, 'case')
+subprocess.run(['bash', os.path.join(examples, 'make-case.sh'), case], check=True)
+source = points_file(case)
+source_log = openfoam('checkMesh', case)
+motion = np.array([0.05, 0.0, 0.02])
+handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']
+for decompose in (True, False):
+    print('Decompose polyhedra %s' % decompose)
+    reader = openfoam_variant.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose)
+    deformed = openfoam_variant.morph(reader, handle, motion, fixed, slip)
+    variant = os.path.join(work, 'variant-%d' % decompose)
+    openfoam_variant.save_variant(deformed, os.path.join(variant, 'case.foam'), overwrite=True)
+    before, after = blocks(servermanager.Fetch(reader)), blocks(servermanager.Fetch(deformed))
+    mesh = after['internalMesh']
+    d = vtk_to_numpy(mesh.GetPointData().GetArray('Displacement'))
+    n = len(source)
+    check(mesh.GetNumberOfPoints() >= n and (decompose or mesh.GetNumberOfPoints() == n),
+          'the internal mesh holds the case\'s %d points first (%d with decomposition points)' % (n, mesh.GetNumberOfPoints()))
+    written = points_file(variant)
+    check(written.shape == source.shape, 'point count kept: %d' % len(written))
+    check(np.array_equal(written, source + d[:n]), 'written points = the source\'s double points + Displacement, exactly')
+    # points a patch shares with the internal mesh move alike (same rest position, same d(x))
+    rest = {tuple(p): i for i, p in enumerate(vtk_to_numpy(before['internalMesh'].GetPoints().GetData()))}
+    moved = vtk_to_numpy(mesh.GetPoints().GetData())
+    for name in handle + fixed + slip:
+        patch_rest = vtk_to_numpy(before[name].GetPoints().GetData())
+        patch_moved = vtk_to_numpy(after[name].GetPoints().GetData())
+        ids = [rest.get(tuple(p), -1) for p in patch_rest]
+        check(min(ids) >= 0 and np.array_equal(patch_moved, moved[ids]), 'patch %s: its points equal the internal mesh\'s' % name)
+        u = vtk_to_numpy(after[name].GetPointData().GetArray('Displacement'))
+        target = motion if name in handle else np.zeros(3)
+        if name not in slip:
+            error = np.abs(u - target).max() / np.linalg.norm(motion)
+            check(error <= 0.01, 'patch %s meets its target within 1%% of the motion (%.2g)' % (name, error))
+    # slip planes: x, y or z of their points unchanged, exactly (OpenFOAM's slip keeps them on it)
+    for axis, value, name in ((2, -1.0, 'ground'), (2, 1.0, 'top'), (1, -1.0, 'front'), (1, 1.0, 'back')):
+        on = source[:, axis] == value
+        slide = np.abs(written[on] - source[on]).max()
+        check(on.sum() > 0 and np.array_equal(written[on, axis], source[on, axis]),
+              'slip %s: %d points stay on their plane (largest slide %.3g)' % (name, on.sum(), slide))
+    log = openfoam('checkMesh', variant)
+    check(failed_checks(log) == 0 and failed_checks(source_log) == 0, 'checkMesh passes on the variant')
+    orth = [line for line in log.splitlines() if 'non-orthogonality Max' in line]
+    print('  variant: ' + (orth[0].strip() if orth else 'no non-orthogonality line'))
+
+if failures:
+    print('%d check(s) failed' % len(failures))
+    sys.exit(1)
+print('all checks passed')
