@@ -306,6 +306,7 @@ public:
         break;
       }
     }
+    splitIntoPlanes(found);
     settle(found);
     return found;
   }
@@ -536,11 +537,86 @@ private:
     Primitive plane;
     plane.type = PrimitiveType::Plane;
     plane = fitLeastSquares(plane, Points, members);
-    const double n = static_cast<double>(members.size()), deviation = Refinement.floor / Refinement.jump;
-    const double least = n * deviation * deviation;
-    const double curvedSum = std::max(least, n * std::pow(distanceStatistics(curved, Points, members).rms, 2));
-    const double planeSum = std::max(least, n * std::pow(distanceStatistics(plane, Points, members).rms, 2));
-    return n * std::log(planeSum / curvedSum) <= (parameterCount(curved.type) - 3) * std::log(n);
+    const double n = static_cast<double>(members.size());
+    return simplerExplains(n, squaredSum(plane, members), 3, squaredSum(curved, members), parameterCount(curved.type));
+  }
+
+  double squaredSum(const Primitive& shape, const std::vector<int>& samples) const
+  {
+    return static_cast<double>(samples.size()) * std::pow(distanceStatistics(shape, Points, samples).rms, 2);
+  }
+
+  // Schwarz's criterion on n samples: a model of k parameters and residual sum of squares rss
+  // against a richer one of K > k (or K <= k: then it must fit as well or better), both sums at
+  // least n (floor / jump)^2 (planeExplains).
+  bool simplerExplains(double n, double rss, int k, double richRss, int richK) const
+  {
+    const double deviation = Refinement.floor / Refinement.jump, least = n * deviation * deviation;
+    return n * std::log(std::max(least, rss) / std::max(least, richRss)) <= (richK - k) * std::log(n);
+  }
+
+  // A curved primitive tangent to several flat faces (a cone in the corner of two faces of a
+  // box, found before either face's plane) holds strips of those faces within epsilon; its
+  // members as a whole are no plane, so planeExplains keeps it, and the faces' remaining pieces
+  // come out as other primitives, never one plane per face. The greedy extraction never
+  // revisits it, so here planes are searched among its members (the same search, planes only,
+  // the same seed): when they hold all but fewer than minimumSupport of them and explain them
+  // as well by Schwarz's criterion (m planes: 3 m parameters), they replace it, and settle then
+  // drops the pieces that the planes explain and merges the rest into them.
+  void splitIntoPlanes(std::vector<DetectedPrimitive>& found) const
+  {
+    if (!P.planes)
+    {
+      return;
+    }
+    RansacParameters planesOnly = P;
+    planesOnly.cylinders = planesOnly.spheres = planesOnly.cones = false;
+    std::vector<DetectedPrimitive> split;
+    for (DetectedPrimitive& primitive : found)
+    {
+      if (primitive.shape.type != PrimitiveType::Plane)
+      {
+        Search search(Points, Normals, Faces, planesOnly, primitive.members);
+        std::vector<DetectedPrimitive> planes = search.run({});
+        long held = 0;
+        double planesSum = 0;
+        for (const DetectedPrimitive& plane : planes)
+        {
+          held += static_cast<long>(plane.members.size());
+          planesSum += squaredSum(plane.shape, plane.members);
+        }
+        const long n = static_cast<long>(primitive.members.size());
+        if (!planes.empty() && n - held < P.minimumSupport)
+        {
+          // the members no plane holds count with their distance from the curved primitive
+          std::vector<char> inPlane(Points.size(), 0);
+          for (const DetectedPrimitive& plane : planes)
+          {
+            for (int i : plane.members)
+            {
+              inPlane[i] = 1;
+            }
+          }
+          std::vector<int> rest;
+          for (int i : primitive.members)
+          {
+            if (!inPlane[i])
+            {
+              rest.push_back(i);
+            }
+          }
+          planesSum += squaredSum(primitive.shape, rest);
+          if (simplerExplains(static_cast<double>(n), planesSum, 3 * static_cast<int>(planes.size()),
+                squaredSum(primitive.shape, primitive.members), parameterCount(primitive.shape.type)))
+          {
+            std::move(planes.begin(), planes.end(), std::back_inserter(split));
+            continue;
+          }
+        }
+      }
+      split.push_back(std::move(primitive));
+    }
+    found = std::move(split);
   }
 
   bool extract(const Candidate& candidate, DetectedPrimitive& primitive) const

@@ -19,7 +19,9 @@
 // Extraction refits the best candidate to its compatible component by least squares (twice,
 // which lets an inexact candidate from noisy normals grow onto its surface), then the forward
 // search settles its members and parameters; a curved primitive whose members a plane explains
-// as well by Schwarz's information criterion becomes that plane. After the extraction, every
+// as well by Schwarz's information criterion becomes that plane. After the extraction, a curved
+// primitive whose members planes found among them explain as well (the same criterion) becomes
+// those planes (a cone tangent to two faces of a box, found before their planes); then every
 // primitive gathers again the connected samples within its admission distance and its
 // noise-aware admission angle (Schnabel et al.'s refitting); a primitive that the others explain
 // but for fewer than minimumSupport members goes (a piece of a surface that noise split off, a
