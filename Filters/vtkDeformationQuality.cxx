@@ -1,6 +1,7 @@
 #include "vtkDeformationQuality.h"
 
 #include "FaceQuality.h"
+#include "VolumeMeshQuality.h"
 #include "Sampling.h"
 
 #include <vtkCell.h>
@@ -8,12 +9,10 @@
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
-#include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkMeshQuality.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
@@ -37,73 +36,6 @@ using mlsdeform::InteriorFace;
 using mlsdeform::PointList;
 
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
-
-PointList pointList(vtkUnstructuredGrid* grid, const char* what)
-{
-  PointList points(grid->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
-  {
-    grid->GetPoint(i, points[i].data());
-  }
-  mlsdeform::requireFinite(points, what);
-  return points;
-}
-
-/// The faces of every 3D cell as point-id polygons (empty for other cells).
-std::vector<CellFaces> cellFaces(vtkUnstructuredGrid* grid)
-{
-  std::vector<CellFaces> cells(grid->GetNumberOfCells());
-  vtkNew<vtkGenericCell> cell;
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
-  {
-    grid->GetCell(c, cell);
-    if (cell->GetCellDimension() != 3)
-    {
-      continue;
-    }
-    for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
-    {
-      vtkIdList* ids = cell->GetFace(f)->GetPointIds();
-      std::vector<int> polygon(ids->GetNumberOfIds());
-      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
-      {
-        polygon[i] = static_cast<int>(ids->GetId(i));
-      }
-      cells[c].push_back(std::move(polygon));
-    }
-  }
-  return cells;
-}
-
-/// Verdict's scaled Jacobian of the element types it defines; NaN for the others.
-std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
-{
-  std::vector<double> jacobians(grid->GetNumberOfCells(), NaN);
-  vtkNew<vtkGenericCell> generic;
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
-  {
-    grid->GetCell(c, generic);
-    vtkCell* cell = generic->GetRepresentativeCell();
-    switch (generic->GetCellType())
-    {
-      case VTK_TETRA:
-        jacobians[c] = vtkMeshQuality::TetScaledJacobian(cell);
-        break;
-      case VTK_HEXAHEDRON:
-        jacobians[c] = vtkMeshQuality::HexScaledJacobian(cell);
-        break;
-      case VTK_WEDGE:
-        jacobians[c] = vtkMeshQuality::WedgeScaledJacobian(cell);
-        break;
-      case VTK_PYRAMID:
-        jacobians[c] = vtkMeshQuality::PyramidScaledJacobian(cell);
-        break;
-      default:
-        break;
-    }
-  }
-  return jacobians;
-}
 
 /// The original must have the deformed mesh's cells: same counts, types and point ids.
 void requireSameCells(vtkUnstructuredGrid* deformed, vtkUnstructuredGrid* original)
@@ -147,7 +79,7 @@ Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const std::
   const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
 {
   Measures m;
-  m.scaledJacobian = scaledJacobians(grid);
+  m.scaledJacobian = mlsgeometry::scaledJacobians(grid);
   for (double j : m.scaledJacobian)
   {
     m.inverted += j < 0 ? 1 : 0;
@@ -267,19 +199,19 @@ int vtkDeformationQuality::RequestData(
     {
       throw std::invalid_argument("the input has no cells");
     }
-    const PointList points = pointList(input, "the input mesh's points");
+    const PointList points = mlsgeometry::gridPoints(input, "the input mesh's points");
     PointList originalPoints;
     if (original)
     {
       requireSameCells(input, original);
-      originalPoints = pointList(original, "the original mesh's points");
+      originalPoints = mlsgeometry::gridPoints(original, "the original mesh's points");
     }
     this->UpdateProgress(0.1);
-    const std::vector<CellFaces> cells = cellFaces(input);
-    const std::vector<InteriorFace> faces = mlsdeform::interiorFaces(cells);
-    this->UpdateProgress(0.3);
     // OpenFOAM's face order: out of the owner in the undeformed mesh
-    const std::vector<int> orientation = mlsdeform::faceOrientation(original ? originalPoints : points, cells, faces);
+    const mlsgeometry::VolumeMeshQuality topology(original ? original : input);
+    const std::vector<CellFaces>& cells = topology.cells();
+    const std::vector<InteriorFace>& faces = topology.faces();
+    const std::vector<int>& orientation = topology.orientation();
     this->UpdateProgress(0.4);
 
     vtkNew<vtkCellArray> polygons;

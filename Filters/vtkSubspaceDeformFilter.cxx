@@ -3,6 +3,7 @@
 #include "SpaceDeformation.h"
 
 #include "MLSGeometry.h"
+#include "VolumeMeshQuality.h"
 #include "SubspaceOperators.h"
 #include "vtkConstraintRegion.h"
 
@@ -23,6 +24,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
 
 #include <chrono>
 #include <memory>
@@ -333,6 +335,11 @@ struct vtkSubspaceDeformFilter::Cache
   std::vector<vtkSmartPointer<vtkDoubleArray>> displacement;
   std::vector<PointDisplacements> prescribed; // copies of PrescribedDisplacement arrays that are not double
 
+  // the volume mesh's faces and its quality before deformation, per point set (MeshQuality)
+  mlsgeometry::Stamp qualityStamp; // of the cells and points they were measured on
+  std::vector<std::unique_ptr<mlsgeometry::VolumeMeshQuality>> quality;
+  mlsgeometry::QualitySummary originalQuality;
+
   /// Forgets everything built on the subspace.
   void resetModel()
   {
@@ -603,6 +610,10 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     addField(field, "Resampled", resampled ? 1 : 0);
     addField(field, "Refactorized", refactorized ? 1 : 0);
     const double constraintResidual = reportConstraints(field, cache.regions, solution, points);
+    if (this->MeshQuality)
+    {
+      this->ReportMeshQuality(inSets, outSets, field);
+    }
     if (!solution.converged)
     {
       vtkWarningMacro(<< "The constraints did not converge in MaxIterations = " << this->MaxIterations
@@ -627,6 +638,69 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   return 1;
 }
 
+void vtkSubspaceDeformFilter::ReportMeshQuality(
+  const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field)
+{
+  // Faces and the original's measures once per input mesh; the deformed mesh's every update.
+  Cache& cache = *this->Cached;
+  mlsgeometry::Stamp stamp = mlsgeometry::cellsStamp(inSets);
+  const mlsgeometry::Stamp points = mlsgeometry::pointsStamp(inSets);
+  stamp.objects.insert(stamp.objects.end(), points.objects.begin(), points.objects.end());
+  if (stamp != cache.qualityStamp)
+  {
+    cache.quality.clear();
+    cache.originalQuality = mlsgeometry::QualitySummary();
+    try
+    {
+      for (vtkPointSet* set : inSets)
+      {
+        auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
+        cache.quality.push_back(grid ? std::make_unique<mlsgeometry::VolumeMeshQuality>(grid) : nullptr);
+        if (cache.quality.back() && cache.quality.back()->hasCells())
+        {
+          const mlsgeometry::QualitySummary s = cache.quality.back()->summary(grid);
+          cache.originalQuality.inverted += s.inverted;
+          cache.originalQuality.maxNonOrthogonality = std::max(cache.originalQuality.maxNonOrthogonality, s.maxNonOrthogonality);
+          cache.originalQuality.maxSkewness = std::max(cache.originalQuality.maxSkewness, s.maxSkewness);
+        }
+      }
+    }
+    catch (const std::exception& e)
+    {
+      // the deformation stands; this mesh's quality is not reported (said once per mesh)
+      cache.quality.clear();
+      vtkWarningMacro(<< "The mesh quality is not reported: " << e.what()
+                      << ". (ParaView's OpenFOAM reader with Decompose polyhedra on makes such cells; turn it off to "
+                         "measure OpenFOAM's own cells.)");
+    }
+    cache.quality.resize(inSets.size());
+    cache.qualityStamp = std::move(stamp);
+  }
+  mlsgeometry::QualitySummary deformed;
+  bool measured = false;
+  for (std::size_t s = 0; s < outSets.size(); ++s)
+  {
+    if (cache.quality[s] && cache.quality[s]->hasCells())
+    {
+      const mlsgeometry::QualitySummary q = cache.quality[s]->summary(vtkUnstructuredGrid::SafeDownCast(outSets[s]));
+      deformed.inverted += q.inverted;
+      deformed.maxNonOrthogonality = std::max(deformed.maxNonOrthogonality, q.maxNonOrthogonality);
+      deformed.maxSkewness = std::max(deformed.maxSkewness, q.maxSkewness);
+      measured = true;
+    }
+  }
+  if (!measured)
+  {
+    return;
+  }
+  for (const auto& [prefix, q] : { std::make_pair("", deformed), std::make_pair("Original", cache.originalQuality) })
+  {
+    addField(field, (std::string(prefix) + "InvertedCells").c_str(), static_cast<double>(q.inverted));
+    addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), q.maxNonOrthogonality);
+    addField(field, (std::string(prefix) + "MaxSkewness").c_str(), q.maxSkewness);
+  }
+}
+
 void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -637,5 +711,6 @@ void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "ConstraintFormulation: " << this->ConstraintFormulation << "\n"
      << indent << "MaxIterations: " << this->MaxIterations << "\n"
      << indent << "Tolerance: " << this->Tolerance << "\n"
-     << indent << "Acceleration: " << this->Acceleration << "\n";
+     << indent << "Acceleration: " << this->Acceleration << "\n"
+     << indent << "MeshQuality: " << this->MeshQuality << "\n";
 }

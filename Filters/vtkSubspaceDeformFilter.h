@@ -16,7 +16,11 @@
  * HandleResidual and FixedResidual (the largest, over the regions of that role, of the RMS
  * distance of the region's points from their targets), ReciprocalCondition, Resampled and
  * Refactorized (whether this update rebuilt the subspace or refactorized), and per constraint
- * region its type, points, residual, iterations and convergence.
+ * region its type, points, residual, iterations and convergence. With MeshQuality on and volume
+ * cells in the input (unstructured grids), the mesh quality of paper section 7.3 before and after
+ * (vtkDeformationQuality's measures: OpenFOAM's non-orthogonality and skewness, verdict's scaled
+ * Jacobian), over every block: InvertedCells, MaxNonOrthogonality (degrees), MaxSkewness and the
+ * same prefixed "Original", so that a script can reject a variant before running a solver.
  *
  * Set-up is cached and tracked exactly: property values are compared as they are, input data by
  * VTK's modification times (and, where new data may hold the same values, by the values). Each
@@ -38,6 +42,8 @@
 #include "vtkPassInputTypeAlgorithm.h"
 
 #include <memory>
+
+class vtkFieldData;
 #include <string>
 #include <vector>
 
@@ -117,6 +123,14 @@ public:
   vtkGetMacro(Acceleration, int);
   ///@}
 
+  ///@{
+  /// Report the volume mesh's quality before and after in the field data (default on; costs a
+  /// pass over the cells per update).
+  vtkSetMacro(MeshQuality, vtkTypeBool);
+  vtkGetMacro(MeshQuality, vtkTypeBool);
+  vtkBooleanMacro(MeshQuality, vtkTypeBool);
+  ///@}
+
   /// Connections of the regions.
   void AddRegionConnection(vtkAlgorithmOutput* region) { this->AddInputConnection(1, region); }
   void RemoveAllRegions() { this->SetInputConnection(1, nullptr); }
@@ -143,6 +157,9 @@ protected:
   virtual std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
     const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) = 0;
 
+  /// The quality summaries of the volume cells of the input and output point sets, into field.
+  void ReportMeshQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field);
+
   double StretchWeight = 0.0;
   double BendWeight = 1.0;
   double FixWeight = 1000.0;
@@ -151,6 +168,7 @@ protected:
   int MaxIterations = 5000;
   double Tolerance = 1e-7;
   int Acceleration = Anderson;
+  vtkTypeBool MeshQuality = 1;
 
   int NumberOfSamplings = 0;
   int NumberOfFactorizations = 0;

@@ -2,6 +2,7 @@
 // the cached set-up, and bad input.
 #include "../TestHarness.h"
 #include "FilterTestUtilities.h"
+#include "vtkDeformationQuality.h"
 #include "vtkMLSSampler.h"
 
 #include <vtkCellArray.h>
@@ -15,6 +16,7 @@
 #include <vtkPartitionedDataSetCollection.h>
 #include <vtkPoints.h>
 #include <vtkStringArray.h>
+#include <vtkTable.h>
 #include <vtkMath.h>
 #include <vtkTransform.h>
 #include <vtkTransformFilter.h>
@@ -417,6 +419,44 @@ TEST(SameOutputOnOneAndTwoThreads)
   }
   omp_set_num_threads(threads);
   CHECK(!outputs[0].empty() && outputs[0] == outputs[1]);
+}
+
+TEST(MeshQualityBeforeAndAfter)
+{
+  // Issue 12, point 5: a volume mesh's output reports the Deformation Quality filter's figures
+  // before and after, so a script can reject a variant; a fold shows as inverted cells.
+  vtkSmartPointer<vtkUnstructuredGrid> box = tetrahedralBox(4);
+  for (double lift : { 0.1, 3.0 })
+  {
+    PlaneScene scene(box);
+    scene.handle->SetTranslation(0, 0, lift);
+    scene.handle->SetRotation(0, 0, lift > 1 ? 170 : 0);
+    scene.deform->SetNumberOfSamples(200);
+    scene.deform->Update();
+    vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+    vtkNew<vtkDeformationQuality> quality;
+    quality->SetInputData(out);
+    quality->SetOriginalData(box);
+    quality->Update();
+    auto* table = vtkTable::SafeDownCast(quality->GetOutputDataObject(2));
+    // rows: ScaledJacobian, NonOrthogonality, Skewness, InvertedCells
+    auto value = [&](const char* column, int row) { return table->GetValueByName(row, column).ToDouble(); };
+    std::printf("lift %g: inverted %g (before %g), non-orthogonality %.3f (before %.3f), skewness %.3f (before %.3f)\n", lift,
+      fieldValue(out, "InvertedCells"), fieldValue(out, "OriginalInvertedCells"), fieldValue(out, "MaxNonOrthogonality"),
+      fieldValue(out, "OriginalMaxNonOrthogonality"), fieldValue(out, "MaxSkewness"), fieldValue(out, "OriginalMaxSkewness"));
+    // the same code measures both: equal figures
+    CHECK(fieldValue(out, "InvertedCells") == value("Max", 3) && fieldValue(out, "OriginalInvertedCells") == value("OriginalMax", 3));
+    CHECK(fieldValue(out, "MaxNonOrthogonality") == value("Max", 1) && fieldValue(out, "OriginalMaxNonOrthogonality") == value("OriginalMax", 1));
+    CHECK(fieldValue(out, "MaxSkewness") == value("Max", 2) && fieldValue(out, "OriginalMaxSkewness") == value("OriginalMax", 2));
+    CHECK(fieldValue(out, "OriginalInvertedCells") == 0);
+    // a lift of a tenth keeps every cell; turning the handle strip over folds the box
+    CHECK(lift > 1 ? fieldValue(out, "InvertedCells") > 0 : fieldValue(out, "InvertedCells") == 0);
+  }
+  // surfaces only: nothing to report
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene surface(plane);
+  surface.deform->Update();
+  CHECK(fieldValue(surface.deform->GetOutputDataObject(0), "InvertedCells") == -1);
 }
 
 TEST(ExternalSamplesMatchInternalSampling)

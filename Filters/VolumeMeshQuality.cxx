@@ -1,0 +1,109 @@
+#include "VolumeMeshQuality.h"
+
+#include "Sampling.h"
+
+#include <vtkCell.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkMeshQuality.h>
+#include <vtkNew.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mlsgeometry
+{
+std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
+{
+  std::vector<mlsdeform::CellFaces> cells(grid->GetNumberOfCells());
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCell(c, cell);
+    if (cell->GetCellDimension() != 3)
+    {
+      continue;
+    }
+    for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+    {
+      vtkIdList* ids = cell->GetFace(f)->GetPointIds();
+      std::vector<int> polygon(ids->GetNumberOfIds());
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        polygon[i] = static_cast<int>(ids->GetId(i));
+      }
+      cells[c].push_back(std::move(polygon));
+    }
+  }
+  return cells;
+}
+
+std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
+{
+  std::vector<double> jacobians(grid->GetNumberOfCells(), std::numeric_limits<double>::quiet_NaN());
+  vtkNew<vtkGenericCell> generic;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCell(c, generic);
+    vtkCell* cell = generic->GetRepresentativeCell();
+    switch (generic->GetCellType())
+    {
+      case VTK_TETRA:
+        jacobians[c] = vtkMeshQuality::TetScaledJacobian(cell);
+        break;
+      case VTK_HEXAHEDRON:
+        jacobians[c] = vtkMeshQuality::HexScaledJacobian(cell);
+        break;
+      case VTK_WEDGE:
+        jacobians[c] = vtkMeshQuality::WedgeScaledJacobian(cell);
+        break;
+      case VTK_PYRAMID:
+        jacobians[c] = vtkMeshQuality::PyramidScaledJacobian(cell);
+        break;
+      default:
+        break;
+    }
+  }
+  return jacobians;
+}
+
+mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
+{
+  mlsdeform::PointList points(grid->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    grid->GetPoint(i, points[i].data());
+  }
+  mlsdeform::requireFinite(points, what);
+  return points;
+}
+
+VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
+  : Cells(cellFaces(rest))
+{
+  Has3DCells = std::any_of(Cells.begin(), Cells.end(), [](const mlsdeform::CellFaces& c) { return !c.empty(); });
+  if (Has3DCells)
+  {
+    Faces = mlsdeform::interiorFaces(Cells);
+    Orientation = mlsdeform::faceOrientation(gridPoints(rest, "the mesh's points"), Cells, Faces);
+  }
+}
+
+QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid) const
+{
+  QualitySummary s;
+  for (double j : scaledJacobians(grid))
+  {
+    s.inverted += j < 0 ? 1 : 0;
+  }
+  const mlsdeform::FaceMeasures m = mlsdeform::faceMeasures(gridPoints(grid, "the mesh's points"), Cells, Faces, Orientation);
+  for (std::size_t i = 0; i < Faces.size(); ++i)
+  {
+    s.maxNonOrthogonality = std::max(s.maxNonOrthogonality, m.nonOrthogonality[i]);
+    s.maxSkewness = std::max(s.maxSkewness, m.skewness[i]);
+  }
+  return s;
+}
+} // namespace mlsgeometry

@@ -1,0 +1,54 @@
+// The volume-mesh measures of paper section 7.3 on a VTK unstructured grid: verdict's scaled
+// Jacobian per cell (negative: inverted) and OpenFOAM's non-orthogonality and skewness per
+// interior face (FaceQuality.h). Shared by vtkDeformationQuality and by the deformation filters,
+// which report a summary in their output's field data.
+#pragma once
+
+#include "FaceQuality.h"
+
+class vtkUnstructuredGrid;
+
+namespace mlsgeometry
+{
+/// The faces of every 3D cell as point-id polygons (empty for other cells).
+std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid);
+
+/// Verdict's scaled Jacobian of tetrahedra, hexahedra, wedges and pyramids; NaN for other cells.
+std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid);
+
+/// The grid's points (throws InvalidInputException when one is not finite).
+mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what);
+
+/// Cells with a negative scaled Jacobian, and the largest non-orthogonality (degrees) and skewness
+/// over the interior faces.
+struct QualitySummary
+{
+  long inverted = 0;
+  double maxNonOrthogonality = 0;
+  double maxSkewness = 0;
+};
+
+/// A grid's interior faces, oriented out of their owner on the rest points (OpenFOAM's face
+/// order), measured again for every new set of points of the same cells.
+class VolumeMeshQuality
+{
+public:
+  explicit VolumeMeshQuality(vtkUnstructuredGrid* rest);
+
+  /// Whether the grid has 3D cells to measure.
+  bool hasCells() const { return Has3DCells; }
+
+  /// The summary of grid (the rest grid's cells, any points).
+  QualitySummary summary(vtkUnstructuredGrid* grid) const;
+
+  const std::vector<mlsdeform::CellFaces>& cells() const { return Cells; }
+  const std::vector<mlsdeform::InteriorFace>& faces() const { return Faces; }
+  const std::vector<int>& orientation() const { return Orientation; }
+
+private:
+  std::vector<mlsdeform::CellFaces> Cells;
+  std::vector<mlsdeform::InteriorFace> Faces;
+  std::vector<int> Orientation;
+  bool Has3DCells = false;
+};
+} // namespace mlsgeometry
