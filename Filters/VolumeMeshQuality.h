@@ -26,6 +26,14 @@ struct QualitySummary
   long inverted = 0;
   double maxNonOrthogonality = 0;
   double maxSkewness = 0;
+
+  /// Adds another mesh's: the counts add up, the largest values stay.
+  void add(const QualitySummary& other)
+  {
+    inverted += other.inverted;
+    maxNonOrthogonality = maxNonOrthogonality > other.maxNonOrthogonality ? maxNonOrthogonality : other.maxNonOrthogonality;
+    maxSkewness = maxSkewness > other.maxSkewness ? maxSkewness : other.maxSkewness;
+  }
 };
 
 /// A grid's interior faces, oriented out of their owner on the rest points (OpenFOAM's face

@@ -311,6 +311,8 @@ struct vtkSubspaceDeformFilter::Cache
   PointList points;               // the input points, concatenated
   long pointsVersion = -1;
   std::vector<RegionInput> regions;
+  std::vector<std::pair<long, int>> slipKey; // (version, role) per region the slip planes were fitted to
+  std::vector<SlipPlane> slips;
 
   // 1. the subspace
   std::unique_ptr<SpaceDeformation> model;
@@ -425,7 +427,19 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     }
     const PointList& points = cache.points;
     readRegions(inputVector[1], cache.regions, cache.nextVersion);
-    const std::vector<SlipPlane> slips = slipPlanes(cache.regions);
+    // the slip planes: fitted again only when a region's positions or role change
+    std::vector<std::pair<long, int>> regionKey;
+    for (const RegionInput& r : cache.regions)
+    {
+      regionKey.emplace_back(r.version, r.role);
+    }
+    if (regionKey != cache.slipKey)
+    {
+      cache.slipKey.clear();
+      cache.slips = slipPlanes(cache.regions);
+      cache.slipKey = std::move(regionKey);
+    }
+    const std::vector<SlipPlane>& slips = cache.slips;
 
     // 1. The subspace: shape functions and energies.
     mlsgeometry::SubspaceDependencies dependencies = this->GetSubspaceDependencies(inputVector);
@@ -658,10 +672,7 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
         cache.quality.push_back(grid ? std::make_unique<mlsgeometry::VolumeMeshQuality>(grid) : nullptr);
         if (cache.quality.back() && cache.quality.back()->hasCells())
         {
-          const mlsgeometry::QualitySummary s = cache.quality.back()->summary(grid);
-          cache.originalQuality.inverted += s.inverted;
-          cache.originalQuality.maxNonOrthogonality = std::max(cache.originalQuality.maxNonOrthogonality, s.maxNonOrthogonality);
-          cache.originalQuality.maxSkewness = std::max(cache.originalQuality.maxSkewness, s.maxSkewness);
+          cache.originalQuality.add(cache.quality.back()->summary(grid));
         }
       }
     }
@@ -682,10 +693,7 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
   {
     if (cache.quality[s] && cache.quality[s]->hasCells())
     {
-      const mlsgeometry::QualitySummary q = cache.quality[s]->summary(vtkUnstructuredGrid::SafeDownCast(outSets[s]));
-      deformed.inverted += q.inverted;
-      deformed.maxNonOrthogonality = std::max(deformed.maxNonOrthogonality, q.maxNonOrthogonality);
-      deformed.maxSkewness = std::max(deformed.maxSkewness, q.maxSkewness);
+      deformed.add(cache.quality[s]->summary(vtkUnstructuredGrid::SafeDownCast(outSets[s])));
       measured = true;
     }
   }

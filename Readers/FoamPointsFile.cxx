@@ -7,9 +7,9 @@
 #include <charconv>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <sys/stat.h>
 
 namespace mlsdeform
 {
@@ -18,12 +18,6 @@ namespace
 [[noreturn]] void fail(const std::string& path, const std::string& reason)
 {
   throw std::runtime_error(path + ": " + reason);
-}
-
-bool exists(const std::string& path)
-{
-  struct stat info;
-  return ::stat(path.c_str(), &info) == 0;
 }
 
 // The whole file, decompressed if it is gzip (zlib reads plain files unchanged).
@@ -116,11 +110,11 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
 {
   FoamPointsFile file;
   file.path = polyMeshDirectory + "/points";
-  if (!exists(file.path))
+  if (!std::filesystem::exists(file.path))
   {
     file.path += ".gz";
     file.compressed = true;
-    if (!exists(file.path))
+    if (!std::filesystem::exists(file.path))
     {
       fail(polyMeshDirectory + "/points", "there is no points file (nor points.gz): not an OpenFOAM polyMesh directory");
     }
