@@ -1,5 +1,6 @@
 #include "MLSGeometry.h"
 
+#include <array>
 #include <vtkAlgorithm.h>
 #include <vtkCell.h>
 #include <vtkCellArray.h>
@@ -16,6 +17,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 
 
@@ -103,7 +105,8 @@ template <std::size_t N>
 void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
 {
   const int simplexType = N == 3 ? VTK_TRIANGLE : VTK_TETRA;
-  vtkNew<vtkGenericCell> cell;
+  // one cell per type: a vtkGenericCell rebuilds its cell (a polyhedron: costly) on every type change
+  std::array<vtkSmartPointer<vtkGenericCell>, VTK_NUMBER_OF_CELL_TYPES> cells;
   vtkNew<vtkIdList> ids;
   vtkNew<vtkPoints> pts;
   auto add = [&](vtkIdType first) {
@@ -127,6 +130,11 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     if (vtkCellTypes::GetDimension(type) != dimension)
     {
       continue;
+    }
+    vtkSmartPointer<vtkGenericCell>& cell = cells[type];
+    if (!cell)
+    {
+      cell = vtkSmartPointer<vtkGenericCell>::New();
     }
     set->GetCell(c, cell);
     if (!cell->Triangulate(0, ids, pts))

@@ -71,7 +71,8 @@ mlsgeometry::SubspaceDependencies vtkMLSDeformFilter::GetSubspaceDependencies(vt
   {
     dependencies.settings.insert(dependencies.settings.end(),
       { static_cast<double>(this->NumberOfSamples), this->VolumeSampleFraction, this->IntegrationPointRatio,
-        static_cast<double>(this->LloydIterations), this->Cover, static_cast<double>(this->RandomSeed) });
+        static_cast<double>(this->LloydIterations), this->Cover, static_cast<double>(this->RandomSeed),
+        static_cast<double>(this->FollowMeshGrading) });
   }
   return dependencies;
 }
@@ -94,6 +95,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     parameters.lloydIterations = this->LloydIterations;
     parameters.cover = this->Cover;
     parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+    parameters.followMeshGrading = this->FollowMeshGrading != 0;
     samples = sampleDomain(mlsgeometry::samplingDomain(inSets), parameters, { &mlsgeometry::reportProgress, this, 0.0, 0.4 });
   }
   const BasisKind kind = static_cast<BasisKind>(this->Basis);
@@ -121,6 +123,7 @@ void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "LloydIterations: " << this->LloydIterations << "\n"
      << indent << "Cover: " << this->Cover << "\n"
      << indent << "RandomSeed: " << this->RandomSeed << "\n"
+     << indent << "FollowMeshGrading: " << this->FollowMeshGrading << "\n"
      << indent << "Basis: " << this->Basis << "\n"
      << indent << "EnergyDiscretization: " << this->EnergyDiscretization << "\n";
 }

@@ -77,6 +77,14 @@ public:
   vtkGetMacro(RandomSeed, int);
   ///@}
 
+  ///@{
+  /// Internal sampling: sample density follows the mesh's element density (default on; see
+  /// vtkMLSSampler::FollowMeshGrading).
+  vtkSetMacro(FollowMeshGrading, vtkTypeBool);
+  vtkGetMacro(FollowMeshGrading, vtkTypeBool);
+  vtkBooleanMacro(FollowMeshGrading, vtkTypeBool);
+  ///@}
+
   enum Bases
   {
     MLS = 0,
@@ -120,6 +128,7 @@ protected:
   int LloydIterations = 5;
   double Cover = 5.0;
   int RandomSeed = 0;
+  vtkTypeBool FollowMeshGrading = 1;
   int Basis = MLS;
   int EnergyDiscretization = Volumetric;
 

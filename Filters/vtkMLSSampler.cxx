@@ -37,6 +37,7 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
   parameters.surfaceWeight = this->SurfaceWeight;
   parameters.denseSamplesPerSample = this->DenseSamplesPerSample;
   parameters.boundsPadding = this->BoundsPadding;
+  parameters.followMeshGrading = this->FollowMeshGrading != 0;
   try
   {
     const mlsdeform::SamplingDomain domain = mlsgeometry::samplingDomain(mlsgeometry::pointSets(input));
@@ -69,5 +70,6 @@ void vtkMLSSampler::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "RandomSeed: " << this->RandomSeed << "\n"
      << indent << "SurfaceWeight: " << this->SurfaceWeight << "\n"
      << indent << "DenseSamplesPerSample: " << this->DenseSamplesPerSample << "\n"
-     << indent << "BoundsPadding: " << this->BoundsPadding << "\n";
+     << indent << "BoundsPadding: " << this->BoundsPadding << "\n"
+     << indent << "FollowMeshGrading: " << this->FollowMeshGrading << "\n";
 }

@@ -10,6 +10,13 @@
  * placed the same way, IntegrationPointRatio times as many. Support radii make every sampled
  * position lie in at least Cover supports.
  *
+ * With FollowMeshGrading (the default) the sample density follows the mesh's element density:
+ * every triangle and tetrahedron draws as many dense samples, and the farthest-point selection
+ * measures distances in units of the local element size (sqrt of a triangle's area, cube root of
+ * a tetrahedron's volume). A graded CFD mesh is then sampled densely where it is fine (at the body)
+ * and sparsely in its far field; volumes of integration points stay true volumes. Off: samples
+ * are uniform in area and volume.
+ *
  * A surface-only input has no volume cells: then the embedding space around it is sampled, the
  * input's bounding box enlarged on every side by BoundsPadding times its diagonal.
  *
@@ -86,6 +93,13 @@ public:
   vtkGetMacro(BoundsPadding, double);
   ///@}
 
+  ///@{
+  /// Sample density follows the mesh's element density (default on); off: uniform.
+  vtkSetMacro(FollowMeshGrading, vtkTypeBool);
+  vtkGetMacro(FollowMeshGrading, vtkTypeBool);
+  vtkBooleanMacro(FollowMeshGrading, vtkTypeBool);
+  ///@}
+
 protected:
   vtkMLSSampler();
   ~vtkMLSSampler() override = default;
@@ -98,6 +112,7 @@ protected:
   double IntegrationPointRatio = 4.0;
   int LloydIterations = 5;
   double Cover = 5.0;
+  vtkTypeBool FollowMeshGrading = 1;
   int RandomSeed = 0;
   double SurfaceWeight = 10.0;
   int DenseSamplesPerSample = 10;

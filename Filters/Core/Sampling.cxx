@@ -16,10 +16,15 @@ namespace
 // weight is w = 1/2 cos(pi / 1.5) + 1/2 = 0.25.
 constexpr double SupportMargin = 1.5;
 
+// Dense random samples, each with the size of the element it was drawn from (its spacing, for
+// the farthest-point selection) and, in the volume, its share of the domain's volume.
 struct DenseSamples
 {
   PointList surface;
+  std::vector<double> surfaceSpacing;
   PointList volume;
+  std::vector<double> volumeSpacing;
+  std::vector<double> volumeShare; // sums to volumeOfDomain
   double volumeOfDomain = 0;
 };
 
@@ -33,40 +38,63 @@ double tetrahedronVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
   return std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
 }
 
-// Picks `count` elements with probability proportional to their measure.
+// Draws `count` elements of dimension `dimension` (2: triangles, 3: tetrahedra), each with
+// probability proportional to its measure, or, following the grading, the same for every element
+// of positive measure; each drawn point gets the spacing measure^(1/dimension) of its element (1
+// when uniform) and an importance weight measure / probability, scaled so that the weights sum
+// to the total measure (a Monte Carlo estimate of the measure nearest to each point).
 template <typename Measure, typename Draw>
-PointList sampleByMeasure(std::size_t elements, int count, Measure measure, Draw draw, std::mt19937_64& random, double& total)
+void sampleElements(std::size_t elements, int count, int dimension, bool followGrading, Measure measure, Draw draw,
+  std::mt19937_64& random, PointList& out, std::vector<double>& spacing, std::vector<double>* share, double& total)
 {
-  std::vector<double> cumulative(elements);
+  std::vector<double> measures(elements), cumulative(elements);
+  double drawn = 0;
   total = 0;
   for (std::size_t e = 0; e < elements; ++e)
   {
-    total += measure(e);
-    cumulative[e] = total;
+    measures[e] = measure(e);
+    total += measures[e];
+    drawn += followGrading ? (measures[e] > 0 ? 1.0 : 0.0) : measures[e];
+    cumulative[e] = drawn;
   }
-  PointList out;
   if (!(total > 0))
   {
-    return out;
+    return;
   }
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   out.reserve(count);
+  spacing.reserve(count);
+  double weights = 0;
   for (int i = 0; i < count; ++i)
   {
-    const double t = uniform(random) * total;
+    const double t = uniform(random) * drawn;
     const std::size_t e = std::min<std::size_t>(elements - 1, std::upper_bound(cumulative.begin(), cumulative.end(), t) - cumulative.begin());
     out.push_back(draw(e, uniform));
+    spacing.push_back(followGrading ? std::pow(measures[e], 1.0 / dimension) : 1.0);
+    if (share)
+    {
+      share->push_back(followGrading ? measures[e] : 1.0);
+      weights += share->back();
+    }
   }
-  return out;
+  if (share)
+  {
+    for (double& w : *share)
+    {
+      w *= total / weights;
+    }
+  }
 }
 
-DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int volumeCount, double padding, std::mt19937_64& random)
+DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int volumeCount, const SamplingParameters& parameters,
+  std::mt19937_64& random)
 {
   DenseSamples dense;
   const PointList& x = domain.points;
+  const bool grading = parameters.followMeshGrading;
   double area = 0;
-  dense.surface = sampleByMeasure(
-    domain.triangles.size(), surfaceCount,
+  sampleElements(
+    domain.triangles.size(), surfaceCount, 2, grading,
     [&](std::size_t t) {
       const auto& f = domain.triangles[t];
       return triangleArea(x[f[0]], x[f[1]], x[f[2]]);
@@ -76,13 +104,14 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
       const double r1 = std::sqrt(uniform(random)), r2 = uniform(random); // uniform in a triangle
       return Vec3((1 - r1) * x[f[0]] + r1 * (1 - r2) * x[f[1]] + r1 * r2 * x[f[2]]);
     },
-    random, area);
+    random, dense.surface, dense.surfaceSpacing, nullptr, area);
   if (dense.surface.empty())
   {
     dense.surface = x; // a point cloud (or only degenerate faces): the points are the surface
+    dense.surfaceSpacing.assign(x.size(), 1.0);
   }
-  dense.volume = sampleByMeasure(
-    domain.tetrahedra.size(), volumeCount,
+  sampleElements(
+    domain.tetrahedra.size(), volumeCount, 3, grading,
     [&](std::size_t t) {
       const auto& c = domain.tetrahedra[t];
       return tetrahedronVolume(x[c[0]], x[c[1]], x[c[2]], x[c[3]]);
@@ -110,12 +139,12 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
       }
       return Vec3((1 - s - u - v) * x[c[0]] + s * x[c[1]] + u * x[c[2]] + v * x[c[3]]);
     },
-    random, dense.volumeOfDomain);
+    random, dense.volume, dense.volumeSpacing, &dense.volumeShare, dense.volumeOfDomain);
   if (dense.volume.empty() && volumeCount > 0)
   {
-    // No volume cells: sample the padded bounding box around the input.
+    // No volume cells: sample the padded bounding box around the input (no grading to follow).
     BoundingBox box = boundingBox(x);
-    const double pad = padding * box.size().norm();
+    const double pad = parameters.boundsPadding * box.size().norm();
     box.lower.array() -= pad;
     box.upper.array() += pad;
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -126,6 +155,8 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
       dense.volume.push_back(box.lower + t.cwiseProduct(box.size()));
     }
     dense.volumeOfDomain = box.size().prod();
+    dense.volumeSpacing.assign(volumeCount, 1.0);
+    dense.volumeShare.assign(volumeCount, dense.volumeOfDomain / volumeCount);
   }
   return dense;
 }
@@ -146,9 +177,9 @@ PointList select(const PointList& points, const std::vector<int>& indices)
 PointList placeSites(const DenseSamples& dense, int surfaceCount, int volumeCount, const SamplingParameters& parameters,
   const PointList& allDense, const std::vector<double>& weights, std::uint64_t seed, int& surfaceSites)
 {
-  PointList sites = select(dense.surface, farthestPointSelection(dense.surface, surfaceCount, {}, seed));
+  PointList sites = select(dense.surface, farthestPointSelection(dense.surface, surfaceCount, {}, seed, dense.surfaceSpacing));
   surfaceSites = static_cast<int>(sites.size());
-  const PointList volumeSites = select(dense.volume, farthestPointSelection(dense.volume, volumeCount, sites, seed + 1));
+  const PointList volumeSites = select(dense.volume, farthestPointSelection(dense.volume, volumeCount, sites, seed + 1, dense.volumeSpacing));
   sites.insert(sites.end(), volumeSites.begin(), volumeSites.end());
   lloydRelaxation(sites, allDense, weights, parameters.lloydIterations);
   return sites;
@@ -182,25 +213,22 @@ void requireFinite(const PointList& points, const char* what)
   }
 }
 
-std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed)
+std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed,
+  const std::vector<double>& spacing)
 {
   std::vector<int> chosen;
   if (candidates.empty() || count <= 0)
   {
     return chosen;
   }
-  const KdTree candidateTree(candidates);
+  // A candidate's priority is its distance to the chosen points in units of its spacing.
+  const auto unit = [&](std::size_t i) { return spacing.empty() ? 1.0 : spacing[i]; };
+  // The tree's ball around candidate j holds the positions closer to it than its distance to the
+  // chosen points as last stored (an upper bound of the current one): only a new point inside
+  // that ball can bring j closer. Stored again whenever the number chosen doubles.
+  KdTree candidateTree(candidates);
   std::vector<double> minDistance(candidates.size(), std::numeric_limits<double>::infinity());
-  if (!alreadyChosen.empty())
-  {
-    const KdTree chosenTree(alreadyChosen);
-    for (std::size_t i = 0; i < candidates.size(); ++i)
-    {
-      minDistance[i] = (alreadyChosen[chosenTree.nearest(candidates[i])] - candidates[i]).norm();
-    }
-  }
-  // Max-heap with lazily refreshed entries: a stored distance is an upper bound of the current one.
-  std::priority_queue<std::pair<double, int>> heap;
+  std::priority_queue<std::pair<double, int>> heap; // lazily refreshed: a stored priority bounds the current one
   if (alreadyChosen.empty())
   {
     std::mt19937_64 random(seed);
@@ -208,37 +236,40 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
   }
   else
   {
+    const KdTree chosenTree(alreadyChosen);
     for (std::size_t i = 0; i < candidates.size(); ++i)
     {
-      heap.emplace(minDistance[i], static_cast<int>(i));
+      minDistance[i] = (alreadyChosen[chosenTree.nearest(candidates[i])] - candidates[i]).norm();
+      heap.emplace(minDistance[i] / unit(i), static_cast<int>(i));
     }
+    candidateTree.setRadii(minDistance);
   }
   std::vector<int> nearby;
-  double radius = std::numeric_limits<double>::infinity();
+  std::size_t storeAt = 1;
   while (static_cast<int>(chosen.size()) < count && !heap.empty())
   {
     const auto [stored, i] = heap.top();
     heap.pop();
-    if (stored > minDistance[i] && !chosen.empty())
+    const double priority = minDistance[i] / unit(i);
+    if (stored > priority && !chosen.empty())
     {
-      heap.emplace(minDistance[i], i);
+      heap.emplace(priority, i);
       continue;
     }
     if (!(minDistance[i] > 0))
     {
       break; // only duplicates of chosen points are left
     }
+    const bool first = chosen.empty() && alreadyChosen.empty();
     chosen.push_back(i);
-    radius = std::isfinite(minDistance[i]) ? minDistance[i] : radius;
-    // Only candidates closer than the current selection radius can get closer to the new point.
-    if (std::isfinite(radius))
-    {
-      candidateTree.withinRadius(candidates[i], radius, nearby);
-    }
-    else
+    if (first)
     {
       nearby.resize(candidates.size());
       std::iota(nearby.begin(), nearby.end(), 0);
+    }
+    else
+    {
+      candidateTree.containing(candidates[i], nearby);
     }
     for (int j : nearby)
     {
@@ -246,11 +277,16 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
       if (d < minDistance[j])
       {
         minDistance[j] = d;
-        if (chosen.size() == 1)
+        if (first)
         {
-          heap.emplace(d, j); // first selection: fill the heap
+          heap.emplace(d / unit(j), j); // fill the heap
         }
       }
+    }
+    if (chosen.size() == storeAt)
+    {
+      candidateTree.setRadii(minDistance);
+      storeAt *= 2;
     }
   }
   return chosen;
@@ -366,8 +402,7 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
 
   std::mt19937_64 random(parameters.randomSeed);
   // Volume dense samples are always drawn: they measure the Voronoi volumes of integration points.
-  DenseSamples dense = denseSampling(domain, perSample * (ks + ns), perSample * (kv + nv + ns),
-    parameters.boundsPadding, random);
+  DenseSamples dense = denseSampling(domain, perSample * (ks + ns), perSample * (kv + nv + ns), parameters, random);
   progress.report(0.1);
 
   PointList all = dense.surface;
@@ -392,10 +427,9 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
   if (!dense.volume.empty())
   {
     const KdTree tree(out.integrationPoints);
-    const double each = dense.volumeOfDomain / dense.volume.size();
-    for (const Vec3& p : dense.volume)
+    for (std::size_t i = 0; i < dense.volume.size(); ++i)
     {
-      out.volume[tree.nearest(p)] += each;
+      out.volume[tree.nearest(dense.volume[i])] += dense.volumeShare[i];
     }
   }
   progress.report(0.8);

@@ -32,6 +32,12 @@ struct SamplingParameters
   double surfaceWeight = 10;         // weight of a dense surface sample in the Lloyd step (volume: 1)
   int denseSamplesPerSample = 10;    // dense random samples per selected sample or point
   double boundsPadding = 0.1;        // fraction of the bounding-box diagonal, for surface-only input
+  // Samples follow the mesh's own grading: every triangle and tetrahedron draws as many dense
+  // samples (instead of as many per area or volume), and the farthest-point selection measures
+  // distances in units of the local element size, so sample density follows element density
+  // (a snappyHexMesh case: dense at the refined body, sparse at the far field). Off: uniform in
+  // area and volume, as in the paper's CAD examples.
+  bool followMeshGrading = true;
 };
 
 struct Samples
@@ -49,8 +55,12 @@ struct Samples
 Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress = {});
 
 /// Farthest-point selection of up to count indices of candidates, starting from the points
-/// already chosen (or from a random candidate). Stops early when only duplicates remain.
-std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed);
+/// already chosen (or from a random candidate): each step takes the candidate farthest from the
+/// chosen ones in units of its spacing (distance / spacing[i]; empty spacing: 1, plain
+/// distance), so that selected points lie about as far apart as their spacing says. Stops early
+/// when only duplicates remain.
+std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed,
+  const std::vector<double>& spacing = {});
 
 /// Weighted Lloyd relaxation: each site moves to the weighted barycenter of the dense points
 /// closest to it.

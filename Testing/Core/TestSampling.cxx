@@ -147,6 +147,49 @@ TEST(VolumeSamplingCoversTheDomain)
   CHECK(surface < 0.5 * volume);
 }
 
+TEST(SamplesFollowTheMeshGrading)
+{
+  // A unit cube of 8^3 cells beside one of 4^3: the left half holds 8/9 of the elements.
+  SamplingDomain graded = testgeometry::tetrahedralBox(8, Vec3(1, 1, 1));
+  const SamplingDomain coarse = testgeometry::tetrahedralBox(4, Vec3(1, 1, 1));
+  const int offset = static_cast<int>(graded.points.size());
+  for (const Vec3& x : coarse.points)
+    graded.points.push_back(x + Vec3(1, 0, 0));
+  for (auto t : coarse.triangles)
+    graded.triangles.push_back({ t[0] + offset, t[1] + offset, t[2] + offset });
+  for (auto t : coarse.tetrahedra)
+    graded.tetrahedra.push_back({ t[0] + offset, t[1] + offset, t[2] + offset, t[3] + offset });
+  for (bool follow : { false, true })
+  {
+    SamplingParameters p = smallParameters();
+    p.followMeshGrading = follow;
+    const Samples samples = sampleDomain(graded, p);
+    int left = 0, leftIntegration = 0;
+    double total = 0, leftVolume = 0;
+    for (const Vec3& c : samples.centers)
+      left += c.x() < 1;
+    for (std::size_t i = 0; i < samples.integrationPoints.size(); ++i)
+    {
+      total += samples.volume[i];
+      leftIntegration += samples.integrationPoints[i].x() < 1;
+      leftVolume += samples.integrationPoints[i].x() < 1 ? samples.volume[i] : 0;
+    }
+    const double fraction = double(left) / samples.centers.size(), integrationFraction = double(leftIntegration) / samples.integrationPoints.size();
+    std::printf("follow grading %d: %.3f of the samples and %.3f of the integration points in the fine half, holding %.4f of the volume (of %.12g)\n",
+      follow, fraction, integrationFraction, leftVolume / total, total);
+    // V_i are volumes whatever the density: they add up to the domain's volume (2), up to the
+    // rounding of 8500 shares of size ~1e-3, and the two halves' shares to about 1 each (Monte
+    // Carlo with ~1000 dense samples per half at least: a few percent, plus the cells of
+    // integration points that straddle x = 1)
+    CHECK_NEAR(total, 2.0, 1e-11);
+    CHECK_NEAR(leftVolume / total, 0.5, 0.1);
+    // uniform: about half of the samples in either half; following the grading: nearer 8/9 (the
+    // element share) than 1/2 in both sets
+    const double split = 0.5 * (0.5 + 8.0 / 9.0);
+    CHECK(follow ? fraction > split && integrationFraction > split : fraction < split && integrationFraction < split);
+  }
+}
+
 TEST(SurfaceOnlyInputSamplesPaddedBox)
 {
   const SamplingDomain plane = testgeometry::triangulatedPlane(10, 10, 1, 1);
