@@ -1,7 +1,9 @@
 #include "vtkConstraintRegion.h"
 
+#include "KdTree.h"
 #include "MLSGeometry.h"
 
+#include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>
@@ -10,6 +12,7 @@
 #include <vtkImplicitFunction.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkMath.h>
 #include <vtkMatrix4x4.h>
@@ -26,48 +29,173 @@ vtkStandardNewMacro(vtkConstraintRegion);
 
 namespace
 {
-// The points of the sets inside the function (mode ImplicitFunction), with values[s] within range
-// (mode ArrayRange) or with primitive among the components of values[s] (mode Primitive; sets
-// without the array contribute nothing), or all (mode AllPoints).
-mlsdeform::PointList selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values, int mode,
-  vtkImplicitFunction* function, bool insideOut, const double range[2], int primitive)
+// The point rules: a point inside the function (mode ImplicitFunction), with its value within
+// range (mode ArrayRange) or with primitive among the components of its value (mode Primitive;
+// a set without the array has none), or any point (mode AllPoints).
+struct PointRule
 {
-  mlsdeform::PointList selected;
-  for (std::size_t s = 0; s < sets.size(); ++s)
+  int mode = vtkConstraintRegion::AllPoints;
+  vtkImplicitFunction* function = nullptr;
+  bool insideOut = false;
+  const double* range = nullptr;
+  int primitive = 0;
+
+  bool selects(vtkPointSet* set, vtkDataArray* values, vtkIdType i) const
   {
-    if ((mode == vtkConstraintRegion::ArrayRange || mode == vtkConstraintRegion::Primitive) && !values[s])
+    if ((mode == vtkConstraintRegion::ArrayRange || mode == vtkConstraintRegion::Primitive) && !values)
     {
-      continue;
+      return false;
     }
-    for (vtkIdType i = 0; i < sets[s]->GetNumberOfPoints(); ++i)
+    if (mode == vtkConstraintRegion::ImplicitFunction)
     {
-      mlsdeform::Vec3 x;
-      sets[s]->GetPoint(i, x.data());
-      bool take = true;
-      if (mode == vtkConstraintRegion::ImplicitFunction)
+      double x[3];
+      set->GetPoint(i, x);
+      return (function->FunctionValue(x) <= 0) != insideOut;
+    }
+    if (mode == vtkConstraintRegion::ArrayRange)
+    {
+      const double v = values->GetComponent(i, 0);
+      return v >= range[0] && v <= range[1];
+    }
+    if (mode == vtkConstraintRegion::Primitive)
+    {
+      for (int c = 0; c < values->GetNumberOfComponents(); ++c)
       {
-        take = (function->FunctionValue(x.data()) <= 0) != insideOut;
-      }
-      else if (mode == vtkConstraintRegion::ArrayRange)
-      {
-        const double v = values[s]->GetComponent(i, 0);
-        take = v >= range[0] && v <= range[1];
-      }
-      else if (mode == vtkConstraintRegion::Primitive)
-      {
-        take = false;
-        for (int c = 0; c < values[s]->GetNumberOfComponents(); ++c)
+        if (values->GetComponent(i, c) == primitive)
         {
-          take = take || values[s]->GetComponent(i, c) == primitive;
+          return true;
         }
       }
-      if (take)
+      return false;
+    }
+    return true;
+  }
+};
+
+// The cells of set within `layers` cell layers of the surface's points (those within tolerance
+// of a point of set): layer 1 holds the cells with such a point, layer n + 1 the cells that share
+// a point with layer n.
+std::vector<char> cellLayers(vtkPointSet* set, const mlsdeform::KdTree& surface, const mlsdeform::PointList& surfacePoints,
+  double tolerance, int layers)
+{
+  std::vector<char> reached(set->GetNumberOfPoints(), 0), cells(set->GetNumberOfCells(), 0);
+  for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+  {
+    mlsdeform::Vec3 x;
+    set->GetPoint(i, x.data());
+    reached[i] = (surfacePoints[surface.nearest(x)] - x).norm() <= tolerance;
+  }
+  vtkNew<vtkIdList> ids;
+  for (int layer = 0; layer < layers; ++layer)
+  {
+    std::vector<char> next = reached;
+    for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
+    {
+      if (cells[c])
       {
-        selected.push_back(x);
+        continue;
+      }
+      set->GetCellPoints(c, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds() && !cells[c]; ++k)
+      {
+        cells[c] = reached[ids->GetId(k)];
+      }
+      for (vtkIdType k = 0; cells[c] && k < ids->GetNumberOfIds(); ++k)
+      {
+        next[ids->GetId(k)] = 1;
+      }
+    }
+    reached = std::move(next);
+  }
+  return cells;
+}
+
+// What a region selects: positions, and with cell sets the set of each position.
+struct SelectedPositions
+{
+  mlsdeform::PointList positions;
+  std::vector<double> sets; // empty: one set
+};
+
+// Points of the sets by the point rule, or (cell-based) the points of the chosen cells: each
+// cell's points in turn with its set number (cellSets), or each point of a chosen cell once.
+// Cells are chosen by layers around the surface (mode CellLayers) or when all their points
+// follow the rule; with cell sets only cells of dimension 2 or 3 count.
+SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values,
+  const PointRule& rule, bool cellSets, const mlsdeform::PointList& surface, int layers)
+{
+  SelectedPositions out;
+  const bool byLayers = rule.mode == vtkConstraintRegion::CellLayers;
+  mlsdeform::KdTree surfaceTree;
+  double tolerance = 0;
+  if (byLayers)
+  {
+    surfaceTree.build(surface);
+    // a patch and the mesh share their points up to float round-off (1e-7 relative)
+    tolerance = 1e-6 * mlsdeform::boundingBox(mlsgeometry::points(sets)).size().norm();
+  }
+  vtkNew<vtkIdList> ids;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    vtkPointSet* set = sets[s];
+    std::vector<char> chosen(set->GetNumberOfPoints());
+    if (!byLayers)
+    {
+      for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+      {
+        chosen[i] = rule.selects(set, values[s], i);
+      }
+      if (!cellSets)
+      {
+        for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+        {
+          if (chosen[i])
+          {
+            out.positions.emplace_back();
+            set->GetPoint(i, out.positions.back().data());
+          }
+        }
+        continue;
+      }
+    }
+    const std::vector<char> layerCells = byLayers ? cellLayers(set, surfaceTree, surface, tolerance, layers) : std::vector<char>();
+    std::vector<char> used(set->GetNumberOfPoints(), 0);
+    for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
+    {
+      set->GetCellPoints(c, ids);
+      bool take = byLayers ? layerCells[c] != 0 : ids->GetNumberOfIds() > 0;
+      for (vtkIdType k = 0; take && !byLayers && k < ids->GetNumberOfIds(); ++k)
+      {
+        take = chosen[ids->GetId(k)];
+      }
+      if (!take || (cellSets && vtkCellTypes::GetDimension(set->GetCellType(c)) < 2))
+      {
+        continue;
+      }
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        if (cellSets)
+        {
+          out.positions.emplace_back();
+          set->GetPoint(ids->GetId(k), out.positions.back().data());
+          out.sets.push_back(static_cast<double>(out.sets.empty() ? 0 : out.sets.back() + (k == 0)));
+        }
+        else
+        {
+          used[ids->GetId(k)] = 1;
+        }
+      }
+    }
+    for (vtkIdType i = 0; !cellSets && i < set->GetNumberOfPoints(); ++i)
+    {
+      if (used[i])
+      {
+        out.positions.emplace_back();
+        set->GetPoint(i, out.positions.back().data());
       }
     }
   }
-  return selected;
+  return out;
 }
 
 // The role that keeps a primitive of that type (vtkPrimitiveDetector's codes), -1 for none.
@@ -97,11 +225,13 @@ struct SelectionInputs
   bool insideOut = false;
   double range[2] = { 0, 0 };
   int primitive = -1;
+  int layers = 0;
+  bool cellSets = false;
   mlsgeometry::Stamp stamp;
   bool operator==(const SelectionInputs& o) const
   {
     return mode == o.mode && insideOut == o.insideOut && range[0] == o.range[0] && range[1] == o.range[1] &&
-      primitive == o.primitive && stamp == o.stamp;
+      primitive == o.primitive && layers == o.layers && cellSets == o.cellSets && stamp == o.stamp;
   }
 };
 
@@ -114,6 +244,7 @@ struct vtkConstraintRegion::Selection
   SelectionInputs inputs;
   bool valid = false;
   mlsdeform::PointList positions;
+  std::vector<double> sets;
   vtkSmartPointer<vtkPolyData> cloud;
   vtkSmartPointer<vtkDoubleArray> displacement;
 };
@@ -121,6 +252,7 @@ struct vtkConstraintRegion::Selection
 vtkConstraintRegion::vtkConstraintRegion()
   : Selected(new Selection)
 {
+  this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
 
@@ -151,9 +283,13 @@ vtkMTimeType vtkConstraintRegion::GetMTime()
   return time;
 }
 
-int vtkConstraintRegion::FillInputPortInformation(int, vtkInformation* info)
+int vtkConstraintRegion::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1); // the Surface of mode CellLayers
+  }
   return 1;
 }
 
@@ -171,6 +307,13 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
   {
     vtkErrorMacro(<< "Role FromPrimitive needs SelectionMode Primitive (a Primitive Detector's output as input).");
+    return 0;
+  }
+  vtkDataObject* surfaceInput = this->GetNumberOfInputConnections(1) > 0 ? vtkDataObject::GetData(inputVector[1], 0) : nullptr;
+  const std::vector<vtkPointSet*> surfaceSets = surfaceInput ? mlsgeometry::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
+  if (this->SelectionMode == CellLayers && mlsgeometry::points(surfaceSets).empty())
+  {
+    vtkErrorMacro(<< "SelectionMode CellLayers needs a Surface input with points (e.g. the wall patch whose layer cells are selected).");
     return 0;
   }
   int role = this->Role;
@@ -211,6 +354,12 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
       }
     }
   }
+  if (this->CellSets && (role < Planarity || role > Rigid))
+  {
+    vtkErrorMacro(<< "CellSets makes a constraint set of every cell: it applies to the roles Planarity, Circularity, Cylinder, "
+                     "FeatureLine and Rigid, not to " << GetRoleName(role) << ".");
+    return 0;
+  }
   // Select positions, unless only the motion or the weight changed since the last selection.
   SelectionInputs inputs;
   inputs.mode = this->SelectionMode;
@@ -218,7 +367,17 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   inputs.range[0] = this->Range[0];
   inputs.range[1] = this->Range[1];
   inputs.primitive = this->PrimitiveId;
+  const bool byCells = this->CellSets || this->SelectionMode == CellLayers;
+  inputs.layers = this->SelectionMode == CellLayers ? this->NumberOfLayers : 0;
+  inputs.cellSets = this->CellSets;
   inputs.stamp = mlsgeometry::pointsStamp(sets);
+  if (byCells)
+  {
+    for (const mlsgeometry::Stamp& more : { mlsgeometry::cellsStamp(sets), mlsgeometry::pointsStamp(surfaceSets) })
+    {
+      inputs.stamp.objects.insert(inputs.stamp.objects.end(), more.objects.begin(), more.objects.end());
+    }
+  }
   inputs.stamp.add(this->Region);
   for (vtkDataArray* array : values)
   {
@@ -228,9 +387,13 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   if (!selection.valid || !(inputs == selection.inputs))
   {
     selection.valid = false;
-    selection.positions =
-      selectPositions(sets, values, this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId);
-    selection.cloud = mlsgeometry::pointCloud(selection.positions, {});
+    const PointRule rule{ this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId };
+    SelectedPositions chosen = selectPositions(sets, values, rule, this->CellSets,
+      this->SelectionMode == CellLayers ? mlsgeometry::points(surfaceSets) : mlsdeform::PointList(), this->NumberOfLayers);
+    selection.positions = std::move(chosen.positions);
+    selection.sets = std::move(chosen.sets);
+    selection.cloud = this->CellSets ? mlsgeometry::pointCloud(selection.positions, { { "ConstraintSet", &selection.sets } })
+                                     : mlsgeometry::pointCloud(selection.positions, {});
     selection.inputs = std::move(inputs);
     selection.valid = true;
     ++this->NumberOfSelections;
@@ -309,6 +472,8 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "InsideOut: " << this->InsideOut << "\n"
      << indent << "Range: " << this->Range[0] << " " << this->Range[1] << "\n"
      << indent << "PrimitiveId: " << this->PrimitiveId << "\n"
+     << indent << "NumberOfLayers: " << this->NumberOfLayers << "\n"
+     << indent << "CellSets: " << this->CellSets << "\n"
      << indent << "Translation: " << this->Translation[0] << " " << this->Translation[1] << " " << this->Translation[2] << "\n"
      << indent << "Rotation: " << this->Rotation[0] << " " << this->Rotation[1] << " " << this->Rotation[2] << "\n"
      << indent << "Scale: " << this->Scale[0] << " " << this->Scale[1] << " " << this->Scale[2] << "\n"

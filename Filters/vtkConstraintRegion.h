@@ -14,9 +14,18 @@
  *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
  *    sphere or a cone.
  *
+ * Cells instead of points: SelectionMode CellLayers selects the cells within NumberOfLayers cell
+ * layers of the points of the Surface input (port 1; e.g. the boundary-layer cells along a wall
+ * patch of a CFD mesh: layer 1 holds the cells with a point on the surface, layer n + 1 the cells
+ * that share a point with layer n). With CellSets on, a constraint role applies to every selected
+ * cell on its own (paper section 7.3: each boundary-layer cell rigid): each cell of dimension 2 or
+ * 3 with all its points selected (CellLayers: each selected cell) is one constraint set.
+ *
  * Output: vtkPolyData with the selected positions as vertices, point array
  * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
- * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight". Plug it into MLSDeform's Regions input.
+ * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight".
+ * With CellSets, each cell's points in turn (a point of several cells once per cell) and point
+ * array "ConstraintSet" (the set a position belongs to). Plug it into MLSDeform's Regions input.
  */
 #ifndef vtkConstraintRegion_h
 #define vtkConstraintRegion_h
@@ -52,7 +61,8 @@ public:
     ImplicitFunction = 0, // points with Region(x) <= 0 (> 0 with InsideOut)
     ArrayRange,           // points whose SelectionArray value (component 0) is within Range
     AllPoints,            // every input point (for use after Extract Selection)
-    Primitive             // points whose PrimitiveIds (vtkPrimitiveDetector) contain PrimitiveId
+    Primitive,            // points whose PrimitiveIds (vtkPrimitiveDetector) contain PrimitiveId
+    CellLayers            // the points of the cells within NumberOfLayers layers of the Surface input's points
   };
 
   ///@{
@@ -63,7 +73,7 @@ public:
 
   ///@{
   /// How the positions are selected (default ImplicitFunction).
-  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, Primitive);
+  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, CellLayers);
   vtkGetMacro(SelectionMode, int);
   ///@}
 
@@ -93,6 +103,23 @@ public:
   vtkSetVector2Macro(Range, double);
   vtkGetVector2Macro(Range, double);
   void SetSelectionArray(const char* name);
+  ///@}
+
+  ///@{
+  /// Mode CellLayers: how many cell layers from the Surface input are selected (default 3).
+  vtkSetClampMacro(NumberOfLayers, int, 1, 1000);
+  vtkGetMacro(NumberOfLayers, int);
+  ///@}
+
+  /// Mode CellLayers: the surface (port 1) whose points start the layers, e.g. a wall patch.
+  void SetSurfaceConnection(vtkAlgorithmOutput* surface) { this->SetInputConnection(1, surface); }
+
+  ///@{
+  /// A constraint set per cell instead of one for the region (default off): for the constraint
+  /// roles Planarity to Rigid.
+  vtkSetMacro(CellSets, bool);
+  vtkGetMacro(CellSets, bool);
+  vtkBooleanMacro(CellSets, bool);
   ///@}
 
   ///@{
@@ -142,6 +169,8 @@ protected:
   bool InsideOut = false;
   double Range[2] = { 0.0, 1.0 };
   int PrimitiveId = 0;
+  int NumberOfLayers = 3;
+  bool CellSets = false;
   double Translation[3] = { 0.0, 0.0, 0.0 };
   double Rotation[3] = { 0.0, 0.0, 0.0 };
   double Scale[3] = { 1.0, 1.0, 1.0 };

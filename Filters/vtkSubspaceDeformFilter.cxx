@@ -26,7 +26,10 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <chrono>
+#include <map>
+#include <set>
 #include <memory>
 #include <tuple>
 
@@ -49,6 +52,8 @@ struct RegionInput
   double weight = 1;
   mlsgeometry::Stamp stamp;
   PointList positions;
+  std::vector<int> sets; // a ConstraintSet per position (a ConstraintRegion with CellSets), or empty
+  int setCount = 1;      // the number of distinct sets
   long version = -1;
   vtkDataArray* displacement = nullptr; // this update's PrescribedDisplacement
 };
@@ -74,6 +79,31 @@ ConstraintType constraintType(int role)
       return ConstraintType::Slip;
     default:
       return ConstraintType::Planarity;
+  }
+}
+
+// The constraint sets of a constraint region: one, or one per ConstraintSet value (a
+// ConstraintRegion with CellSets: every cell). A set's weight is its share of the region's
+// positions times the region's weight, so that the sets of a region together weigh as the region
+// would as one set (every term is a mean square, ShapeConstraints.h).
+void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& shapes)
+{
+  const ConstraintType type = constraintType(region.role);
+  if (region.sets.empty())
+  {
+    shapes.push_back({ type, region.positions, region.weight });
+    return;
+  }
+  std::map<int, PointList> sets;
+  for (std::size_t i = 0; i < region.positions.size(); ++i)
+  {
+    sets[region.sets[i]].push_back(region.positions[i]);
+  }
+  const double share = region.weight / static_cast<double>(region.positions.size());
+  for (auto& [id, positions] : sets)
+  {
+    const double weight = share * static_cast<double>(positions.size());
+    shapes.push_back({ type, std::move(positions), weight });
   }
 }
 
@@ -106,9 +136,23 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     {
       PointList positions = mlsgeometry::points({ data });
       requireFinite(positions, (which + " positions").c_str());
-      if (positions != region.positions || region.version < 0)
+      std::vector<int> sets;
+      if (vtkDataArray* setArray = data->GetPointData()->GetArray("ConstraintSet"))
+      {
+        for (vtkIdType i = 0; i < setArray->GetNumberOfTuples(); ++i)
+        {
+          sets.push_back(static_cast<int>(setArray->GetTuple1(i)));
+        }
+      }
+      if (!sets.empty() && sets.size() != positions.size())
+      {
+        throw InvalidInputException(which + ": one ConstraintSet per point is needed");
+      }
+      if (positions != region.positions || sets != region.sets || region.version < 0)
       {
         region.positions = std::move(positions);
+        region.sets = std::move(sets);
+        region.setCount = region.sets.empty() ? 1 : static_cast<int>(std::set<int>(region.sets.begin(), region.sets.end()).size());
         region.version = nextVersion++;
       }
       region.stamp = std::move(stamp);
@@ -250,9 +294,9 @@ Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
   return kept;
 }
 
-// Field data with one tuple per constraint region: type, points, residual (largest distance to
-// the projection, relative to the bounding-box diagonal), iterations, converged. Returns the
-// largest relative residual.
+// Field data with one tuple per constraint region: type, points, sets, residual (largest distance
+// to the projection over its sets, relative to the bounding-box diagonal), iterations, converged.
+// Returns the largest relative residual.
 double reportConstraints(
   vtkFieldData* field, const std::vector<RegionInput>& regions, const SpaceDeformation::Solution& solution, const PointList& points)
 {
@@ -271,21 +315,26 @@ double reportConstraints(
   const double diagonal = boundingBox(points).size().norm();
   vtkNew<vtkStringArray> type;
   type->SetName("ConstraintType");
-  vtkNew<vtkIntArray> count, iterations, converged;
+  vtkNew<vtkIntArray> count, setCount, iterations, converged;
   count->SetName("ConstraintPoints");
+  setCount->SetName("ConstraintSets");
   iterations->SetName("ConstraintIterations");
   converged->SetName("ConstraintConverged");
   vtkNew<vtkDoubleArray> residual;
   residual->SetName("ConstraintResidual");
-  for (std::size_t t = 0; t < constraints.size(); ++t)
+  std::size_t set = 0; // a region's sets are consecutive (addConstraintSets)
+  for (const RegionInput* r : constraints)
   {
-    type->InsertNextValue(constraintName(constraintType(constraints[t]->role)));
-    count->InsertNextValue(static_cast<int>(constraints[t]->positions.size()));
-    residual->InsertNextValue(solution.constraintResidual[t] / diagonal);
+    type->InsertNextValue(constraintName(constraintType(r->role)));
+    count->InsertNextValue(static_cast<int>(r->positions.size()));
+    setCount->InsertNextValue(r->setCount);
+    const auto begin = solution.constraintResidual.begin() + static_cast<long>(set);
+    residual->InsertNextValue(*std::max_element(begin, begin + r->setCount) / diagonal);
+    set += static_cast<std::size_t>(r->setCount);
     iterations->InsertNextValue(solution.iterations);
     converged->InsertNextValue(solution.converged ? 1 : 0);
   }
-  for (vtkAbstractArray* array : std::initializer_list<vtkAbstractArray*>{ type, count, residual, iterations, converged })
+  for (vtkAbstractArray* array : std::initializer_list<vtkAbstractArray*>{ type, count, setCount, residual, iterations, converged })
   {
     field->AddArray(array);
   }
@@ -506,7 +555,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       {
         if (isConstraint(r.role))
         {
-          shapes.push_back({ constraintType(r.role), r.positions, r.weight });
+          addConstraintSets(r, shapes);
         }
       }
       cache.constraintsSet = cache.factorized = false;

@@ -98,17 +98,17 @@ private:
   struct Set
   {
     ShapeConstraint constraint;
-    SparseRowMatrix subspace;           // Phi_t
-    SparseRowMatrix transposedSubspace; // Phi_t^T, for the right-hand side of every iteration
+    long begin = 0;                   // its first row in Subspace: Phi_t = rows begin .. begin + n_t
     int pivot = 0;                    // p of the sparse formulation
     double scale = 1;                 // weight_t / n_t
     Vec3 restAxis = Vec3::Zero();     // the cylinder fit's axis of the rest positions
     Plane restPlane;                  // the slip constraint's plane of the rest positions
     int slipAxis = -1;                // the axis a slip plane is normal to, or -1
   };
-  PointList positionsOf(const Set& set, const Displacements& w) const;
 
   std::vector<Set> Sets;
+  SparseRowMatrix Subspace;           // Phi at every set's positions, the sets in turn
+  SparseRowMatrix TransposedSubspace; // its transpose, for the right-hand side of every iteration
   ConstraintFormulation Formulation;
   SparseMatrix Normal;
   SparseMatrix AxisNormals[3];
