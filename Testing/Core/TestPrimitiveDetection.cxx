@@ -330,12 +330,15 @@ TEST(SeparatePrimitivesWithNoiseOf0_05PercentAreWhole)
 TEST(SeparatePrimitivesWithNoiseOf0_1PercentAreWhole)
 {
   checkWholeWithNoise(0.001);
+  checkWholeWithNoise(0.001, 0.04, 8, 4); // a box face that a cone of a far apex fits closer than the plane
 }
 
 TEST(CoarseSeparatePrimitivesAreWhole)
 {
   checkWholeWithNoise(0.0001, 0.1, 1, 3);
   checkWholeWithNoise(0.0002, 0.1, 4);
+  // a box face whose noise a cone of a far apex fits closer than the plane
+  checkWholeWithNoise(0.001, 0.1, 4, 3);
 }
 
 TEST(SameSeedSameResultWithAnyThreadCount)
