@@ -1,5 +1,6 @@
 #include "MLSGeometry.h"
 
+#include <algorithm>
 #include <array>
 #include <vtkAlgorithm.h>
 #include <vtkCell.h>
@@ -99,25 +100,64 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
 
 namespace
 {
+// The tetrahedra of a polyhedron, star-shaped about its first point (OpenFOAM's cells are):
+// that point joined to a fan of triangles of every face that does not hold it. VTK's
+// vtkPolyhedron::Triangulate builds a Delaunay tetrahedralization and a polyhedron object per
+// cell, most of the sampling's time on a snappyHexMesh mesh.
+template <typename Add>
+void polyhedronTetrahedra(vtkUnstructuredGrid* grid, vtkIdType cell, Add add)
+{
+  vtkIdType faces = 0;
+  const vtkIdType* stream = nullptr;
+  grid->GetFaceStream(cell, faces, stream);
+  if (faces <= 0 || !stream)
+  {
+    return;
+  }
+  const vtkIdType apex = stream[1];
+  for (vtkIdType f = 0; f < faces; ++f)
+  {
+    const vtkIdType n = *stream++;
+    const vtkIdType* face = stream;
+    stream += n;
+    if (std::find(face, face + n, apex) != face + n)
+    {
+      continue;
+    }
+    for (vtkIdType v = 1; v + 1 < n; ++v)
+    {
+      add({ apex, face[0], face[v], face[v + 1] });
+    }
+  }
+}
+
 // Splits every cell of the given dimension into simplices (triangles or tetrahedra): simplices
-// are taken as they are, other cells are triangulated.
+// are taken as they are, polygons become fans, polyhedra tetrahedra about a point, other cells
+// are triangulated by VTK.
 template <std::size_t N>
 void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
 {
   const int simplexType = N == 3 ? VTK_TRIANGLE : VTK_TETRA;
-  // one cell per type: a vtkGenericCell rebuilds its cell (a polyhedron: costly) on every type change
-  std::array<vtkSmartPointer<vtkGenericCell>, VTK_NUMBER_OF_CELL_TYPES> cells;
+  CellsByType cells;
   vtkNew<vtkIdList> ids;
   vtkNew<vtkPoints> pts;
-  auto add = [&](vtkIdType first) {
-    std::array<int, N> simplex;
+  auto addIds = [&](const std::array<vtkIdType, N>& simplex) {
+    std::array<int, N> mapped;
     for (std::size_t v = 0; v < N; ++v)
     {
-      const vtkIdType id = ids->GetId(first + v);
-      simplex[v] = offset + static_cast<int>(pointMap ? pointMap[id] : id);
+      mapped[v] = offset + static_cast<int>(pointMap ? pointMap[simplex[v]] : simplex[v]);
     }
-    out.push_back(simplex);
+    out.push_back(mapped);
   };
+  auto add = [&](vtkIdType first) {
+    std::array<vtkIdType, N> simplex;
+    for (std::size_t v = 0; v < N; ++v)
+    {
+      simplex[v] = ids->GetId(first + static_cast<vtkIdType>(v));
+    }
+    addIds(simplex);
+  };
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
   for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
   {
     const int type = set->GetCellType(c);
@@ -131,13 +171,27 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     {
       continue;
     }
-    vtkSmartPointer<vtkGenericCell>& cell = cells[type];
-    if (!cell)
+    if constexpr (N == 3)
     {
-      cell = vtkSmartPointer<vtkGenericCell>::New();
+      if (type == VTK_POLYGON || type == VTK_QUAD)
+      {
+        set->GetCellPoints(c, ids);
+        for (vtkIdType v = 1; v + 1 < ids->GetNumberOfIds(); ++v)
+        {
+          addIds({ ids->GetId(0), ids->GetId(v), ids->GetId(v + 1) });
+        }
+        continue;
+      }
     }
-    set->GetCell(c, cell);
-    if (!cell->Triangulate(0, ids, pts))
+    else
+    {
+      if (type == VTK_POLYHEDRON && grid)
+      {
+        polyhedronTetrahedra(grid, c, addIds);
+        continue;
+      }
+    }
+    if (!cells.get(set, c)->Triangulate(0, ids, pts))
     {
       continue;
     }
@@ -187,6 +241,21 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)
     }
   }
   return domain;
+}
+
+vtkGenericCell* CellsByType::get(vtkDataSet* set, vtkIdType cell)
+{
+  const auto type = static_cast<std::size_t>(set->GetCellType(cell));
+  if (Cells.size() <= type)
+  {
+    Cells.resize(type + 1);
+  }
+  if (!Cells[type])
+  {
+    Cells[type] = vtkSmartPointer<vtkGenericCell>::New();
+  }
+  set->GetCell(cell, Cells[type]);
+  return Cells[type];
 }
 
 void Stamp::add(vtkObject* object)

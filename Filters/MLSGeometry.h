@@ -12,6 +12,8 @@
 #include <vector>
 
 class vtkDataObject;
+class vtkDataSet;
+class vtkGenericCell;
 class vtkObject;
 class vtkPointSet;
 class vtkPolyData;
@@ -28,6 +30,17 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
 /// Surface triangles and volume tetrahedra of the point sets (indices into points(sets)). When
 /// there are 3D cells but no 2D cells, the boundary faces of the 3D cells are the surface.
 mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets);
+
+/// A cell of a dataset in a vtkGenericCell kept per cell type: one vtkGenericCell rebuilds its
+/// cell whenever the type changes, and a polyhedron's rebuild costs more than what is done with it.
+class CellsByType
+{
+public:
+  vtkGenericCell* get(vtkDataSet* set, vtkIdType cell);
+
+private:
+  std::vector<vtkSmartPointer<vtkGenericCell>> Cells;
+};
 
 /// Identifies versions of VTK data by VTK's own change tracking: the objects and their
 /// modification times. A modification gives an object a newer MTime than any before it, and a

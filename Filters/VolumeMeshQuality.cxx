@@ -1,8 +1,10 @@
 #include "VolumeMeshQuality.h"
 
+#include "MLSGeometry.h"
 #include "Sampling.h"
 
 #include <vtkCell.h>
+#include <vtkCellTypes.h>
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkMeshQuality.h>
@@ -18,14 +20,28 @@ namespace mlsgeometry
 std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
 {
   std::vector<mlsdeform::CellFaces> cells(grid->GetNumberOfCells());
-  vtkNew<vtkGenericCell> cell;
+  CellsByType byType;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    grid->GetCell(c, cell);
-    if (cell->GetCellDimension() != 3)
+    if (grid->GetCellType(c) == VTK_POLYHEDRON)
+    {
+      // the faces as stored: no polyhedron object
+      vtkIdType faces = 0;
+      const vtkIdType* stream = nullptr;
+      grid->GetFaceStream(c, faces, stream);
+      for (vtkIdType f = 0; f < faces; ++f)
+      {
+        const vtkIdType n = *stream++;
+        cells[c].emplace_back(stream, stream + n);
+        stream += n;
+      }
+      continue;
+    }
+    if (vtkCellTypes::GetDimension(grid->GetCellType(c)) != 3)
     {
       continue;
     }
+    vtkGenericCell* cell = byType.get(grid, c);
     for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
     {
       vtkIdList* ids = cell->GetFace(f)->GetPointIds();
@@ -43,12 +59,16 @@ std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
 {
   std::vector<double> jacobians(grid->GetNumberOfCells(), std::numeric_limits<double>::quiet_NaN());
-  vtkNew<vtkGenericCell> generic;
+  CellsByType byType;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    grid->GetCell(c, generic);
-    vtkCell* cell = generic->GetRepresentativeCell();
-    switch (generic->GetCellType())
+    const int type = grid->GetCellType(c);
+    if (type != VTK_TETRA && type != VTK_HEXAHEDRON && type != VTK_WEDGE && type != VTK_PYRAMID)
+    {
+      continue; // verdict has no scaled Jacobian for it
+    }
+    vtkCell* cell = byType.get(grid, c)->GetRepresentativeCell();
+    switch (type)
     {
       case VTK_TETRA:
         jacobians[c] = vtkMeshQuality::TetScaledJacobian(cell);
