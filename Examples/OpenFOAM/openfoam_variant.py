@@ -20,12 +20,24 @@ def patch_region(reader, patch, role, **properties):
     return pvs.ConstraintRegion(Input=block, Role=role, SelectionMode='AllPoints', **properties)
 
 
-def morph(reader, handle, translation, fixed=(), slip=(), **settings):
+def layer_region(reader, patch, layers):
+    """A Rigid Constraint Region that keeps every cell within `layers` cell layers of a patch rigid
+    (its boundary-layer cells, paper section 7.3)."""
+    internal = pvs.ExtractBlock(Input=reader, Selectors=['/Root/internalMesh'])
+    wall = pvs.ExtractBlock(Input=reader, Selectors=['/Root/boundary/' + patch])
+    return pvs.ConstraintRegion(Input=internal, Surface=wall, Role='Rigid', SelectionMode='CellLayers',
+                                NumberOfLayers=layers, CellSets=1)
+
+
+def morph(reader, handle, translation, fixed=(), slip=(), rigid_layers=0, **settings):
     """MLS Deform of the whole case: the handle patches move by translation, fixed patches stay,
-    slip patches (planes) slide within their plane. Raises RuntimeError if it failed."""
+    slip patches (planes) slide within their plane; with rigid_layers > 0 the cells within that
+    many layers of the handle patches stay rigid. Raises RuntimeError if it failed."""
     regions = [patch_region(reader, p, 'Handle', Translation=list(translation)) for p in handle]
     regions += [patch_region(reader, p, 'Fixed') for p in fixed]
     regions += [patch_region(reader, p, 'Slip') for p in slip]
+    if rigid_layers > 0:
+        regions += [layer_region(reader, p, rigid_layers) for p in handle]
     deformed = pvs.MLSDeform(Input=reader, Regions=regions, **settings)
     deformed.UpdatePipeline()
     error = deformed.GetDataInformation().GetFieldDataInformation().GetArrayInformation('DeformationError')

@@ -2,6 +2,7 @@
 blockMesh and snappyHexMesh) read, deformed and written back, with Decompose polyhedra on and
 off. Usage: pvpython test_openfoam_roundtrip.py PLUGIN EXAMPLES_OPENFOAM_DIR WORK_DIR"""
 import os
+import shutil
 import subprocess
 import sys
 
@@ -128,6 +129,15 @@ sampler = pvs.MLSSampler(Input=reader, NumberOfSurfaceSamples=750, NumberOfVolum
 samples = vtk_to_numpy(servermanager.Fetch(sampler).GetPoints().GetData())
 check(near(samples).mean() >= 0.5 * near(mesh_points).mean(),
       'MLS samples near the body: %.1f%% (the mesh\'s points: %.1f%%)' % (100 * near(samples).mean(), 100 * near(mesh_points).mean()))
+
+# The example end to end (point 7): morph with the boundary-layer cells of the sphere kept rigid,
+# checkMesh and 2 iterations of simpleFoam on the variant (morph_case.py exits non-zero otherwise)
+example = subprocess.run([shutil.which('pvpython') or sys.executable, os.path.join(examples, 'morph_case.py'), plugin, os.path.join(case, 'case.foam'),
+                          os.path.join(work, 'variant-example'), '--rigid-layers', '3', '--check', '2'],
+                         capture_output=True, text=True)
+print(example.stdout.strip())
+check(example.returncode == 0 and 'Mesh OK' in example.stdout and 'simpleFoam: ' in example.stdout,
+      'morph_case.py with rigid boundary-layer cells: checkMesh and simpleFoam run on the variant')
 
 if failures:
     print('%d check(s) failed' % len(failures))
