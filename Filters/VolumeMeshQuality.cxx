@@ -62,29 +62,25 @@ std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
   CellsByType byType;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    const int type = grid->GetCellType(c);
-    if (type != VTK_TETRA && type != VTK_HEXAHEDRON && type != VTK_WEDGE && type != VTK_PYRAMID)
-    {
-      continue; // verdict has no scaled Jacobian for it
-    }
-    vtkCell* cell = byType.get(grid, c)->GetRepresentativeCell();
-    switch (type)
+    double (*measure)(vtkCell*) = nullptr; // verdict's scaled Jacobian of the type, if it has one
+    switch (grid->GetCellType(c))
     {
       case VTK_TETRA:
-        jacobians[c] = vtkMeshQuality::TetScaledJacobian(cell);
+        measure = &vtkMeshQuality::TetScaledJacobian;
         break;
       case VTK_HEXAHEDRON:
-        jacobians[c] = vtkMeshQuality::HexScaledJacobian(cell);
+        measure = &vtkMeshQuality::HexScaledJacobian;
         break;
       case VTK_WEDGE:
-        jacobians[c] = vtkMeshQuality::WedgeScaledJacobian(cell);
+        measure = &vtkMeshQuality::WedgeScaledJacobian;
         break;
       case VTK_PYRAMID:
-        jacobians[c] = vtkMeshQuality::PyramidScaledJacobian(cell);
+        measure = &vtkMeshQuality::PyramidScaledJacobian;
         break;
       default:
-        break;
+        continue;
     }
+    jacobians[c] = measure(byType.get(grid, c)->GetRepresentativeCell());
   }
   return jacobians;
 }

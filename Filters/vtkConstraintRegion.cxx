@@ -3,6 +3,7 @@
 #include "KdTree.h"
 #include "MLSGeometry.h"
 
+#include <vtkBoundingBox.h>
 #include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
@@ -132,9 +133,15 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
   {
     surfaceTree.build(surface);
     // a patch and the mesh share their points up to float round-off (1e-7 relative)
-    tolerance = 1e-6 * mlsdeform::boundingBox(mlsgeometry::points(sets)).size().norm();
+    vtkBoundingBox box;
+    for (vtkPointSet* set : sets)
+    {
+      box.AddBounds(set->GetBounds());
+    }
+    tolerance = 1e-6 * box.GetDiagonalLength();
   }
   vtkNew<vtkIdList> ids;
+  double cellSet = 0; // the set number of the next cell (cellSets)
   for (std::size_t s = 0; s < sets.size(); ++s)
   {
     vtkPointSet* set = sets[s];
@@ -178,13 +185,14 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
         {
           out.positions.emplace_back();
           set->GetPoint(ids->GetId(k), out.positions.back().data());
-          out.sets.push_back(static_cast<double>(out.sets.empty() ? 0 : out.sets.back() + (k == 0)));
+          out.sets.push_back(cellSet);
         }
         else
         {
           used[ids->GetId(k)] = 1;
         }
       }
+      cellSet += 1;
     }
     for (vtkIdType i = 0; !cellSets && i < set->GetNumberOfPoints(); ++i)
     {
@@ -311,7 +319,12 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   }
   vtkDataObject* surfaceInput = this->GetNumberOfInputConnections(1) > 0 ? vtkDataObject::GetData(inputVector[1], 0) : nullptr;
   const std::vector<vtkPointSet*> surfaceSets = surfaceInput ? mlsgeometry::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
-  if (this->SelectionMode == CellLayers && mlsgeometry::points(surfaceSets).empty())
+  vtkIdType surfacePoints = 0;
+  for (vtkPointSet* set : surfaceSets)
+  {
+    surfacePoints += set->GetNumberOfPoints();
+  }
+  if (this->SelectionMode == CellLayers && surfacePoints == 0)
   {
     vtkErrorMacro(<< "SelectionMode CellLayers needs a Surface input with points (e.g. the wall patch whose layer cells are selected).");
     return 0;
