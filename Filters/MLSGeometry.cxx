@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <vtkAlgorithm.h>
 #include <vtkCell.h>
 #include <vtkCellArray.h>
@@ -167,7 +168,7 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
       add(0);
       continue;
     }
-    if (vtkCellTypes::GetDimension(type) != dimension)
+    if (cellDimension(type) != dimension)
     {
       continue;
     }
@@ -201,6 +202,22 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     }
   }
 }
+}
+
+int cellDimension(int type)
+{
+  // the dimension plus one, 0 until asked (static storage starts at zero); concurrent first
+  // calls store the same value
+  static std::array<std::atomic<int>, VTK_NUMBER_OF_CELL_TYPES> known;
+  if (type < 0 || type >= VTK_NUMBER_OF_CELL_TYPES)
+  {
+    return 0;
+  }
+  if (known[type] == 0)
+  {
+    known[type] = 1 + vtkCellTypes::GetDimension(static_cast<unsigned char>(type));
+  }
+  return known[type] - 1;
 }
 
 mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)

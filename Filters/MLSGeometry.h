@@ -31,6 +31,11 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
 /// there are 3D cells but no 2D cells, the boundary faces of the 3D cells are the surface.
 mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets);
 
+/// The dimension of a VTK cell type (0 for an unknown type). vtkCellTypes::GetDimension builds a
+/// cell of the type on every call (for a snappyHexMesh cell, a polyhedron object); this asks it
+/// once per type.
+int cellDimension(int type);
+
 /// A cell of a dataset in a vtkGenericCell kept per cell type: one vtkGenericCell rebuilds its
 /// cell whenever the type changes, and a polyhedron's rebuild costs more than what is done with it.
 class CellsByType

@@ -4,7 +4,6 @@
 #include "Sampling.h"
 
 #include <vtkCell.h>
-#include <vtkCellTypes.h>
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkMeshQuality.h>
@@ -37,7 +36,7 @@ std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
       }
       continue;
     }
-    if (vtkCellTypes::GetDimension(grid->GetCellType(c)) != 3)
+    if (cellDimension(grid->GetCellType(c)) != 3)
     {
       continue;
     }

@@ -4,7 +4,6 @@
 #include "MLSGeometry.h"
 
 #include <vtkBoundingBox.h>
-#include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>
@@ -175,7 +174,7 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
       {
         take = chosen[ids->GetId(k)];
       }
-      if (!take || (cellSets && vtkCellTypes::GetDimension(set->GetCellType(c)) < 2))
+      if (!take || (cellSets && mlsgeometry::cellDimension(set->GetCellType(c)) < 2))
       {
         continue;
       }
