@@ -21,11 +21,11 @@ struct TraversalStack
   bool empty() const { return count == 0; }
 };
 
-// Pushes both children, the one nearer to x last so that it is visited first.
-template <typename Node, typename Nodes>
-void pushChildrenOf(const Node& node, const Nodes& nodes, const Vec3& x, TraversalStack& stack, double (*distance)(const Node&, const Vec3&))
+// Pushes both children, the one nearer to x (of smaller bound) last so that it is visited first.
+template <typename Node, typename Nodes, typename Bound>
+void pushChildrenOf(const Node& node, const Nodes& nodes, TraversalStack& stack, Bound bound)
 {
-  if (distance(nodes[node.left], x) < distance(nodes[node.right], x))
+  if (bound(nodes[node.left]) < bound(nodes[node.right]))
   {
     stack.push_back(node.right);
     stack.push_back(node.left);
@@ -142,7 +142,7 @@ int KdTree::nearest(const Vec3& x) const
     }
     else
     {
-      pushChildrenOf(node, Nodes, x, stack, &squaredDistanceToBox);
+      pushChildrenOf(node, Nodes, stack, [&](const Node& child) { return squaredDistanceToBox(child, x); });
     }
   }
   return best;
@@ -150,21 +150,45 @@ int KdTree::nearest(const Vec3& x) const
 
 void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const
 {
-  // The best k so far, sorted by distance (k is small: insertion beats a heap).
+  kSmallest(
+    k, [&](int j) { return (Points[j] - x).squaredNorm(); }, [&](const Node& node) { return squaredDistanceToBox(node, x); },
+    indices, squaredDistances);
+}
+
+void KdTree::kLeastRelative(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredRatios) const
+{
   indices.clear();
-  squaredDistances.clear();
+  squaredRatios.clear();
+  if (Radii.size() != Points.size())
+  {
+    return;
+  }
+  const auto squaredRatio = [](double squaredDistance, double radius) {
+    return radius > 0 ? squaredDistance / (radius * radius) : std::numeric_limits<double>::infinity();
+  };
+  kSmallest(
+    k, [&](int j) { return squaredRatio((Points[j] - x).squaredNorm(), Radii[j]); },
+    [&](const Node& node) { return squaredRatio(squaredDistanceToBox(node, x), node.maxRadius); }, indices, squaredRatios);
+}
+
+template <typename PointKey, typename NodeBound>
+void KdTree::kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& indices, std::vector<double>& keys) const
+{
+  // The best k so far, sorted by key (k is small: insertion beats a heap).
+  indices.clear();
+  keys.clear();
   if (Nodes.empty() || k <= 0)
   {
     return;
   }
-  auto bound = [&]() { return static_cast<int>(indices.size()) < k ? std::numeric_limits<double>::infinity() : squaredDistances.back(); };
+  auto worst = [&]() { return static_cast<int>(indices.size()) < k ? std::numeric_limits<double>::infinity() : keys.back(); };
   TraversalStack stack;
   stack.push_back(0);
   while (!stack.empty())
   {
     const Node& node = Nodes[stack.back()];
     stack.pop_back();
-    if (squaredDistanceToBox(node, x) >= bound())
+    if (bound(node) >= worst())
     {
       continue;
     }
@@ -172,23 +196,23 @@ void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vect
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        const double d2 = (Points[Order[i]] - x).squaredNorm();
-        if (d2 < bound())
+        const double value = key(Order[i]);
+        if (value < worst())
         {
           if (static_cast<int>(indices.size()) == k)
           {
             indices.pop_back();
-            squaredDistances.pop_back();
+            keys.pop_back();
           }
-          const auto at = std::upper_bound(squaredDistances.begin(), squaredDistances.end(), d2) - squaredDistances.begin();
-          squaredDistances.insert(squaredDistances.begin() + at, d2);
+          const auto at = std::upper_bound(keys.begin(), keys.end(), value) - keys.begin();
+          keys.insert(keys.begin() + at, value);
           indices.insert(indices.begin() + at, Order[i]);
         }
       }
     }
     else
     {
-      pushChildrenOf(node, Nodes, x, stack, &squaredDistanceToBox);
+      pushChildrenOf(node, Nodes, stack, bound);
     }
   }
 }

@@ -20,6 +20,10 @@ public:
   int nearest(const Vec3& x) const;
   /// Up to k nearest points, closest first, with squared distances.
   void kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const;
+  /// Up to k points with the smallest |p_i - x| / radius_i, smallest first, with those ratios
+  /// squared (requires setRadii; points of radius 0 are never taken): the balls that must grow
+  /// least, relative to their radius, to contain x.
+  void kLeastRelative(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredRatios) const;
   /// All points with |p - x| < radius.
   void withinRadius(const Vec3& x, double radius, std::vector<int>& indices) const;
   /// All points i with |p_i - x| < radius_i (requires setRadii), in increasing order.
@@ -42,11 +46,16 @@ private:
   template <typename Visit>
   void visitContaining(const Vec3& x, Visit visit) const;
   double maxRadiusBelow(int node);
+  /// The k points of least key(point index), visiting only nodes whose bound(node) is below the
+  /// k-th least key found so far; sorted by key.
+  template <typename PointKey, typename NodeBound>
+  void kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& indices, std::vector<double>& keys) const;
   static double squaredDistanceToBox(const Node& node, const Vec3& x)
   {
     const Vec3 d = (node.lower - x).cwiseMax(x - node.upper).cwiseMax(0.0);
     return d.squaredNorm();
   }
+
 
   PointList Points;
   std::vector<int> Order;

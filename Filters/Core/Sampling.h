@@ -67,9 +67,11 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
 void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations);
 
 /// Support radii following the local sample density (the distance to the s-th nearest fellow
-/// sample), enlarged so that each of the positions lies within reach of at least s samples; a
+/// sample), enlarged so that each of the positions lies within reach of at least s samples (its
+/// s nearest grow, or on a graded volume mesh those that grow least relative to their reach); a
 /// margin makes the weight at the reach w(1/margin) = 0.25.
-std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover);
+std::vector<double> coverSupportRadii(
+  const PointList& centers, const std::vector<const PointList*>& positions, double cover, bool volumeMesh = false);
 
 /// The axis-aligned bounding box of points (both corners zero for none).
 struct BoundingBox

@@ -47,21 +47,30 @@ TEST(KdTreeQueriesMatchBruteForce)
   std::vector<double> d2;
   for (const Vec3& x : randomPoints(100, Vec3(-0.1, -0.1, -0.1), Vec3(1.1, 1.1, 1.1), 2))
   {
+    std::vector<int> relative;
+    std::vector<double> ratio2;
     tree.kNearest(x, 5, knn, d2);
+    tree.kLeastRelative(x, 5, relative, ratio2);
     tree.withinRadius(x, 0.1, within);
     tree.containing(x, containing);
-    std::vector<std::pair<double, int>> all;
+    std::vector<std::pair<double, int>> all, ratios;
     std::size_t withinCount = 0, containingCount = 0;
     for (std::size_t i = 0; i < points.size(); ++i)
     {
       const double d = (points[i] - x).norm();
       all.emplace_back(d, static_cast<int>(i));
+      ratios.emplace_back(d / radii[i], static_cast<int>(i));
       withinCount += d < 0.1;
       containingCount += d < radii[i];
     }
     std::sort(all.begin(), all.end());
+    std::sort(ratios.begin(), ratios.end());
     for (int a = 0; a < 5; ++a)
+    {
       CHECK(knn[a] == all[a].second);
+      CHECK(relative[a] == ratios[a].second);
+      CHECK_NEAR(std::sqrt(ratio2[a]), ratios[a].first, 1e-12 * ratios[a].first); // a few roundings of ratios ~1
+    }
     CHECK(within.size() == withinCount);
     CHECK(containing.size() == containingCount);
   }
@@ -188,6 +197,62 @@ TEST(SamplesFollowTheMeshGrading)
     const double split = 0.5 * (0.5 + 8.0 / 9.0);
     CHECK(follow ? fraction > split && integrationFraction > split : fraction < split && integrationFraction < split);
   }
+}
+
+TEST(CoverGrowsCoarseSupportsOnGradedVolumes)
+{
+  // A body's fine samples (spacing 0.04 in a cube of side 0.16) among coarse ones (spacing 1/7)
+  // and positions everywhere in the unit cube, as on a snappyHexMesh domain: growing each
+  // uncovered position's nearest samples stretches the fine ones to the coarse scale; growing
+  // those that grow least relative to their reach leaves them near their own. Without the
+  // volume mesh flag, or on uniform samples, the nearest grow as before.
+  PointList centers;
+  int fine = 0;
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= 4; ++j)
+      for (int k = 0; k <= 4; ++k, ++fine)
+        centers.push_back(Vec3(0.42, 0.42, 0.42) + 0.04 * Vec3(i, j, k));
+  const double coarse = 1.0 / 7;
+  for (int i = 0; i <= 7; ++i)
+    for (int j = 0; j <= 7; ++j)
+      for (int k = 0; k <= 7; ++k)
+        centers.push_back(coarse * Vec3(i, j, k));
+  const PointList positions = randomPoints(4000, Vec3(0, 0, 0), Vec3(1, 1, 1), 3);
+  double entries[2] = { 0, 0 }, largestFine[2] = { 0, 0 };
+  for (bool volumeMesh : { false, true })
+  {
+    const std::vector<double> radii = coverSupportRadii(centers, { &positions }, 5, volumeMesh);
+    KdTree tree(centers);
+    std::vector<double> reach(radii.size());
+    for (std::size_t j = 0; j < radii.size(); ++j)
+      reach[j] = radii[j] / 1.5; // the cover holds at the reach, 1 / SupportMargin of the radius
+    tree.setRadii(reach);
+    std::size_t fewest = 1000;
+    std::vector<int> covering;
+    for (const Vec3& x : positions)
+    {
+      tree.containing(x, covering);
+      fewest = std::min(fewest, covering.size());
+    }
+    tree.setRadii(radii);
+    for (const Vec3& x : positions)
+    {
+      tree.containing(x, covering);
+      entries[volumeMesh] += double(covering.size()) / positions.size();
+    }
+    for (int j = 0; j < fine; ++j)
+      largestFine[volumeMesh] = std::max(largestFine[volumeMesh], radii[j]);
+    std::printf("volume mesh %d: fewest supports covering a position %zu, mean %.1f, largest fine radius %.3f\n", volumeMesh, fewest,
+      entries[volumeMesh], largestFine[volumeMesh]);
+    CHECK(fewest >= 5);
+  }
+  // Relative growth keeps every fine support below the coarse spacing, which a fine sample
+  // covering a coarse position beside the body must exceed, and so fewer supports per position.
+  CHECK(largestFine[1] < coarse && largestFine[0] > coarse);
+  CHECK(entries[1] < entries[0]);
+  // uniform samples: the same radii either way
+  const PointList uniform = randomPoints(500, Vec3(0, 0, 0), Vec3(1, 1, 1), 4);
+  CHECK(coverSupportRadii(uniform, { &positions }, 5, true) == coverSupportRadii(uniform, { &positions }, 5, false));
 }
 
 TEST(SurfaceOnlyInputSamplesPaddedBox)
