@@ -109,11 +109,8 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
 QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid) const
 {
   QualitySummary s;
-  for (double j : scaledJacobians(grid))
-  {
-    s.inverted += j < 0 ? 1 : 0;
-  }
   const mlsdeform::FaceMeasures m = mlsdeform::faceMeasures(gridPoints(grid, "the mesh's points"), Cells, Faces, Orientation);
+  s.inverted = m.invertedCells;
   for (std::size_t i = 0; i < Faces.size(); ++i)
   {
     s.maxNonOrthogonality = std::max(s.maxNonOrthogonality, m.nonOrthogonality[i]);

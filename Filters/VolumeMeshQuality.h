@@ -1,6 +1,6 @@
 // The volume-mesh measures of paper section 7.3 on a VTK unstructured grid: verdict's scaled
-// Jacobian per cell (negative: inverted) and OpenFOAM's non-orthogonality and skewness per
-// interior face (FaceQuality.h). Shared by vtkDeformationQuality and by the deformation filters,
+// Jacobian per cell, and as OpenFOAM's checkMesh defines them (FaceQuality.h) the inverted cells
+// (a face pyramid of negative volume) and the non-orthogonality and skewness per interior face. Shared by vtkDeformationQuality and by the deformation filters,
 // which report a summary in their output's field data.
 #pragma once
 
@@ -19,7 +19,7 @@ std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid);
 /// The grid's points (throws InvalidInputException when one is not finite).
 mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what);
 
-/// Cells with a negative scaled Jacobian, and the largest non-orthogonality (degrees) and skewness
+/// Inverted cells (a face pyramid of negative volume), and the largest non-orthogonality (degrees) and skewness
 /// over the interior faces.
 struct QualitySummary
 {

@@ -72,7 +72,7 @@ struct Measures
   std::vector<double> scaledJacobian;
   FaceMeasures faces;
   std::vector<double> maxNonOrthogonality, maxSkewness; // per cell, over its interior faces
-  int inverted = 0;
+  long inverted = 0;
 };
 
 Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const std::vector<CellFaces>& cells,
@@ -80,11 +80,8 @@ Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const std::
 {
   Measures m;
   m.scaledJacobian = mlsgeometry::scaledJacobians(grid);
-  for (double j : m.scaledJacobian)
-  {
-    m.inverted += j < 0 ? 1 : 0;
-  }
   m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
+  m.inverted = m.faces.invertedCells;
   m.maxNonOrthogonality.assign(cells.size(), 0);
   m.maxSkewness.assign(cells.size(), 0);
   for (std::size_t i = 0; i < faces.size(); ++i)

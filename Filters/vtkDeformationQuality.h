@@ -11,6 +11,10 @@
  *   face's orientation (out of its owner, the lower cell id) is taken from the original mesh and
  *   kept, as OpenFOAM keeps its face order: a neighbour folded over its owner shows above 90.
  *
+ * - per cell whether it is inverted: a face pyramid (apex the cell centre, base a face as the
+ *   cell lists it, VTK's outward order) of negative volume, OpenFOAM's face-pyramid check. The
+ *   scaled Jacobian is not that test: some warped cells that checkMesh accepts have a negative one.
+ *
  * Input port 0: the mesh to measure (the deformed one). Input port 1 (optional): the original mesh
  * with the same cells, whose measures are reported alongside.
  * Output port 0: the input with cell arrays ScaledJacobian, MaxNonOrthogonality and MaxSkewness
@@ -20,8 +24,8 @@
  * Neighbour (and the Original measures).
  * Output port 2: a summary table, one row per measure (ScaledJacobian, NonOrthogonality,
  * Skewness, InvertedCells) with columns Min, Mean, Max and, with an original, OriginalMin,
- * OriginalMean, OriginalMax. The InvertedCells row holds the number of cells with a negative
- * scaled Jacobian in all three columns.
+ * OriginalMean, OriginalMax. The InvertedCells row holds the number of inverted cells in all
+ * three columns.
  */
 #ifndef vtkDeformationQuality_h
 #define vtkDeformationQuality_h

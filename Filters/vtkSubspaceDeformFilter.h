@@ -18,8 +18,8 @@
  * Refactorized (whether this update rebuilt the subspace or refactorized), and per constraint
  * region its type, points, residual, iterations and convergence. With MeshQuality on and volume
  * cells in the input (unstructured grids), the mesh quality of paper section 7.3 before and after
- * (vtkDeformationQuality's measures: OpenFOAM's non-orthogonality and skewness, verdict's scaled
- * Jacobian), over every block: InvertedCells, MaxNonOrthogonality (degrees), MaxSkewness and the
+ * (vtkDeformationQuality's measures, as OpenFOAM's checkMesh defines them: inverted cells by the
+ * face-pyramid check, non-orthogonality and skewness), over every block: InvertedCells, MaxNonOrthogonality (degrees), MaxSkewness and the
  * same prefixed "Original", so that a script can reject a variant before running a solver.
  *
  * Set-up is cached and tracked exactly: property values are compared as they are, input data by

@@ -48,18 +48,27 @@ FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face)
 
 CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector<int>>& faces)
 {
-  CellGeometry c;
   std::vector<FaceGeometry> g;
-  Vec3 estimate = Vec3::Zero();
+  g.reserve(faces.size());
   for (const auto& f : faces)
   {
     g.push_back(faceGeometry(points, f));
-    estimate += g.back().centre / static_cast<double>(faces.size());
+  }
+  return cellGeometry(g);
+}
+
+CellGeometry cellGeometry(const std::vector<FaceGeometry>& faces)
+{
+  CellGeometry c;
+  Vec3 estimate = Vec3::Zero();
+  for (const FaceGeometry& face : faces)
+  {
+    estimate += face.centre / static_cast<double>(faces.size());
   }
   // pyramids on the faces with apex at the estimate: volume |S . (C_f - apex)| / 3, centroid
   // 3/4 C_f + 1/4 apex
   double sum = 0;
-  for (const FaceGeometry& face : g)
+  for (const FaceGeometry& face : faces)
   {
     const double pyramid3 = std::abs(face.area.dot(face.centre - estimate));
     c.centre += pyramid3 * (0.75 * face.centre + 0.25 * estimate);
@@ -68,6 +77,11 @@ CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector
   c.centre = sum > RootVerySmall ? Vec3(c.centre / sum) : estimate;
   c.volume = sum / 3;
   return c;
+}
+
+bool hasNegativePyramid(const std::vector<FaceGeometry>& faces, const Vec3& centre)
+{
+  return std::any_of(faces.begin(), faces.end(), [&](const FaceGeometry& face) { return face.area.dot(face.centre - centre) < 0; });
 }
 
 double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area)
@@ -146,12 +160,24 @@ FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>&
   const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
 {
   std::vector<Vec3> centres(cells.size());
-#pragma omp parallel for
-  for (int c = 0; c < static_cast<int>(cells.size()); ++c)
-  {
-    centres[c] = cellGeometry(points, cells[c]).centre;
-  }
   FaceMeasures m;
+  m.inverted.assign(cells.size(), 0);
+#pragma omp parallel
+  {
+    std::vector<FaceGeometry> g;
+#pragma omp for schedule(static)
+    for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+    {
+      g.clear();
+      for (const std::vector<int>& face : cells[c])
+      {
+        g.push_back(faceGeometry(points, face));
+      }
+      centres[c] = cellGeometry(g).centre;
+      m.inverted[c] = !g.empty() && hasNegativePyramid(g, centres[c]);
+    }
+  }
+  m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(faces.size());
   m.skewness.resize(faces.size());
 #pragma omp parallel for

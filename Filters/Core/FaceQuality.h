@@ -21,13 +21,19 @@ struct FaceGeometry
 };
 FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face);
 
-/// A polyhedron's centre and volume from its faces (any orientation).
+/// A polyhedron's centre and volume from its faces (any orientation), or from their geometries.
 struct CellGeometry
 {
   Vec3 centre = Vec3::Zero();
   double volume = 0;
 };
 CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector<int>>& faces);
+CellGeometry cellGeometry(const std::vector<FaceGeometry>& faces);
+
+/// OpenFOAM's face-pyramid check (checkMesh's "Face pyramids", the test of an inverted cell): a
+/// face's pyramid with apex at the cell centre, S_f . (C_f - C) / 3, must have positive volume
+/// with the face listed as seen from outside the cell (VTK's order; OpenFOAM's for the owner).
+bool hasNegativePyramid(const std::vector<FaceGeometry>& faces, const Vec3& centre);
 
 /// Non-orthogonality in degrees of a face with area vector S between cells with centres P and N;
 /// S points from the owner P to the neighbour N (out of P), as in OpenFOAM.
@@ -58,11 +64,14 @@ std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells);
 std::vector<int> faceOrientation(
   const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces);
 
-/// Non-orthogonality (degrees) and skewness of every interior face.
+/// Non-orthogonality (degrees) and skewness of every interior face; the cells with a pyramid of
+/// negative volume (inverted, hasNegativePyramid) and their number.
 struct FaceMeasures
 {
   std::vector<double> nonOrthogonality;
   std::vector<double> skewness;
+  std::vector<unsigned char> inverted; // per cell
+  long invertedCells = 0;
 };
 FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
   const std::vector<InteriorFace>& faces, const std::vector<int>& orientation);

@@ -120,6 +120,9 @@ TEST(InteriorFacesAreMatchedAndOriented)
   CHECK(orientation[0] == -1);
   const FaceMeasures before = faceMeasures(points, cells, faces, orientation);
   CHECK(before.nonOrthogonality[0] < 2e-6 && before.skewness[0] < 1e-14); // as in NonOrthogonalityAndSkewness
+  // the face pyramids: the owner lists its shared face inward, which checkMesh reports too (an
+  // incorrectly oriented face), so it counts as inverted; the neighbour is a sound cube
+  CHECK(before.inverted == std::vector<unsigned char>({ 1, 0 }) && before.invertedCells == 1);
   // Fold the neighbour over the owner (its far face to x = -1): its centre is now on the
   // owner's side, so the face, kept in its original orientation, is above 90 degrees.
   PointList folded = points;
@@ -129,6 +132,8 @@ TEST(InteriorFacesAreMatchedAndOriented)
   const FaceMeasures after = faceMeasures(folded, cells, faces, orientation);
   std::printf("folded neighbour: non-orthogonality %.6g degrees\n", after.nonOrthogonality[0]);
   CHECK(after.nonOrthogonality[0] > 90); // the definition of a folded face: d . S < 0
+  // the folded neighbour is inside out: its moved face's pyramid has negative volume
+  CHECK(after.inverted[1] == 1 && after.invertedCells == 2);
   // a face shared by three cells is not a valid mesh
   cells.push_back(CellFaces{ cells[1][0] });
   CHECK_THROWS(interiorFaces(cells), std::invalid_argument);

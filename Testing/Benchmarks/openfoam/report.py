@@ -110,7 +110,7 @@ print('  write %.2f s; the process: %.2f s with the further variants, %.2f s les
       % (median([log['write_s'] for log in mls_logs]), median(process_wall), mls_wall))
 print('  Peak RSS after start-up %.0f MiB, read %.0f, deform %.0f, write %.0f, further variants %.0f.'
       % (peaks['startup'], peaks['read'], peaks['deform'], peaks['write'], peaks['further']))
-print('  Its own measures: inverted cells %s (%s in the source; verdict\'s scaled Jacobian, not checkMesh\'s volumes), '
+print('  Its own measures: inverted cells %s (%s in the source; checkMesh\'s face-pyramid test), '
       'handle residual %.2g.' % (figure(first['InvertedCells'], '%d'), figure(first['OriginalInvertedCells'], '%d'), first['HandleResidual']))
 for i, v in enumerate(mls_logs[0]['further']):
     c = further_checks[i] if i < len(further_checks) else dict.fromkeys(('max_non_orthogonality', 'max_skewness', 'failed_checks'))
