@@ -19,10 +19,15 @@ namespace mlsgeometry
 std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
 {
   std::vector<mlsdeform::CellFaces> cells(grid->GetNumberOfCells());
-  CellsByType byType;
+  // The faces of each fixed cell type as positions in its point list, from VTK's cell of that type
+  // (asked once per type: a vtkGenericCell per cell cost most of the time on a 1M-cell mesh).
+  std::vector<mlsdeform::CellFaces> faceTemplates(VTK_NUMBER_OF_CELL_TYPES);
+  vtkNew<vtkGenericCell> cell;
+  vtkNew<vtkIdList> points;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    if (grid->GetCellType(c) == VTK_POLYHEDRON)
+    const int type = grid->GetCellType(c);
+    if (type == VTK_POLYHEDRON)
     {
       // the faces as stored: no polyhedron object
       vtkIdType faces = 0;
@@ -36,18 +41,31 @@ std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
       }
       continue;
     }
-    if (cellDimension(grid->GetCellType(c)) != 3)
+    if (cellDimension(type) != 3)
     {
       continue;
     }
-    vtkGenericCell* cell = byType.get(grid, c);
-    for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+    mlsdeform::CellFaces& faces = faceTemplates[type];
+    if (faces.empty())
     {
-      vtkIdList* ids = cell->GetFace(f)->GetPointIds();
-      std::vector<int> polygon(ids->GetNumberOfIds());
-      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      cell->SetCellType(type);
+      for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
       {
-        polygon[i] = static_cast<int>(ids->GetId(i));
+        cell->GetPointIds()->SetId(i, i);
+      }
+      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+      {
+        vtkIdList* ids = cell->GetFace(f)->GetPointIds();
+        faces.emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+      }
+    }
+    grid->GetCellPoints(c, points);
+    for (const std::vector<int>& face : faces)
+    {
+      std::vector<int> polygon(face.size());
+      for (std::size_t i = 0; i < face.size(); ++i)
+      {
+        polygon[i] = static_cast<int>(points->GetId(face[i]));
       }
       cells[c].push_back(std::move(polygon));
     }

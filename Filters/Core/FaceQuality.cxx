@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -108,33 +108,65 @@ double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Face
 
 std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells)
 {
-  std::map<std::vector<int>, InteriorFace> open;
-  std::vector<InteriorFace> faces;
+  // Faces grouped by their smallest point (a group holds a few faces; a map keyed by the sorted
+  // faces took 6 s on a 1M-cell mesh), in cell order, so that the first of a pair is the owner.
+  int points = 0;
+  for (const CellFaces& cell : cells)
+    for (const std::vector<int>& face : cell)
+      for (int p : face)
+        points = std::max(points, p + 1);
+  std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
+  for (const CellFaces& cell : cells)
+    for (const std::vector<int>& face : cell)
+      if (!face.empty())
+        ++start[*std::min_element(face.begin(), face.end()) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<InteriorFace> grouped(static_cast<std::size_t>(start.back()));
+  std::vector<long> next(start.begin(), start.end() - 1);
   for (int c = 0; c < static_cast<int>(cells.size()); ++c)
-  {
     for (int f = 0; f < static_cast<int>(cells[c].size()); ++f)
-    {
-      std::vector<int> key = cells[c][f];
-      std::sort(key.begin(), key.end());
-      auto [it, inserted] = open.emplace(std::move(key), InteriorFace{ c, -1, f });
-      if (inserted)
-      {
-        continue;
-      }
-      if (it->second.neighbour >= 0)
-      {
-        throw std::invalid_argument("a face is shared by more than two cells (cells " +
-          std::to_string(it->second.owner) + ", " + std::to_string(it->second.neighbour) + " and " +
-          std::to_string(c) + ")");
-      }
-      it->second.neighbour = c;
-    }
-  }
-  for (const auto& entry : open)
+      if (!cells[c][f].empty())
+        grouped[next[*std::min_element(cells[c][f].begin(), cells[c][f].end())]++] = InteriorFace{ c, -1, f };
+
+  auto sorted = [&](const InteriorFace& face) {
+    std::vector<int> key = cells[face.owner][face.face];
+    std::sort(key.begin(), key.end());
+    return key;
+  };
+  std::vector<InteriorFace> faces;
+  std::vector<std::vector<int>> keys;
+  for (int p = 0; p < points; ++p)
   {
-    if (entry.second.neighbour >= 0)
+    const auto begin = grouped.begin() + start[p], end = grouped.begin() + start[p + 1];
+    keys.clear();
+    for (auto g = begin; g != end; ++g)
     {
-      faces.push_back(entry.second);
+      keys.push_back(sorted(*g));
+    }
+    for (auto a = begin; a != end; ++a)
+    {
+      if (a->owner < 0)
+      {
+        continue; // already the neighbour of an earlier face
+      }
+      for (auto b = a + 1; b != end; ++b)
+      {
+        if (b->owner < 0 || keys[a - begin] != keys[b - begin])
+        {
+          continue;
+        }
+        if (a->neighbour >= 0)
+        {
+          throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(a->owner) + ", " +
+            std::to_string(a->neighbour) + " and " + std::to_string(b->owner) + ")");
+        }
+        a->neighbour = b->owner;
+        b->owner = -1;
+      }
+      if (a->neighbour >= 0)
+      {
+        faces.push_back(*a);
+      }
     }
   }
   std::sort(faces.begin(), faces.end(), [](const InteriorFace& a, const InteriorFace& b) {
