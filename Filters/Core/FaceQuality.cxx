@@ -110,23 +110,42 @@ std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells)
 {
   // Faces grouped by their smallest point (a group holds a few faces; a map keyed by the sorted
   // faces took 6 s on a 1M-cell mesh), in cell order, so that the first of a pair is the owner.
+  auto smallest = [](const std::vector<int>& face) { return *std::min_element(face.begin(), face.end()); };
   int points = 0;
   for (const CellFaces& cell : cells)
+  {
     for (const std::vector<int>& face : cell)
+    {
       for (int p : face)
+      {
         points = std::max(points, p + 1);
+      }
+    }
+  }
   std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
   for (const CellFaces& cell : cells)
+  {
     for (const std::vector<int>& face : cell)
+    {
       if (!face.empty())
-        ++start[*std::min_element(face.begin(), face.end()) + 1];
+      {
+        ++start[smallest(face) + 1];
+      }
+    }
+  }
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<InteriorFace> grouped(static_cast<std::size_t>(start.back()));
   std::vector<long> next(start.begin(), start.end() - 1);
   for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+  {
     for (int f = 0; f < static_cast<int>(cells[c].size()); ++f)
+    {
       if (!cells[c][f].empty())
-        grouped[next[*std::min_element(cells[c][f].begin(), cells[c][f].end())]++] = InteriorFace{ c, -1, f };
+      {
+        grouped[next[smallest(cells[c][f])]++] = InteriorFace{ c, -1, f };
+      }
+    }
+  }
 
   auto sorted = [&](const InteriorFace& face) {
     std::vector<int> key = cells[face.owner][face.face];

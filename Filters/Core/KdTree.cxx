@@ -21,7 +21,7 @@ struct TraversalStack
   bool empty() const { return count == 0; }
 };
 
-// Pushes both children, the one nearer to x (of smaller bound) last so that it is visited first.
+// Pushes both children, the one of smaller bound (nearer) last so that it is visited first.
 template <typename Node, typename Nodes, typename Bound>
 void pushChildrenOf(const Node& node, const Nodes& nodes, TraversalStack& stack, Bound bound)
 {
