@@ -108,28 +108,18 @@ namespace
 template <typename Add>
 void polyhedronTetrahedra(vtkUnstructuredGrid* grid, vtkIdType cell, Add add)
 {
-  vtkIdType faces = 0;
-  const vtkIdType* stream = nullptr;
-  grid->GetFaceStream(cell, faces, stream);
-  if (faces <= 0 || !stream)
-  {
-    return;
-  }
-  const vtkIdType apex = stream[1];
-  for (vtkIdType f = 0; f < faces; ++f)
-  {
-    const vtkIdType n = *stream++;
-    const vtkIdType* face = stream;
-    stream += n;
+  vtkIdType apex = -1;
+  visitPolyhedronFaces(grid, cell, [&](const vtkIdType* face, vtkIdType n) {
+    apex = apex < 0 && n > 0 ? face[0] : apex;
     if (std::find(face, face + n, apex) != face + n)
     {
-      continue;
+      return;
     }
     for (vtkIdType v = 1; v + 1 < n; ++v)
     {
       add({ apex, face[0], face[v], face[v + 1] });
     }
-  }
+  });
 }
 
 // Splits every cell of the given dimension into simplices (triangles or tetrahedra): simplices

@@ -7,6 +7,7 @@
 
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
+#include <vtkUnstructuredGrid.h>
 
 #include <string>
 #include <vector>
@@ -35,6 +36,22 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets);
 /// cell of the type on every call (for a snappyHexMesh cell, a polyhedron object); this asks it
 /// once per type.
 int cellDimension(int type);
+
+/// Calls visit(points, n) for every face of a polyhedron cell as its face stream stores it (no
+/// vtkPolyhedron object, whose construction costs more than what is done with it).
+template <typename Visit>
+void visitPolyhedronFaces(vtkUnstructuredGrid* grid, vtkIdType cell, Visit visit)
+{
+  vtkIdType faces = 0;
+  const vtkIdType* stream = nullptr;
+  grid->GetFaceStream(cell, faces, stream);
+  for (vtkIdType f = 0; f < faces && stream; ++f)
+  {
+    const vtkIdType n = *stream++;
+    visit(stream, n);
+    stream += n;
+  }
+}
 
 /// A cell of a dataset in a vtkGenericCell kept per cell type: one vtkGenericCell rebuilds its
 /// cell whenever the type changes, and a polyhedron's rebuild costs more than what is done with it.

@@ -29,16 +29,7 @@ std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
     const int type = grid->GetCellType(c);
     if (type == VTK_POLYHEDRON)
     {
-      // the faces as stored: no polyhedron object
-      vtkIdType faces = 0;
-      const vtkIdType* stream = nullptr;
-      grid->GetFaceStream(c, faces, stream);
-      for (vtkIdType f = 0; f < faces; ++f)
-      {
-        const vtkIdType n = *stream++;
-        cells[c].emplace_back(stream, stream + n);
-        stream += n;
-      }
+      visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { cells[c].emplace_back(face, face + n); });
       continue;
     }
     if (cellDimension(type) != 3)

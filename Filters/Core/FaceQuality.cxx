@@ -194,25 +194,14 @@ std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells)
   return faces;
 }
 
-std::vector<int> faceOrientation(
-  const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces)
+namespace
 {
-  std::vector<int> orientation(faces.size(), 1);
-  for (std::size_t i = 0; i < faces.size(); ++i)
-  {
-    const FaceGeometry g = faceGeometry(points, cells[faces[i].owner][faces[i].face]);
-    const Vec3 owner = cellGeometry(points, cells[faces[i].owner]).centre;
-    orientation[i] = g.area.dot(g.centre - owner) < 0 ? -1 : 1;
-  }
-  return orientation;
-}
-
-FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
-  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+// Every cell's centre and whether it is inverted (hasNegativePyramid), its faces' geometry
+// computed once per cell.
+std::vector<Vec3> cellCentres(const PointList& points, const std::vector<CellFaces>& cells, std::vector<unsigned char>& inverted)
 {
   std::vector<Vec3> centres(cells.size());
-  FaceMeasures m;
-  m.inverted.assign(cells.size(), 0);
+  inverted.assign(cells.size(), 0);
 #pragma omp parallel
   {
     std::vector<FaceGeometry> g;
@@ -225,9 +214,32 @@ FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>&
         g.push_back(faceGeometry(points, face));
       }
       centres[c] = cellGeometry(g).centre;
-      m.inverted[c] = !g.empty() && hasNegativePyramid(g, centres[c]);
+      inverted[c] = !g.empty() && hasNegativePyramid(g, centres[c]);
     }
   }
+  return centres;
+}
+}
+
+std::vector<int> faceOrientation(
+  const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces)
+{
+  std::vector<unsigned char> inverted;
+  const std::vector<Vec3> centres = cellCentres(points, cells, inverted);
+  std::vector<int> orientation(faces.size(), 1);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+  {
+    const FaceGeometry g = faceGeometry(points, cells[faces[i].owner][faces[i].face]);
+    orientation[i] = g.area.dot(g.centre - centres[faces[i].owner]) < 0 ? -1 : 1;
+  }
+  return orientation;
+}
+
+FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
+  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+{
+  FaceMeasures m;
+  const std::vector<Vec3> centres = cellCentres(points, cells, m.inverted);
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(faces.size());
   m.skewness.resize(faces.size());
