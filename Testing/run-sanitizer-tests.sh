@@ -11,7 +11,7 @@ build=${MLSDEFORM_SANITIZE_BUILD:-$root/build-sanitize}
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMLSDEFORM_SANITIZE=ON -DMLSDEFORM_BUILD_EXAMPLES=OFF \
   > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-cmake --build "$build" -j "$(nproc)"
+cmake --build "$build" -j "$(nproc)" --target MLSDeformTestPrograms
 cd "$build"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
