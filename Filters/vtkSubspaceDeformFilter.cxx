@@ -369,7 +369,7 @@ struct vtkSubspaceDeformFilter::Cache
   mlsgeometry::Stamp cellsStamp;
   long modelPoints = -1;
   // 2. Phi at the input points
-  SparseRowMatrix geometrySubspace;
+  RowBlocks geometrySubspace;
   long phiPoints = -1;
   // 3. the regions, 4. the constraints: (version, weight) and (version, type, weight) per region
   std::vector<std::pair<long, double>> dirichlet;
@@ -396,7 +396,7 @@ struct vtkSubspaceDeformFilter::Cache
   {
     model.reset();
     modelPoints = phiPoints = -1;
-    geometrySubspace = SparseRowMatrix();
+    geometrySubspace = RowBlocks();
     regionsSet = constraintsSet = factorized = false;
   }
 };
@@ -510,7 +510,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     if (cache.phiPoints != cache.pointsVersion)
     {
       std::vector<int> outside;
-      cache.geometrySubspace = subspaceMatrix(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
+      cache.geometrySubspace = subspaceBlocks(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
       if (!outside.empty())
       {
         throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +

@@ -11,38 +11,41 @@ namespace mlsdeform
 {
 namespace
 {
-// Assembles a row-major sparse matrix with rowsPerPoint rows per position, evaluated in
-// parallel chunks; fill(i, values, rows) writes the rows of position i from its shape functions.
+// Assembles a row-major sparse matrix with rowsPerPoint rows per position in row blocks of
+// Chunk positions, evaluated in parallel; fill(i, values, rows) writes the rows of position i
+// from its shape functions.
 template <typename Fill>
-SparseRowMatrix assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
+RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
   Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
   constexpr long Chunk = 4096;
   const long chunks = (n + Chunk - 1) / Chunk;
-  struct Part
-  {
-    std::vector<int> columns;
-    std::vector<double> values;
-    std::vector<int> rowLength;
-    std::vector<int> outside;
-  };
-  std::vector<Part> parts(chunks);
+  RowBlocks A;
+  A.rowsPerBlock = Chunk * rowsPerPoint;
+  A.columns = static_cast<long>(basis.size());
+  A.blocks.resize(chunks);
+  std::vector<std::vector<int>> outsideOf(chunks);
   long done = 0;
 #pragma omp parallel
   {
     ShapeFunctionValues phi;
     std::vector<std::vector<double>> rows(rowsPerPoint);
+    std::vector<int> columns, rowLength;
+    std::vector<double> values;
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < chunks; ++c)
     {
-      Part& part = parts[c];
-      for (long i = c * Chunk; i < std::min(n, (c + 1) * Chunk); ++i)
+      columns.clear();
+      values.clear();
+      rowLength.clear();
+      const long first = c * Chunk, last = std::min(n, first + Chunk);
+      for (long i = first; i < last; ++i)
       {
         basis.evaluate(positions[i], phi, withDerivatives);
         if (phi.empty())
         {
-          part.outside.push_back(static_cast<int>(i));
+          outsideOf[c].push_back(static_cast<int>(i));
         }
         for (auto& row : rows)
         {
@@ -51,10 +54,22 @@ SparseRowMatrix assembleRows(const ShapeFunctions& basis, const PointList& posit
         fill(i, phi, rows);
         for (const auto& row : rows)
         {
-          part.columns.insert(part.columns.end(), phi.index.begin(), phi.index.end());
-          part.values.insert(part.values.end(), row.begin(), row.end());
-          part.rowLength.push_back(static_cast<int>(phi.index.size()));
+          columns.insert(columns.end(), phi.index.begin(), phi.index.end());
+          values.insert(values.end(), row.begin(), row.end());
+          rowLength.push_back(static_cast<int>(phi.index.size()));
         }
+      }
+      // the block in compressed row storage, at its exact size
+      SparseRowMatrix& block = A.blocks[c];
+      block.resize((last - first) * rowsPerPoint, A.columns);
+      block.resizeNonZeros(static_cast<long>(values.size()));
+      std::copy(columns.begin(), columns.end(), block.innerIndexPtr());
+      std::copy(values.begin(), values.end(), block.valuePtr());
+      auto* outer = block.outerIndexPtr();
+      outer[0] = 0;
+      for (std::size_t row = 0; row < rowLength.size(); ++row)
+      {
+        outer[row + 1] = outer[row] + rowLength[row];
       }
 #pragma omp atomic
       ++done;
@@ -64,33 +79,40 @@ SparseRowMatrix assembleRows(const ShapeFunctions& basis, const PointList& posit
       }
     }
   }
-  // Concatenate the chunks into compressed row storage.
-  std::size_t nonZeros = 0;
-  for (const Part& part : parts)
+  if (outside)
   {
-    nonZeros += part.values.size();
-  }
-  SparseRowMatrix A(n * rowsPerPoint, static_cast<long>(basis.size()));
-  A.resizeNonZeros(static_cast<long>(nonZeros));
-  auto* outer = A.outerIndexPtr();
-  std::size_t offset = 0, row = 0;
-  outer[0] = 0;
-  for (Part& part : parts)
-  {
-    std::copy(part.columns.begin(), part.columns.end(), A.innerIndexPtr() + offset);
-    std::copy(part.values.begin(), part.values.end(), A.valuePtr() + offset);
-    for (int length : part.rowLength)
+    for (const std::vector<int>& part : outsideOf)
     {
-      outer[row + 1] = outer[row] + length;
-      ++row;
-    }
-    offset += part.values.size();
-    if (outside)
-    {
-      outside->insert(outside->end(), part.outside.begin(), part.outside.end());
+      outside->insert(outside->end(), part.begin(), part.end());
     }
   }
   return A;
+}
+
+// The blocks as one matrix.
+SparseRowMatrix concatenate(const RowBlocks& A)
+{
+  long nonZeros = 0;
+  for (const SparseRowMatrix& block : A.blocks)
+  {
+    nonZeros += block.nonZeros();
+  }
+  SparseRowMatrix B(A.rows(), A.columns);
+  B.resizeNonZeros(nonZeros);
+  auto* outer = B.outerIndexPtr();
+  outer[0] = 0;
+  long row = 0;
+  for (const SparseRowMatrix& block : A.blocks)
+  {
+    const long offset = outer[row];
+    std::copy(block.innerIndexPtr(), block.innerIndexPtr() + block.nonZeros(), B.innerIndexPtr() + offset);
+    std::copy(block.valuePtr(), block.valuePtr() + block.nonZeros(), B.valuePtr() + offset);
+    for (long r = 0; r < block.rows(); ++r, ++row)
+    {
+      outer[row + 1] = static_cast<int>(offset + block.outerIndexPtr()[r + 1]);
+    }
+  }
+  return B;
 }
 
 // The rows of A for which keep(row) holds, in their order.
@@ -196,12 +218,27 @@ SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const 
   return gram.sum();
 }
 
-SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+long RowBlocks::rows() const
+{
+  long rows = 0;
+  for (const SparseRowMatrix& block : blocks)
+  {
+    rows += block.rows();
+  }
+  return rows;
+}
+
+RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
   return assembleRows(
     basis, positions, 1, false,
     [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) { rows[0] = phi.value; },
     outside, progress);
+}
+
+SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+{
+  return concatenate(subspaceBlocks(basis, positions, outside, progress));
 }
 
 EnergyNormals normalMatrices(const DeformationEnergy& energy)
@@ -226,7 +263,7 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
     const Progress part{ progress.callback, progress.client, progress.begin + (progress.end - progress.begin) * first / n,
       progress.begin + (progress.end - progress.begin) * last / n };
     // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
-    SparseRowMatrix D = assembleRows(
+    SparseRowMatrix D = concatenate(assembleRows(
       basis, points, 4, true,
       [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
         const double g = std::sqrt(volume[first + i]) * gradientScale, l = std::sqrt(volume[first + i]) * laplacianScale;
@@ -239,7 +276,7 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
           rows[3][a] = l * phi.laplacian[a];
         }
       },
-      nullptr, part);
+      nullptr, part));
     const SparseRowMatrix G = selectRows(D, [](long row) { return row % 4 != 3; });
     const SparseRowMatrix L = selectRows(D, [](long row) { return row % 4 == 3; });
     D = SparseRowMatrix(); // freed before the products

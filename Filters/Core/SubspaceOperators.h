@@ -8,9 +8,42 @@
 
 namespace mlsdeform
 {
-/// Phi at the positions (one row each). Rows of positions outside every support are empty;
-/// their indices are appended to outside when given.
+/// A sparse matrix kept as blocks of consecutive rows, each a row-major matrix of rowsPerBlock
+/// rows (the last may hold fewer): rows evaluated in parallel chunks stay where they were
+/// assembled. Phi at a 1M-point mesh (80M entries) copied into one matrix doubled the peak memory.
+struct RowBlocks
+{
+  std::vector<SparseRowMatrix> blocks;
+  long rowsPerBlock = 1;
+  long columns = 0;
+  long rows() const;
+};
+
+/// Phi at the positions (one row each), as row blocks. Rows of positions outside every support
+/// are empty; their indices are appended to outside when given.
+RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+
+/// Phi at the positions as one matrix (subspaceBlocks, concatenated).
 SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+
+/// Row i of A X (d(x_i) = sum_j Phi_ij w_j) written as an (x, y, z) triple to out, summed in the
+/// order of the row.
+template <typename Dense>
+void multiplyRow(const SparseRowMatrix& A, long i, const Eigen::MatrixBase<Dense>& X, double* out)
+{
+  double x = 0, y = 0, z = 0;
+  for (auto a = A.outerIndexPtr()[i]; a < A.outerIndexPtr()[i + 1]; ++a)
+  {
+    const double v = A.valuePtr()[a];
+    const auto j = A.innerIndexPtr()[a];
+    x += v * X(j, 0);
+    y += v * X(j, 1);
+    z += v * X(j, 2);
+  }
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
 
 /// Rows begin..end of A X for a dense X with three columns (either storage order), written as
 /// (x, y, z) triples to out: one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at
@@ -19,25 +52,21 @@ SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& pos
 template <typename Dense>
 void multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
 {
-  const auto* outer = A.outerIndexPtr();
-  const auto* inner = A.innerIndexPtr();
-  const double* value = A.valuePtr();
 #pragma omp parallel for schedule(static)
   for (long i = begin; i < end; ++i)
   {
-    double x = 0, y = 0, z = 0;
-    for (auto a = outer[i]; a < outer[i + 1]; ++a)
-    {
-      const double v = value[a];
-      const auto j = inner[a];
-      x += v * X(j, 0);
-      y += v * X(j, 1);
-      z += v * X(j, 2);
-    }
-    double* o = out + 3 * (i - begin);
-    o[0] = x;
-    o[1] = y;
-    o[2] = z;
+    multiplyRow(A, i, X, out + 3 * (i - begin));
+  }
+}
+
+/// The same for a matrix in row blocks.
+template <typename Dense>
+void multiplyRows(const RowBlocks& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+{
+#pragma omp parallel for schedule(static)
+  for (long i = begin; i < end; ++i)
+  {
+    multiplyRow(A.blocks[i / A.rowsPerBlock], i % A.rowsPerBlock, X, out + 3 * (i - begin));
   }
 }
 
