@@ -122,9 +122,37 @@ void polyhedronTetrahedra(vtkUnstructuredGrid* grid, vtkIdType cell, Add add)
   });
 }
 
+// The simplices VTK splits a cell of a type with a fixed triangulation into (its Triangulate
+// with index 0), as positions in the cell's point list; empty for other types (a pyramid's or a
+// quad's split depends on its shape). Asked once per type: a vtkGenericCell per cell took most of
+// the sampling domain's time on a 1M-cell mesh.
+const std::vector<vtkIdType>& fixedSimplices(int type)
+{
+  static const std::array<std::vector<vtkIdType>, VTK_NUMBER_OF_CELL_TYPES> simplices = [] {
+    std::array<std::vector<vtkIdType>, VTK_NUMBER_OF_CELL_TYPES> out;
+    vtkNew<vtkGenericCell> cell;
+    vtkNew<vtkIdList> ids;
+    vtkNew<vtkPoints> pts;
+    for (int fixed : { VTK_HEXAHEDRON, VTK_VOXEL, VTK_WEDGE })
+    {
+      cell->SetCellType(fixed);
+      for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
+      {
+        cell->GetPointIds()->SetId(i, i);
+      }
+      if (cell->Triangulate(0, ids, pts))
+      {
+        out[fixed].assign(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+      }
+    }
+    return out;
+  }();
+  return type >= 0 && type < VTK_NUMBER_OF_CELL_TYPES ? simplices[type] : simplices[VTK_EMPTY_CELL];
+}
+
 // Splits every cell of the given dimension into simplices (triangles or tetrahedra): simplices
 // are taken as they are, polygons become fans, polyhedra tetrahedra about a point, other cells
-// are triangulated by VTK.
+// of a fixed topology by their type's simplices, others are triangulated by VTK.
 template <std::size_t N>
 void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
 {
@@ -182,7 +210,19 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
         continue;
       }
     }
-    if (!cells.get(set, c)->Triangulate(0, ids, pts))
+    if (const std::vector<vtkIdType>& local = fixedSimplices(type); !local.empty() && grid)
+    {
+      // a cell of fixed topology: its type's simplices mapped through its point ids
+      vtkIdType n = 0;
+      const vtkIdType* cellPoints = nullptr;
+      grid->GetCellPoints(c, n, cellPoints);
+      ids->SetNumberOfIds(static_cast<vtkIdType>(local.size()));
+      for (std::size_t v = 0; v < local.size(); ++v)
+      {
+        ids->SetId(static_cast<vtkIdType>(v), cellPoints[local[v]]);
+      }
+    }
+    else if (!cells.get(set, c)->Triangulate(0, ids, pts))
     {
       continue;
     }
