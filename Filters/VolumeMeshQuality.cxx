@@ -16,50 +16,51 @@
 
 namespace mlsgeometry
 {
-std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid)
+mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
 {
-  std::vector<mlsdeform::CellFaces> cells(grid->GetNumberOfCells());
+  mlsdeform::CellFaceList cells;
   // The faces of each fixed cell type as positions in its point list, from VTK's cell of that type
   // (asked once per type: a vtkGenericCell per cell cost most of the time on a 1M-cell mesh).
   std::vector<mlsdeform::CellFaces> faceTemplates(VTK_NUMBER_OF_CELL_TYPES);
   vtkNew<vtkGenericCell> cell;
-  vtkNew<vtkIdList> points;
+  std::vector<vtkIdType> polygon;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     const int type = grid->GetCellType(c);
     if (type == VTK_POLYHEDRON)
     {
-      visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { cells[c].emplace_back(face, face + n); });
-      continue;
+      visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { cells.addFace(face, static_cast<std::size_t>(n)); });
     }
-    if (cellDimension(type) != 3)
+    else if (cellDimension(type) == 3)
     {
-      continue;
-    }
-    mlsdeform::CellFaces& faces = faceTemplates[type];
-    if (faces.empty())
-    {
-      cell->SetCellType(type);
-      for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
+      mlsdeform::CellFaces& faces = faceTemplates[type];
+      if (faces.empty())
       {
-        cell->GetPointIds()->SetId(i, i);
+        cell->SetCellType(type);
+        for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
+        {
+          cell->GetPointIds()->SetId(i, i);
+        }
+        for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+        {
+          vtkIdList* ids = cell->GetFace(f)->GetPointIds();
+          faces.emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+        }
       }
-      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+      vtkIdType n = 0;
+      const vtkIdType* points = nullptr;
+      grid->GetCellPoints(c, n, points);
+      for (const std::vector<int>& face : faces)
       {
-        vtkIdList* ids = cell->GetFace(f)->GetPointIds();
-        faces.emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+        polygon.resize(face.size());
+        for (std::size_t i = 0; i < face.size(); ++i)
+        {
+          polygon[i] = points[face[i]];
+        }
+        cells.addFace(polygon.data(), polygon.size());
       }
     }
-    grid->GetCellPoints(c, points);
-    for (const std::vector<int>& face : faces)
-    {
-      std::vector<int> polygon(face.size());
-      for (std::size_t i = 0; i < face.size(); ++i)
-      {
-        polygon[i] = static_cast<int>(points->GetId(face[i]));
-      }
-      cells[c].push_back(std::move(polygon));
-    }
+    cells.endCell();
   }
   return cells;
 }
@@ -107,7 +108,7 @@ mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
 VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
   : Cells(cellFaces(rest))
 {
-  Has3DCells = std::any_of(Cells.begin(), Cells.end(), [](const mlsdeform::CellFaces& c) { return !c.empty(); });
+  Has3DCells = Cells.faces() > 0;
   if (Has3DCells)
   {
     Faces = mlsdeform::interiorFaces(Cells);

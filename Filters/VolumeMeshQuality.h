@@ -10,8 +10,8 @@ class vtkUnstructuredGrid;
 
 namespace mlsgeometry
 {
-/// The faces of every 3D cell as point-id polygons (empty for other cells).
-std::vector<mlsdeform::CellFaces> cellFaces(vtkUnstructuredGrid* grid);
+/// The faces of every 3D cell as point-id polygons (none for other cells).
+mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid);
 
 /// Verdict's scaled Jacobian of tetrahedra, hexahedra, wedges and pyramids; NaN for other cells.
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid);
@@ -49,12 +49,12 @@ public:
   /// The summary of grid (the rest grid's cells, any points).
   QualitySummary summary(vtkUnstructuredGrid* grid) const;
 
-  const std::vector<mlsdeform::CellFaces>& cells() const { return Cells; }
+  const mlsdeform::CellFaceList& cells() const { return Cells; }
   const std::vector<mlsdeform::InteriorFace>& faces() const { return Faces; }
   const std::vector<int>& orientation() const { return Orientation; }
 
 private:
-  std::vector<mlsdeform::CellFaces> Cells;
+  mlsdeform::CellFaceList Cells;
   std::vector<mlsdeform::InteriorFace> Faces;
   std::vector<int> Orientation;
   bool Has3DCells = false;

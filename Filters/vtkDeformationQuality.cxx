@@ -30,7 +30,7 @@ vtkStandardNewMacro(vtkDeformationQuality);
 
 namespace
 {
-using mlsdeform::CellFaces;
+using mlsdeform::CellFaceList;
 using mlsdeform::FaceMeasures;
 using mlsdeform::InteriorFace;
 using mlsdeform::PointList;
@@ -75,15 +75,15 @@ struct Measures
   long inverted = 0;
 };
 
-Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const std::vector<CellFaces>& cells,
+Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellFaceList& cells,
   const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
 {
   Measures m;
   m.scaledJacobian = mlsgeometry::scaledJacobians(grid);
   m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
   m.inverted = m.faces.invertedCells;
-  m.maxNonOrthogonality.assign(cells.size(), 0);
-  m.maxSkewness.assign(cells.size(), 0);
+  m.maxNonOrthogonality.assign(cells.cells(), 0);
+  m.maxSkewness.assign(cells.cells(), 0);
   for (std::size_t i = 0; i < faces.size(); ++i)
   {
     for (int c : { faces[i].owner, faces[i].neighbour })
@@ -206,7 +206,7 @@ int vtkDeformationQuality::RequestData(
     this->UpdateProgress(0.1);
     // OpenFOAM's face order: out of the owner in the undeformed mesh
     const mlsgeometry::VolumeMeshQuality topology(original ? original : input);
-    const std::vector<CellFaces>& cells = topology.cells();
+    const CellFaceList& cells = topology.cells();
     const std::vector<InteriorFace>& faces = topology.faces();
     const std::vector<int>& orientation = topology.orientation();
     this->UpdateProgress(0.4);
@@ -217,11 +217,10 @@ int vtkDeformationQuality::RequestData(
     neighbours->SetName("Neighbour");
     for (const InteriorFace& f : faces)
     {
-      const std::vector<int>& polygon = cells[f.owner][f.face];
-      polygons->InsertNextCell(static_cast<vtkIdType>(polygon.size()));
-      for (int id : polygon)
+      polygons->InsertNextCell(static_cast<vtkIdType>(cells.faceSize(f.face)));
+      for (std::size_t i = 0; i < cells.faceSize(f.face); ++i)
       {
-        polygons->InsertCellPoint(id);
+        polygons->InsertCellPoint(cells.face(f.face)[i]);
       }
       owners->InsertNextValue(f.owner);
       neighbours->InsertNextValue(f.neighbour);

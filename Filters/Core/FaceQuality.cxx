@@ -5,7 +5,6 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 
 namespace mlsdeform
 {
@@ -15,18 +14,17 @@ namespace
 constexpr double RootVerySmall = 1e-150;
 }
 
-FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face)
+FaceGeometry faceGeometry(const PointList& points, const int* face, std::size_t n)
 {
   FaceGeometry g;
-  const std::size_t n = face.size();
   if (n < 3)
   {
     return g;
   }
   Vec3 average = Vec3::Zero();
-  for (int i : face)
+  for (std::size_t i = 0; i < n; ++i)
   {
-    average += points[i] / static_cast<double>(n);
+    average += points[face[i]] / static_cast<double>(n);
   }
   // triangles (p_i, p_i+1, average): centre (p_i + p_i+1 + average) / 3 weighted by area
   Vec3 sumN = Vec3::Zero(), sumAc = Vec3::Zero();
@@ -92,63 +90,69 @@ double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, co
 }
 
 double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
-  const std::vector<int>& faceIndices)
+  const int* faceIndices, std::size_t n)
 {
   const Vec3 Cpf = face.centre - ownerCentre;
   const Vec3 d = neighbourCentre - ownerCentre;
   const Vec3 sv = Cpf - (face.area.dot(Cpf) / (face.area.dot(d) + RootVerySmall)) * d;
   const Vec3 svHat = sv / (sv.norm() + RootVerySmall);
   double fd = 0.2 * d.norm() + RootVerySmall;
-  for (int i : faceIndices)
+  for (std::size_t i = 0; i < n; ++i)
   {
-    fd = std::max(fd, std::abs(svHat.dot(points[i] - face.centre)));
+    fd = std::max(fd, std::abs(svHat.dot(points[faceIndices[i]] - face.centre)));
   }
   return sv.norm() / fd;
 }
 
-std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells)
+CellFaceList::CellFaceList(const std::vector<CellFaces>& cells)
+{
+  for (const CellFaces& cell : cells)
+  {
+    for (const std::vector<int>& face : cell)
+    {
+      addFace(face.data(), face.size());
+    }
+    endCell();
+  }
+}
+
+std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 {
   // Faces grouped by their smallest point (a group holds a few faces; a map keyed by the sorted
   // faces took 6 s on a 1M-cell mesh), in cell order, so that the first of a pair is the owner.
-  auto smallest = [](const std::vector<int>& face) { return *std::min_element(face.begin(), face.end()); };
+  auto smallest = [&](long f) { return *std::min_element(cells.face(f), cells.face(f) + cells.faceSize(f)); };
   int points = 0;
-  for (const CellFaces& cell : cells)
+  for (long f = 0; f < cells.faces(); ++f)
   {
-    for (const std::vector<int>& face : cell)
+    for (std::size_t i = 0; i < cells.faceSize(f); ++i)
     {
-      for (int p : face)
-      {
-        points = std::max(points, p + 1);
-      }
+      points = std::max(points, cells.face(f)[i] + 1);
     }
   }
   std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
-  for (const CellFaces& cell : cells)
+  for (long f = 0; f < cells.faces(); ++f)
   {
-    for (const std::vector<int>& face : cell)
+    if (cells.faceSize(f) > 0)
     {
-      if (!face.empty())
-      {
-        ++start[smallest(face) + 1];
-      }
+      ++start[smallest(f) + 1];
     }
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<InteriorFace> grouped(static_cast<std::size_t>(start.back()));
   std::vector<long> next(start.begin(), start.end() - 1);
-  for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+  for (int c = 0; c < cells.cells(); ++c)
   {
-    for (int f = 0; f < static_cast<int>(cells[c].size()); ++f)
+    for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
     {
-      if (!cells[c][f].empty())
+      if (cells.faceSize(f) > 0)
       {
-        grouped[next[smallest(cells[c][f])]++] = InteriorFace{ c, -1, f };
+        grouped[next[smallest(f)]++] = InteriorFace{ c, -1, f };
       }
     }
   }
 
   auto sorted = [&](const InteriorFace& face) {
-    std::vector<int> key = cells[face.owner][face.face];
+    std::vector<int> key(cells.face(face.face), cells.face(face.face) + cells.faceSize(face.face));
     std::sort(key.begin(), key.end());
     return key;
   };
@@ -188,30 +192,40 @@ std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells)
       }
     }
   }
-  std::sort(faces.begin(), faces.end(), [](const InteriorFace& a, const InteriorFace& b) {
-    return std::tie(a.owner, a.face) < std::tie(b.owner, b.face);
-  });
+  std::sort(faces.begin(), faces.end(), [](const InteriorFace& a, const InteriorFace& b) { return a.face < b.face; });
   return faces;
 }
 
 namespace
 {
 // Every cell's centre and whether it is inverted (hasNegativePyramid), its faces' geometry
-// computed once per cell.
-std::vector<Vec3> cellCentres(const PointList& points, const std::vector<CellFaces>& cells, std::vector<unsigned char>& inverted)
+// computed once per cell; the geometry of each interior face's owner copy is kept in shared, so
+// that the face measures do not compute it again.
+std::vector<Vec3> cellCentres(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  std::vector<unsigned char>& inverted, std::vector<FaceGeometry>& shared)
 {
-  std::vector<Vec3> centres(cells.size());
-  inverted.assign(cells.size(), 0);
+  std::vector<long> interior(static_cast<std::size_t>(cells.faces()), -1); // a face's interior face, if it owns one
+  for (std::size_t i = 0; i < faces.size(); ++i)
+  {
+    interior[faces[i].face] = static_cast<long>(i);
+  }
+  shared.resize(faces.size());
+  std::vector<Vec3> centres(cells.cells());
+  inverted.assign(cells.cells(), 0);
 #pragma omp parallel
   {
     std::vector<FaceGeometry> g;
 #pragma omp for schedule(static)
-    for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+    for (int c = 0; c < cells.cells(); ++c)
     {
       g.clear();
-      for (const std::vector<int>& face : cells[c])
+      for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
-        g.push_back(faceGeometry(points, face));
+        g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+        if (interior[f] >= 0)
+        {
+          shared[interior[f]] = g.back();
+        }
       }
       centres[c] = cellGeometry(g).centre;
       inverted[c] = !g.empty() && hasNegativePyramid(g, centres[c]);
@@ -221,38 +235,37 @@ std::vector<Vec3> cellCentres(const PointList& points, const std::vector<CellFac
 }
 }
 
-std::vector<int> faceOrientation(
-  const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces)
+std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces)
 {
   std::vector<unsigned char> inverted;
-  const std::vector<Vec3> centres = cellCentres(points, cells, inverted);
+  std::vector<FaceGeometry> g;
+  const std::vector<Vec3> centres = cellCentres(points, cells, faces, inverted, g);
   std::vector<int> orientation(faces.size(), 1);
   for (std::size_t i = 0; i < faces.size(); ++i)
   {
-    const FaceGeometry g = faceGeometry(points, cells[faces[i].owner][faces[i].face]);
-    orientation[i] = g.area.dot(g.centre - centres[faces[i].owner]) < 0 ? -1 : 1;
+    orientation[i] = g[i].area.dot(g[i].centre - centres[faces[i].owner]) < 0 ? -1 : 1;
   }
   return orientation;
 }
 
-FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
-  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+FaceMeasures faceMeasures(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
 {
   FaceMeasures m;
-  const std::vector<Vec3> centres = cellCentres(points, cells, m.inverted);
+  std::vector<FaceGeometry> shared;
+  const std::vector<Vec3> centres = cellCentres(points, cells, faces, m.inverted, shared);
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(faces.size());
   m.skewness.resize(faces.size());
 #pragma omp parallel for
-  for (int i = 0; i < static_cast<int>(faces.size()); ++i)
+  for (long i = 0; i < static_cast<long>(faces.size()); ++i)
   {
-    const std::vector<int>& polygon = cells[faces[i].owner][faces[i].face];
-    FaceGeometry g = faceGeometry(points, polygon);
+    FaceGeometry g = shared[i];
     g.area *= orientation[i];
     const Vec3& P = centres[faces[i].owner];
     const Vec3& N = centres[faces[i].neighbour];
     m.nonOrthogonality[i] = nonOrthogonality(P, N, g.area);
-    m.skewness[i] = skewness(P, N, g, points, polygon);
+    m.skewness[i] = skewness(P, N, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
   }
   return m;
 }

@@ -19,7 +19,11 @@ struct FaceGeometry
   Vec3 centre = Vec3::Zero();
   Vec3 area = Vec3::Zero();
 };
-FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face);
+FaceGeometry faceGeometry(const PointList& points, const int* face, std::size_t n);
+inline FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face)
+{
+  return faceGeometry(points, face.data(), face.size());
+}
 
 /// A polyhedron's centre and volume from its faces (any orientation), or from their geometries.
 struct CellGeometry
@@ -41,28 +45,62 @@ double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, co
 
 /// OpenFOAM's face skewness of an interior face (face points needed for its extent).
 double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
-  const std::vector<int>& faceIndices);
+  const int* faceIndices, std::size_t n);
+inline double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
+  const std::vector<int>& faceIndices)
+{
+  return skewness(ownerCentre, neighbourCentre, face, points, faceIndices.data(), faceIndices.size());
+}
 
 /// A cell as its list of faces, each a polygon of point indices.
 using CellFaces = std::vector<std::vector<int>>;
 
-/// A face shared by two cells; `face` indexes the owner's face list.
+/// The faces of many cells in flat arrays (a 1M-cell mesh as one CellFaces per cell made ~8M small
+/// allocations): the faces of cell c are firstFace(c) .. firstFace(c + 1) - 1, numbered over all
+/// cells, each a polygon of point indices.
+class CellFaceList
+{
+public:
+  CellFaceList() = default;
+  explicit CellFaceList(const std::vector<CellFaces>& cells);
+
+  /// Appends a face of n points to the cell being built; endCell() closes it.
+  template <typename Index>
+  void addFace(const Index* points, std::size_t n)
+  {
+    Points.insert(Points.end(), points, points + n);
+    FaceStart.push_back(static_cast<long>(Points.size()));
+  }
+  void endCell() { CellStart.push_back(faces()); }
+
+  int cells() const { return static_cast<int>(CellStart.size()) - 1; }
+  long faces() const { return static_cast<long>(FaceStart.size()) - 1; }
+  long firstFace(int cell) const { return CellStart[cell]; }
+  const int* face(long f) const { return Points.data() + FaceStart[f]; }
+  std::size_t faceSize(long f) const { return static_cast<std::size_t>(FaceStart[f + 1] - FaceStart[f]); }
+
+private:
+  std::vector<long> CellStart{ 0 };
+  std::vector<long> FaceStart{ 0 };
+  std::vector<int> Points;
+};
+
+/// A face shared by two cells; `face` is the owner's copy (a face number of the CellFaceList).
 struct InteriorFace
 {
   int owner = -1;
   int neighbour = -1;
-  int face = -1;
+  long face = -1;
 };
 
 /// The faces shared by two cells, matched by their point sets (the owner is the lower cell index).
 /// Throws std::invalid_argument for a face shared by more than two cells.
-std::vector<InteriorFace> interiorFaces(const std::vector<CellFaces>& cells);
+std::vector<InteriorFace> interiorFaces(const CellFaceList& cells);
 
 /// Per interior face, +1 or -1 so that the oriented area vector points out of the owner on
 /// `points`. OpenFOAM fixes that order in the topology, so decide it on the undeformed mesh and
 /// keep it: a neighbour whose centre folds over to the owner's side then shows above 90 degrees.
-std::vector<int> faceOrientation(
-  const PointList& points, const std::vector<CellFaces>& cells, const std::vector<InteriorFace>& faces);
+std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces);
 
 /// Non-orthogonality (degrees) and skewness of every interior face; the cells with a pyramid of
 /// negative volume (inverted, hasNegativePyramid) and their number.
@@ -73,6 +111,6 @@ struct FaceMeasures
   std::vector<unsigned char> inverted; // per cell
   long invertedCells = 0;
 };
-FaceMeasures faceMeasures(const PointList& points, const std::vector<CellFaces>& cells,
-  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation);
+FaceMeasures faceMeasures(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation);
 } // namespace mlsdeform

@@ -111,8 +111,9 @@ TEST(InteriorFacesAreMatchedAndOriented)
       { v(x, 0, 0), v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1) }, { v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 1), v(x + 1, 1, 0) },
       { v(x, 0, 0), v(x, 1, 0), v(x + 1, 1, 0), v(x + 1, 0, 0) }, { v(x, 0, 1), v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1) } };
   };
-  std::vector<CellFaces> cells = { cube(0), cube(1) };
-  std::reverse(cells[0][1].begin(), cells[0][1].end());
+  std::vector<CellFaces> nested = { cube(0), cube(1) };
+  std::reverse(nested[0][1].begin(), nested[0][1].end());
+  const CellFaceList cells(nested);
   const std::vector<InteriorFace> faces = interiorFaces(cells);
   CHECK(faces.size() == 1);
   CHECK(faces[0].owner == 0 && faces[0].neighbour == 1 && faces[0].face == 1);
@@ -135,8 +136,8 @@ TEST(InteriorFacesAreMatchedAndOriented)
   // the folded neighbour is inside out: its moved face's pyramid has negative volume
   CHECK(after.inverted[1] == 1 && after.invertedCells == 2);
   // a face shared by three cells is not a valid mesh
-  cells.push_back(CellFaces{ cells[1][0] });
-  CHECK_THROWS(interiorFaces(cells), std::invalid_argument);
+  nested.push_back(CellFaces{ nested[1][0] });
+  CHECK_THROWS(interiorFaces(CellFaceList(nested)), std::invalid_argument);
 }
 
 TEST_MAIN
