@@ -94,14 +94,20 @@ std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
   return jacobians;
 }
 
-mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
+void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out)
 {
-  mlsdeform::PointList points(grid->GetNumberOfPoints());
+  out.resize(grid->GetNumberOfPoints());
   for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
   {
-    grid->GetPoint(i, points[i].data());
+    grid->GetPoint(i, out[i].data());
   }
-  mlsdeform::requireFinite(points, what);
+  mlsdeform::requireFinite(out, what);
+}
+
+mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
+{
+  mlsdeform::PointList points;
+  gridPoints(grid, what, points);
   return points;
 }
 
@@ -116,15 +122,16 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
   }
 }
 
-QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid) const
+QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
 {
   QualitySummary s;
-  const mlsdeform::FaceMeasures m = mlsdeform::faceMeasures(gridPoints(grid, "the mesh's points"), Cells, Faces, Orientation);
-  s.inverted = m.invertedCells;
+  gridPoints(grid, "the mesh's points", Points);
+  mlsdeform::faceMeasures(Points, Cells, Faces, Orientation, Work, Measures);
+  s.inverted = Measures.invertedCells;
   for (std::size_t i = 0; i < Faces.size(); ++i)
   {
-    s.maxNonOrthogonality = std::max(s.maxNonOrthogonality, m.nonOrthogonality[i]);
-    s.maxSkewness = std::max(s.maxSkewness, m.skewness[i]);
+    s.maxNonOrthogonality = std::max(s.maxNonOrthogonality, Measures.nonOrthogonality[i]);
+    s.maxSkewness = std::max(s.maxSkewness, Measures.skewness[i]);
   }
   return s;
 }

@@ -16,7 +16,8 @@ mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid);
 /// Verdict's scaled Jacobian of tetrahedra, hexahedra, wedges and pyramids; NaN for other cells.
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid);
 
-/// The grid's points (throws InvalidInputException when one is not finite).
+/// The grid's points (throws InvalidInputException when one is not finite), into out or returned.
+void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out);
 mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what);
 
 /// Inverted cells (a face pyramid of negative volume), and the largest non-orthogonality (degrees) and skewness
@@ -46,8 +47,9 @@ public:
   /// Whether the grid has 3D cells to measure.
   bool hasCells() const { return Has3DCells; }
 
-  /// The summary of grid (the rest grid's cells, any points).
-  QualitySummary summary(vtkUnstructuredGrid* grid) const;
+  /// The summary of grid (the rest grid's cells, any points), measured in buffers kept for the
+  /// next call: a new deformation allocates nothing.
+  QualitySummary summary(vtkUnstructuredGrid* grid);
 
   const mlsdeform::CellFaceList& cells() const { return Cells; }
   const std::vector<mlsdeform::InteriorFace>& faces() const { return Faces; }
@@ -58,5 +60,8 @@ private:
   std::vector<mlsdeform::InteriorFace> Faces;
   std::vector<int> Orientation;
   bool Has3DCells = false;
+  mlsdeform::PointList Points;
+  mlsdeform::FaceWorkspace Work;
+  mlsdeform::FaceMeasures Measures;
 };
 } // namespace mlsgeometry

@@ -198,20 +198,23 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 
 namespace
 {
-// Every cell's centre and whether it is inverted (hasNegativePyramid), its faces' geometry
-// computed once per cell; the geometry of each interior face's owner copy is kept in shared, so
-// that the face measures do not compute it again.
-std::vector<Vec3> cellCentres(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
-  std::vector<unsigned char>& inverted, std::vector<FaceGeometry>& shared)
+// Every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid), its faces'
+// geometry computed once per cell; the geometry of each interior face's owner copy is kept in
+// work.shared, so that the face measures do not compute it again.
+void cellCentres(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  std::vector<unsigned char>& inverted, FaceWorkspace& work)
 {
-  std::vector<long> interior(static_cast<std::size_t>(cells.faces()), -1); // a face's interior face, if it owns one
-  for (std::size_t i = 0; i < faces.size(); ++i)
+  if (work.interior.size() != static_cast<std::size_t>(cells.faces()))
   {
-    interior[faces[i].face] = static_cast<long>(i);
+    work.interior.assign(static_cast<std::size_t>(cells.faces()), -1);
+    for (std::size_t i = 0; i < faces.size(); ++i)
+    {
+      work.interior[faces[i].face] = static_cast<long>(i);
+    }
   }
-  shared.resize(faces.size());
-  std::vector<Vec3> centres(cells.cells());
-  inverted.assign(cells.cells(), 0);
+  work.shared.resize(faces.size());
+  work.centres.resize(cells.cells());
+  inverted.resize(cells.cells());
 #pragma omp parallel
   {
     std::vector<FaceGeometry> g;
@@ -222,51 +225,57 @@ std::vector<Vec3> cellCentres(const PointList& points, const CellFaceList& cells
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
         g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
-        if (interior[f] >= 0)
+        if (work.interior[f] >= 0)
         {
-          shared[interior[f]] = g.back();
+          work.shared[work.interior[f]] = g.back();
         }
       }
-      centres[c] = cellGeometry(g).centre;
-      inverted[c] = !g.empty() && hasNegativePyramid(g, centres[c]);
+      work.centres[c] = cellGeometry(g).centre;
+      inverted[c] = !g.empty() && hasNegativePyramid(g, work.centres[c]);
     }
   }
-  return centres;
 }
 }
 
 std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces)
 {
   std::vector<unsigned char> inverted;
-  std::vector<FaceGeometry> g;
-  const std::vector<Vec3> centres = cellCentres(points, cells, faces, inverted, g);
+  FaceWorkspace work;
+  cellCentres(points, cells, faces, inverted, work);
   std::vector<int> orientation(faces.size(), 1);
   for (std::size_t i = 0; i < faces.size(); ++i)
   {
-    orientation[i] = g[i].area.dot(g[i].centre - centres[faces[i].owner]) < 0 ? -1 : 1;
+    const FaceGeometry& g = work.shared[i];
+    orientation[i] = g.area.dot(g.centre - work.centres[faces[i].owner]) < 0 ? -1 : 1;
   }
   return orientation;
 }
 
-FaceMeasures faceMeasures(
-  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
 {
-  FaceMeasures m;
-  std::vector<FaceGeometry> shared;
-  const std::vector<Vec3> centres = cellCentres(points, cells, faces, m.inverted, shared);
+  cellCentres(points, cells, faces, m.inverted, work);
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(faces.size());
   m.skewness.resize(faces.size());
 #pragma omp parallel for
   for (long i = 0; i < static_cast<long>(faces.size()); ++i)
   {
-    FaceGeometry g = shared[i];
+    FaceGeometry g = work.shared[i];
     g.area *= orientation[i];
-    const Vec3& P = centres[faces[i].owner];
-    const Vec3& N = centres[faces[i].neighbour];
+    const Vec3& P = work.centres[faces[i].owner];
+    const Vec3& N = work.centres[faces[i].neighbour];
     m.nonOrthogonality[i] = nonOrthogonality(P, N, g.area);
     m.skewness[i] = skewness(P, N, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
   }
+}
+
+FaceMeasures faceMeasures(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+{
+  FaceWorkspace work;
+  FaceMeasures m;
+  faceMeasures(points, cells, faces, orientation, work, m);
   return m;
 }
 } // namespace mlsdeform

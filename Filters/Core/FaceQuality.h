@@ -113,4 +113,17 @@ struct FaceMeasures
 };
 FaceMeasures faceMeasures(
   const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation);
+
+/// The mesh-sized buffers of faceMeasures, kept between calls on the same cells so that measuring
+/// another deformation allocates nothing.
+struct FaceWorkspace
+{
+  std::vector<long> interior; // per face of the cells: the interior face it is the owner's copy of, or -1
+  std::vector<FaceGeometry> shared; // per interior face: its geometry from the owner's copy
+  std::vector<Vec3> centres;        // per cell
+};
+
+/// faceMeasures into out, with the buffers of work.
+void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
 } // namespace mlsdeform
