@@ -116,6 +116,50 @@ TEST(VolumetricNormalsAreGramMatricesOfTheDerivativeRows)
   }
 }
 
+TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
+{
+  // Phi at 10,000 positions (3 row blocks) and 5 far outside: every row holds the shape functions
+  // as evaluated (the same operations, so exactly), the concatenation is the same matrix, and
+  // d = Phi w over a row range that crosses blocks is the same in either form (each row summed in
+  // its order by one thread).
+  const Scene scene;
+  const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
+  PointList x = testgeometry::randomPoints(10000, Vec3(0, 0, 0), Vec3(3, 1, 1), 3);
+  for (int i = 0; i < 5; ++i)
+    x.insert(x.begin() + 4096 * i / 2, Vec3(100, 100, 100));
+  std::vector<int> outside;
+  const RowBlocks blocks = subspaceBlocks(basis, x, &outside);
+  CHECK(blocks.blocks.size() == 3 && blocks.rows() == static_cast<long>(x.size()) && blocks.columns == static_cast<long>(basis.size()));
+  CHECK(outside == std::vector<int>({ 0, 2048, 4096, 6144, 8192 }));
+  const SparseRowMatrix Phi = subspaceMatrix(basis, x);
+  CHECK(Phi.rows() == blocks.rows() && Phi.cols() == blocks.columns);
+  ShapeFunctionValues phi;
+  bool rowsExact = true;
+  for (long i = 0; i < Phi.rows(); ++i)
+  {
+    basis.evaluate(x[i], phi, false);
+    Eigen::VectorXd expected = Eigen::VectorXd::Zero(Phi.cols());
+    for (std::size_t a = 0; a < phi.index.size(); ++a)
+      expected[phi.index[a]] = phi.value[a];
+    rowsExact = rowsExact && Eigen::VectorXd(Phi.row(i).transpose()) == expected &&
+      Phi.row(i).nonZeros() == static_cast<long>(phi.index.size());
+  }
+  CHECK(rowsExact);
+  const Displacements w = Displacements::Random(Phi.cols(), 3);
+  const long begin = 3000, end = 9000;
+  PointDisplacements fromBlocks(end - begin, 3), fromMatrix(end - begin, 3);
+  multiplyRows(blocks, w, begin, end, fromBlocks.data());
+  multiplyRows(Phi, w, begin, end, fromMatrix.data());
+  CHECK(fromBlocks == fromMatrix);
+  // Eigen's product, summed in its own order: a sum of n terms rounds by at most n eps times the
+  // sum of their magnitudes, (|Phi| |w|)_i, in each of the two sums
+  long longest = 0;
+  for (long i = 0; i < Phi.rows(); ++i)
+    longest = std::max(longest, static_cast<long>(Phi.row(i).nonZeros()));
+  const double roundOff = 2 * longest * Epsilon * PointDisplacements(Phi.cwiseAbs() * w.cwiseAbs()).maxCoeff();
+  CHECK((fromMatrix - PointDisplacements((Phi * w).middleRows(begin, end - begin))).cwiseAbs().maxCoeff() <= roundOff);
+}
+
 TEST(CommonTranslationMovesEveryPointByIt)
 {
   Scene scene;
