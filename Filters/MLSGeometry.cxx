@@ -123,9 +123,9 @@ void polyhedronTetrahedra(vtkUnstructuredGrid* grid, vtkIdType cell, Add add)
 }
 
 // The simplices VTK splits a cell of a type with a fixed triangulation into (its Triangulate
-// with index 0), as positions in the cell's point list; empty for other types (a pyramid's or a
-// quad's split depends on its shape). Asked once per type: a vtkGenericCell per cell took most of
-// the sampling domain's time on a 1M-cell mesh.
+// with index 0), as positions in the cell's point list (setLocalCell); empty for other types (a
+// pyramid's or a quad's split depends on its shape). A vtkGenericCell per cell took most of the
+// sampling domain's time on a 1M-cell mesh.
 const std::vector<vtkIdType>& fixedSimplices(int type)
 {
   static const std::array<std::vector<vtkIdType>, VTK_NUMBER_OF_CELL_TYPES> simplices = [] {
@@ -135,11 +135,7 @@ const std::vector<vtkIdType>& fixedSimplices(int type)
     vtkNew<vtkPoints> pts;
     for (int fixed : { VTK_HEXAHEDRON, VTK_VOXEL, VTK_WEDGE })
     {
-      cell->SetCellType(fixed);
-      for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
-      {
-        cell->GetPointIds()->SetId(i, i);
-      }
+      setLocalCell(cell, fixed);
       if (cell->Triangulate(0, ids, pts))
       {
         out[fixed].assign(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
@@ -232,6 +228,15 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     }
   }
 }
+}
+
+void setLocalCell(vtkGenericCell* cell, int type)
+{
+  cell->SetCellType(type);
+  for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
+  {
+    cell->GetPointIds()->SetId(i, i);
+  }
 }
 
 int cellDimension(int type)

@@ -19,8 +19,7 @@ namespace mlsgeometry
 mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
 {
   mlsdeform::CellFaceList cells;
-  // The faces of each fixed cell type as positions in its point list, from VTK's cell of that type
-  // (asked once per type: a vtkGenericCell per cell cost most of the time on a 1M-cell mesh).
+  // The faces of each fixed cell type as positions in its point list (setLocalCell).
   std::vector<mlsdeform::CellFaces> faceTemplates(VTK_NUMBER_OF_CELL_TYPES);
   vtkNew<vtkGenericCell> cell;
   std::vector<vtkIdType> polygon;
@@ -36,11 +35,7 @@ mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
       mlsdeform::CellFaces& faces = faceTemplates[type];
       if (faces.empty())
       {
-        cell->SetCellType(type);
-        for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
-        {
-          cell->GetPointIds()->SetId(i, i);
-        }
+        setLocalCell(cell, type);
         for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
         {
           vtkIdList* ids = cell->GetFace(f)->GetPointIds();
