@@ -6,6 +6,7 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 target=${1:?usage: make-case.sh TARGET_FOLDER}
 rm -rf "$target"
+mkdir -p "$(dirname "$target")"
 cp -r "$here/sphereChannel" "$target"
 cd "$target"
 set +u
