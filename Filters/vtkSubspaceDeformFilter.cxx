@@ -2,6 +2,7 @@
 
 #include "SpaceDeformation.h"
 
+#include "ArrayRanges.h"
 #include "MLSGeometry.h"
 #include "VolumeMeshQuality.h"
 #include "SubspaceOperators.h"
@@ -644,6 +645,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
         }
       }
       moved->Modified();
+      storeRanges(displacement);
+      storeRanges(moved->GetData());
       offset += n;
       outSets[s]->SetPoints(moved);
       outSets[s]->GetPointData()->AddArray(displacement);

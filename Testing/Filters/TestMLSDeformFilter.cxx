@@ -11,6 +11,7 @@
 #include <vtkFloatArray.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkPartitionedDataSet.h>
@@ -373,6 +374,39 @@ TEST(OutputArraysAreReused)
   scene.deform->Update();
   CHECK(arrays().first != kept.Get() && kept->GetPoint(1088)[2] == z);
   CHECK(arrays().first->GetPoint(1088)[2] != z);
+}
+
+TEST(OutputRangesAreVTKs)
+{
+  // The ranges the filter stores with its Points (float here) and Displacement (double), for
+  // ParaView's data information, are exactly those VTK computes for the same values: per
+  // component and of the norm, plain and finite, at the first and at a reused variation.
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  for (double lift : { 0.1, -0.3 })
+  {
+    scene.handle->SetTranslation(0.05, 0, lift);
+    scene.deform->Update();
+    auto* out = vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0));
+    for (vtkDataArray* stored : { out->GetPoints()->GetData(), out->GetPointData()->GetArray("Displacement") })
+    {
+      CHECK(stored->GetInformation()->Has(vtkAbstractArray::PER_COMPONENT()));
+      vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(stored->NewInstance());
+      fresh->DeepCopy(stored);
+      fresh->Modified(); // clears any range DeepCopy may have copied: VTK computes them anew
+      CHECK(!fresh->GetInformation()->Has(vtkAbstractArray::PER_COMPONENT()));
+      for (int c = -1; c < 3; ++c)
+      {
+        double kept[2], computed[2], keptFinite[2], computedFinite[2];
+        stored->GetRange(kept, c);
+        fresh->GetRange(computed, c);
+        stored->GetFiniteRange(keptFinite, c);
+        fresh->GetFiniteRange(computedFinite, c);
+        CHECK(kept[0] == computed[0] && kept[1] == computed[1]);
+        CHECK(keptFinite[0] == computedFinite[0] && keptFinite[1] == computedFinite[1]);
+      }
+    }
+  }
 }
 
 TEST(RecoversAfterFailedUpdates)
