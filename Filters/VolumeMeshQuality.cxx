@@ -113,15 +113,22 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
   if (Has3DCells)
   {
     Faces = mlsdeform::interiorFaces(Cells);
-    Orientation = mlsdeform::faceOrientation(gridPoints(rest, "the mesh's points"), Cells, Faces);
+    gridPoints(rest, "the mesh's points", Points);
+    Orientation = mlsdeform::faceOrientation(Points, Cells, Faces, Work, Measures);
+    Original = summarizeMeasures();
   }
 }
 
 QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
 {
-  QualitySummary s;
   gridPoints(grid, "the mesh's points", Points);
   mlsdeform::faceMeasures(Points, Cells, Faces, Orientation, Work, Measures);
+  return summarizeMeasures();
+}
+
+QualitySummary VolumeMeshQuality::summarizeMeasures() const
+{
+  QualitySummary s;
   s.inverted = Measures.invertedCells;
   for (std::size_t i = 0; i < Faces.size(); ++i)
   {

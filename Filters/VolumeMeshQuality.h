@@ -47,6 +47,9 @@ public:
   /// Whether the grid has 3D cells to measure.
   bool hasCells() const { return Has3DCells; }
 
+  /// The summary of the rest grid, measured with its faces' orientation.
+  const QualitySummary& original() const { return Original; }
+
   /// The summary of grid (the rest grid's cells, any points), measured in buffers kept for the
   /// next call: a new deformation allocates nothing.
   QualitySummary summary(vtkUnstructuredGrid* grid);
@@ -56,6 +59,8 @@ public:
   const std::vector<int>& orientation() const { return Orientation; }
 
 private:
+  QualitySummary summarizeMeasures() const;
+
   mlsdeform::CellFaceList Cells;
   std::vector<mlsdeform::InteriorFace> Faces;
   std::vector<int> Orientation;
@@ -63,5 +68,6 @@ private:
   mlsdeform::PointList Points;
   mlsdeform::FaceWorkspace Work;
   mlsdeform::FaceMeasures Measures;
+  QualitySummary Original;
 };
 } // namespace mlsgeometry

@@ -724,7 +724,7 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
         cache.quality.push_back(grid ? std::make_unique<mlsgeometry::VolumeMeshQuality>(grid) : nullptr);
         if (cache.quality.back() && cache.quality.back()->hasCells())
         {
-          cache.originalQuality.add(cache.quality.back()->summary(grid));
+          cache.originalQuality.add(cache.quality.back()->original());
         }
       }
     }

@@ -119,80 +119,108 @@ CellFaceList::CellFaceList(const std::vector<CellFaces>& cells)
 std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 {
   // Faces grouped by their smallest point (a group holds a few faces; a map keyed by the sorted
-  // faces took 6 s on a 1M-cell mesh), in cell order, so that the first of a pair is the owner.
-  auto smallest = [&](long f) { return *std::min_element(cells.face(f), cells.face(f) + cells.faceSize(f)); };
-  int points = 0;
-  for (long f = 0; f < cells.faces(); ++f)
+  // faces took 6 s on a 1M-cell mesh), in face order, so that the first of a pair is the owner
+  // (the lower cell). Groups are matched in parallel: each writes only its own faces' entries.
+  const long faceCount = cells.faces();
+  std::vector<int> cellOf(static_cast<std::size_t>(faceCount));
+  for (int c = 0; c < cells.cells(); ++c)
   {
-    for (std::size_t i = 0; i < cells.faceSize(f); ++i)
+    std::fill(cellOf.begin() + cells.firstFace(c), cellOf.begin() + cells.firstFace(c + 1), c);
+  }
+  std::vector<int> smallest(static_cast<std::size_t>(faceCount), -1); // -1: an empty face
+  int points = 0;
+#pragma omp parallel for reduction(max : points)
+  for (long f = 0; f < faceCount; ++f)
+  {
+    const int* face = cells.face(f);
+    const std::size_t n = cells.faceSize(f);
+    if (n > 0)
     {
-      points = std::max(points, cells.face(f)[i] + 1);
+      smallest[f] = *std::min_element(face, face + n);
+      points = std::max(points, *std::max_element(face, face + n) + 1);
     }
   }
   std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
-  for (long f = 0; f < cells.faces(); ++f)
+  for (long f = 0; f < faceCount; ++f)
   {
-    if (cells.faceSize(f) > 0)
+    if (smallest[f] >= 0)
     {
-      ++start[smallest(f) + 1];
+      ++start[smallest[f] + 1];
     }
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<InteriorFace> grouped(static_cast<std::size_t>(start.back()));
-  std::vector<long> next(start.begin(), start.end() - 1);
-  for (int c = 0; c < cells.cells(); ++c)
+  std::vector<long> grouped(static_cast<std::size_t>(start.back()));
   {
-    for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
+    std::vector<long> next(start.begin(), start.end() - 1);
+    for (long f = 0; f < faceCount; ++f)
     {
-      if (cells.faceSize(f) > 0)
+      if (smallest[f] >= 0)
       {
-        grouped[next[smallest(f)]++] = InteriorFace{ c, -1, f };
+        grouped[next[smallest[f]]++] = f;
       }
     }
   }
+  std::vector<int>().swap(smallest);
 
-  auto sorted = [&](const InteriorFace& face) {
-    std::vector<int> key(cells.face(face.face), cells.face(face.face) + cells.faceSize(face.face));
-    std::sort(key.begin(), key.end());
-    return key;
-  };
-  std::vector<InteriorFace> faces;
-  std::vector<std::vector<int>> keys;
-  for (int p = 0; p < points; ++p)
+  // neighbour[f]: the other cell of the owner's copy f; -2 marks a neighbour's copy
+  std::vector<int> neighbour(static_cast<std::size_t>(faceCount), -1);
+  long shared = -1; // an owner's face found in a third cell (the lowest such face: the same for any thread count)
+#pragma omp parallel
   {
-    const auto begin = grouped.begin() + start[p], end = grouped.begin() + start[p + 1];
-    keys.clear();
-    for (auto g = begin; g != end; ++g)
+    std::vector<int> keys;   // the group's faces, each sorted, one after another
+    std::vector<long> first; // where each face starts in keys
+#pragma omp for schedule(dynamic, 4096) reduction(max : shared)
+    for (int p = 0; p < points; ++p)
     {
-      keys.push_back(sorted(*g));
-    }
-    for (auto a = begin; a != end; ++a)
-    {
-      if (a->owner < 0)
+      const long* begin = grouped.data() + start[p];
+      const long count = start[p + 1] - start[p];
+      keys.clear();
+      first.assign(1, 0);
+      for (long g = 0; g < count; ++g)
       {
-        continue; // already the neighbour of an earlier face
+        keys.insert(keys.end(), cells.face(begin[g]), cells.face(begin[g]) + cells.faceSize(begin[g]));
+        std::sort(keys.begin() + first.back(), keys.end());
+        first.push_back(static_cast<long>(keys.size()));
       }
-      for (auto b = a + 1; b != end; ++b)
+      auto same = [&](long a, long b) {
+        return first[a + 1] - first[a] == first[b + 1] - first[b] &&
+          std::equal(keys.begin() + first[a], keys.begin() + first[a + 1], keys.begin() + first[b]);
+      };
+      for (long a = 0; a < count; ++a)
       {
-        if (b->owner < 0 || keys[a - begin] != keys[b - begin])
+        const long fa = begin[a];
+        for (long b = a + 1; b < count && neighbour[fa] != -2; ++b)
         {
-          continue;
+          const long fb = begin[b];
+          if (neighbour[fb] == -2 || !same(a, b))
+          {
+            continue;
+          }
+          if (neighbour[fa] >= 0)
+          {
+            shared = std::max(shared, faceCount - fa); // the lowest such face wins the max
+            break;
+          }
+          neighbour[fa] = cellOf[fb];
+          neighbour[fb] = -2;
         }
-        if (a->neighbour >= 0)
-        {
-          throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(a->owner) + ", " +
-            std::to_string(a->neighbour) + " and " + std::to_string(b->owner) + ")");
-        }
-        a->neighbour = b->owner;
-        b->owner = -1;
-      }
-      if (a->neighbour >= 0)
-      {
-        faces.push_back(*a);
       }
     }
   }
-  std::sort(faces.begin(), faces.end(), [](const InteriorFace& a, const InteriorFace& b) { return a.face < b.face; });
+  if (shared >= 0)
+  {
+    const long fa = faceCount - shared;
+    throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(cellOf[fa]) + ", " +
+      std::to_string(neighbour[fa]) + " and another)");
+  }
+  std::vector<InteriorFace> faces;
+  for (long f = 0; f < faceCount; ++f)
+  {
+    if (neighbour[f] >= 0)
+    {
+      faces.push_back(InteriorFace{ cellOf[f], neighbour[f], f });
+    }
+  }
   return faces;
 }
 
@@ -235,26 +263,11 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const std::
     }
   }
 }
-}
 
-std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces)
+// The face measures from the cells' geometry in work (cellCentres on these points).
+void measureFaces(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  const std::vector<int>& orientation, const FaceWorkspace& work, FaceMeasures& m)
 {
-  std::vector<unsigned char> inverted;
-  FaceWorkspace work;
-  cellCentres(points, cells, faces, inverted, work);
-  std::vector<int> orientation(faces.size(), 1);
-  for (std::size_t i = 0; i < faces.size(); ++i)
-  {
-    const FaceGeometry& g = work.shared[i];
-    orientation[i] = g.area.dot(g.centre - work.centres[faces[i].owner]) < 0 ? -1 : 1;
-  }
-  return orientation;
-}
-
-void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
-  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
-{
-  cellCentres(points, cells, faces, m.inverted, work);
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(faces.size());
   m.skewness.resize(faces.size());
@@ -268,6 +281,35 @@ void faceMeasures(const PointList& points, const CellFaceList& cells, const std:
     m.nonOrthogonality[i] = nonOrthogonality(P, N, g.area);
     m.skewness[i] = skewness(P, N, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
   }
+}
+}
+
+std::vector<int> faceOrientation(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, FaceWorkspace& work, FaceMeasures& out)
+{
+  cellCentres(points, cells, faces, out.inverted, work);
+  std::vector<int> orientation(faces.size(), 1);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+  {
+    const FaceGeometry& g = work.shared[i];
+    orientation[i] = g.area.dot(g.centre - work.centres[faces[i].owner]) < 0 ? -1 : 1;
+  }
+  measureFaces(points, cells, faces, orientation, work, out);
+  return orientation;
+}
+
+std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces)
+{
+  FaceWorkspace work;
+  FaceMeasures measures;
+  return faceOrientation(points, cells, faces, work, measures);
+}
+
+void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
+{
+  cellCentres(points, cells, faces, m.inverted, work);
+  measureFaces(points, cells, faces, orientation, work, m);
 }
 
 FaceMeasures faceMeasures(

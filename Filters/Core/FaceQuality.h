@@ -126,4 +126,9 @@ struct FaceWorkspace
 /// faceMeasures into out, with the buffers of work.
 void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
   const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
+
+/// faceOrientation, and with it the measures of these points into out (with the buffers of work):
+/// the rest mesh's measures at the cost of one pass over its cells.
+std::vector<int> faceOrientation(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, FaceWorkspace& work, FaceMeasures& out);
 } // namespace mlsdeform
