@@ -40,7 +40,6 @@ void pushChildrenOf(const Node& node, const Nodes& nodes, TraversalStack& stack,
 
 void KdTree::build(const PointList& points)
 {
-  Points = points;
   Order.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -51,20 +50,25 @@ void KdTree::build(const PointList& points)
   if (!points.empty())
   {
     Nodes.reserve(2 * points.size() / LeafSize + 2);
-    buildNode(0, static_cast<int>(points.size()));
+    buildNode(points, 0, static_cast<int>(points.size()));
+  }
+  Points.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    Points[i] = points[Order[i]];
   }
 }
 
-int KdTree::buildNode(int begin, int end)
+int KdTree::buildNode(const PointList& points, int begin, int end)
 {
   Node node;
   node.begin = begin;
   node.end = end;
-  node.lower = node.upper = Points[Order[begin]];
+  node.lower = node.upper = points[Order[begin]];
   for (int i = begin + 1; i < end; ++i)
   {
-    node.lower = node.lower.cwiseMin(Points[Order[i]]);
-    node.upper = node.upper.cwiseMax(Points[Order[i]]);
+    node.lower = node.lower.cwiseMin(points[Order[i]]);
+    node.upper = node.upper.cwiseMax(points[Order[i]]);
   }
   const int index = static_cast<int>(Nodes.size());
   Nodes.push_back(node);
@@ -74,9 +78,9 @@ int KdTree::buildNode(int begin, int end)
     (node.upper - node.lower).maxCoeff(&axis);
     const int middle = (begin + end) / 2;
     std::nth_element(Order.begin() + begin, Order.begin() + middle, Order.begin() + end,
-      [&](int a, int b) { return Points[a][axis] < Points[b][axis]; });
-    const int left = buildNode(begin, middle);
-    const int right = buildNode(middle, end);
+      [&](int a, int b) { return points[a][axis] < points[b][axis]; });
+    const int left = buildNode(points, begin, middle);
+    const int right = buildNode(points, middle, end);
     Nodes[index].left = left;
     Nodes[index].right = right;
   }
@@ -85,30 +89,40 @@ int KdTree::buildNode(int begin, int end)
 
 void KdTree::setRadii(const std::vector<double>& radii)
 {
-  Radii = radii;
-  if (!Nodes.empty())
+  Radii.resize(radii.size());
+  for (std::size_t i = 0; i < radii.size() && i < Order.size(); ++i)
   {
-    maxRadiusBelow(0);
+    Radii[i] = radii[Order[i]];
+  }
+  if (!Nodes.empty() && Radii.size() == Points.size())
+  {
+    setReach(0);
   }
 }
 
-double KdTree::maxRadiusBelow(int index)
+void KdTree::setReach(int index)
 {
   Node& node = Nodes[index];
-  double r = 0;
   if (node.left < 0)
   {
+    node.maxRadius = 0;
+    node.reachLower = node.reachUpper = Points[node.begin];
     for (int i = node.begin; i < node.end; ++i)
     {
-      r = std::max(r, Radii[Order[i]]);
+      node.maxRadius = std::max(node.maxRadius, Radii[i]);
+      const Vec3 reach = Vec3::Constant(Radii[i]);
+      node.reachLower = node.reachLower.cwiseMin(Points[i] - reach);
+      node.reachUpper = node.reachUpper.cwiseMax(Points[i] + reach);
     }
+    return;
   }
-  else
-  {
-    r = std::max(maxRadiusBelow(node.left), maxRadiusBelow(node.right));
-  }
-  Nodes[index].maxRadius = r;
-  return r;
+  setReach(node.left);
+  setReach(node.right);
+  const Node& left = Nodes[node.left];
+  const Node& right = Nodes[node.right];
+  node.maxRadius = std::max(left.maxRadius, right.maxRadius);
+  node.reachLower = left.reachLower.cwiseMin(right.reachLower);
+  node.reachUpper = left.reachUpper.cwiseMax(right.reachUpper);
 }
 
 int KdTree::nearest(const Vec3& x) const
@@ -132,7 +146,7 @@ int KdTree::nearest(const Vec3& x) const
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        const double d2 = (Points[Order[i]] - x).squaredNorm();
+        const double d2 = (Points[i] - x).squaredNorm();
         if (d2 < bestDistance)
         {
           bestDistance = d2;
@@ -151,7 +165,7 @@ int KdTree::nearest(const Vec3& x) const
 void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const
 {
   kSmallest(
-    k, [&](int j) { return (Points[j] - x).squaredNorm(); }, [&](const Node& node) { return squaredDistanceToBox(node, x); },
+    k, [&](int i) { return (Points[i] - x).squaredNorm(); }, [&](const Node& node) { return squaredDistanceToBox(node, x); },
     indices, squaredDistances);
 }
 
@@ -167,7 +181,7 @@ void KdTree::kLeastRelative(const Vec3& x, int k, std::vector<int>& indices, std
     return radius > 0 ? squaredDistance / (radius * radius) : std::numeric_limits<double>::infinity();
   };
   kSmallest(
-    k, [&](int j) { return squaredRatio((Points[j] - x).squaredNorm(), Radii[j]); },
+    k, [&](int i) { return squaredRatio((Points[i] - x).squaredNorm(), Radii[i]); },
     [&](const Node& node) { return squaredRatio(squaredDistanceToBox(node, x), node.maxRadius); }, indices, squaredRatios);
 }
 
@@ -196,7 +210,7 @@ void KdTree::kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& i
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        const double value = key(Order[i]);
+        const double value = key(i);
         if (value < worst())
         {
           if (static_cast<int>(indices.size()) == k)
@@ -239,7 +253,7 @@ void KdTree::withinRadius(const Vec3& x, double radius, std::vector<int>& indice
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        if ((Points[Order[i]] - x).squaredNorm() < r2)
+        if ((Points[i] - x).squaredNorm() < r2)
         {
           indices.push_back(Order[i]);
         }
@@ -283,7 +297,8 @@ void KdTree::visitContaining(const Vec3& x, Visit visit) const
   {
     const Node& node = Nodes[stack.back()];
     stack.pop_back();
-    if (squaredDistanceToBox(node, x) >= node.maxRadius * node.maxRadius)
+    if ((x.array() < node.reachLower.array()).any() || (x.array() > node.reachUpper.array()).any() ||
+      squaredDistanceToBox(node, x) >= node.maxRadius * node.maxRadius)
     {
       continue;
     }
@@ -291,8 +306,7 @@ void KdTree::visitContaining(const Vec3& x, Visit visit) const
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        const int j = Order[i];
-        if ((Points[j] - x).squaredNorm() < Radii[j] * Radii[j] && !visit(j))
+        if ((Points[i] - x).squaredNorm() < Radii[i] * Radii[i] && !visit(Order[i]))
         {
           return;
         }

@@ -37,16 +37,17 @@ private:
   struct Node
   {
     Vec3 lower, upper;   // bounding box of the node's points
+    Vec3 reachLower = Vec3::Zero(), reachUpper = Vec3::Zero(); // bounding box of the node's balls (with setRadii)
     double maxRadius = 0; // largest ball radius below this node
-    int begin = 0, end = 0; // range in Order
+    int begin = 0, end = 0; // range in Order, Points and Radii
     int left = -1, right = -1;
   };
-  int buildNode(int begin, int end);
+  int buildNode(const PointList& points, int begin, int end);
   /// Calls visit(j) for every ball j containing x until visit returns false.
   template <typename Visit>
   void visitContaining(const Vec3& x, Visit visit) const;
-  double maxRadiusBelow(int node);
-  /// The k points of least key(point index), visiting only nodes whose bound(node) is below the
+  void setReach(int node);
+  /// The k points of least key(position in Order), visiting only nodes whose bound(node) is below the
   /// k-th least key found so far; sorted by key.
   template <typename PointKey, typename NodeBound>
   void kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& indices, std::vector<double>& keys) const;
@@ -57,6 +58,8 @@ private:
   }
 
 
+  // In tree order: the i-th point (and ball radius) is the input's Order[i], so that a leaf's
+  // points are contiguous in memory.
   PointList Points;
   std::vector<int> Order;
   std::vector<Node> Nodes;
