@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mlsdeform
@@ -38,6 +39,25 @@ Mat4 pseudoInverse(const Mat4& M)
 }
 }
 
+void cosSinPi(double s, double& cosine, double& sine)
+{
+  // u = s, 1/2 - s, s - 1/2 or 1 - s: each difference is exact (Sterbenz), and
+  // cos(pi s), sin(pi s) = (C, S), (S, C), (-S, C), (-C, S) of pi u
+  const bool upper = s > 0.5;
+  const double half = upper ? s - 0.5 : s; // in [0, 1/2]; cos(pi s) = -sin(pi half) above 1/2
+  const bool swap = half > 0.25;
+  const double u = swap ? 0.5 - half : half;
+  const double t = M_PI * u, t2 = t * t;
+  const double C = 1 + t2 * (-1.0 / 2 + t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800 +
+    t2 * (1.0 / 479001600 + t2 * (-1.0 / 87178291200 + t2 * (1.0 / 20922789888000))))))));
+  const double S = t * (1 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880 + t2 * (-1.0 / 39916800 +
+    t2 * (1.0 / 6227020800 + t2 * (-1.0 / 1307674368000 + t2 * (1.0 / 355687428096000)))))))));
+  // on [0, 1/2]: cos(pi half), sin(pi half) = (C, S) below 1/4, (S, C) above
+  const double c = swap ? S : C, sn = swap ? C : S;
+  cosine = upper ? -sn : c;
+  sine = upper ? c : sn;
+}
+
 MLSBasis::MLSBasis(const PointList& centers, const std::vector<double>& supportRadii)
   : Centers(centers)
   , Radii(supportRadii)
@@ -49,7 +69,13 @@ MLSBasis::MLSBasis(const PointList& centers, const std::vector<double>& supportR
 
 double MLSBasis::weight(double r, double sigma)
 {
-  return r < sigma ? 0.5 * std::cos(M_PI * r / sigma) + 0.5 : 0.0;
+  if (!(r < sigma))
+  {
+    return 0.0;
+  }
+  double cosine, sine;
+  cosSinPi(r / sigma, cosine, sine);
+  return 0.5 * cosine + 0.5;
 }
 
 void MLSBasis::evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const
@@ -76,8 +102,9 @@ void MLSBasis::evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDeriva
     const double sigma = Radii[j];
     const Vec3 u = x - Centers[j];
     const double r = u.norm();
-    const double t = M_PI * r / sigma;
-    w[a] = 0.5 * std::cos(t) + 0.5;
+    double cosine, sine; // of t = pi r / sigma
+    cosSinPi(std::min(r / sigma, 1.0), cosine, sine);
+    w[a] = 0.5 * cosine + 0.5;
     W += w[a];
     centroid += w[a] * Centers[j];
     scale = std::max(scale, sigma);
@@ -85,8 +112,8 @@ void MLSBasis::evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDeriva
     {
       // w'(r) = -pi/(2 sigma) sin(t), w''(r) = -pi^2/(2 sigma^2) cos(t); w'(r)/r -> w''(0) at r = 0
       const double d2 = -M_PI * M_PI / (2 * sigma * sigma);
-      const double dr = r > 1e-12 * sigma ? -M_PI / (2 * sigma) * std::sin(t) / r : d2;
-      const double ddr = d2 * std::cos(t);
+      const double dr = r > 1e-12 * sigma ? -M_PI / (2 * sigma) * sine / r : d2;
+      const double ddr = d2 * cosine;
       dw[a] = dr * u;
       for (int d = 0; d < 3; ++d)
       {

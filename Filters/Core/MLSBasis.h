@@ -9,6 +9,12 @@
 
 namespace mlsdeform
 {
+/// cos(pi s) and sin(pi s) for 0 <= s <= 1: s reduced exactly to u in [0, 1/4] by the symmetries
+/// of cos and sin about 1/4, 1/2 and 1, then Taylor polynomials in pi u to degree 16 and 17
+/// (truncation below 1e-17). About twice as fast as libm's sincos, whose CPU-specific variants
+/// (with FMA or without) need not round alike; these are the same bits on any x86-64 CPU.
+void cosSinPi(double s, double& cosine, double& sine);
+
 class MLSBasis : public ShapeFunctions
 {
 public:
