@@ -372,7 +372,7 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
       std::vector<double> local(centers.size(), 0.0);
       std::vector<int> indices;
       std::vector<double> squared;
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4096) // the positions left uncovered cluster (a coarse region's)
       for (long i = 0; i < count; ++i)
       {
         if (reachTree.containedInAtLeast((*list)[i], s))
