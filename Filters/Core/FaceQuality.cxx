@@ -164,12 +164,12 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 
   // neighbour[f]: the other cell of the owner's copy f; -2 marks a neighbour's copy
   std::vector<int> neighbour(static_cast<std::size_t>(faceCount), -1);
-  long shared = -1; // an owner's face found in a third cell (the lowest such face: the same for any thread count)
+  long shared = faceCount; // the lowest owner's face found in a third cell (the same for any thread count)
 #pragma omp parallel
   {
     std::vector<int> keys;   // the group's faces, each sorted, one after another
     std::vector<long> first; // where each face starts in keys
-#pragma omp for schedule(dynamic, 4096) reduction(max : shared)
+#pragma omp for schedule(dynamic, 4096) reduction(min : shared)
     for (int p = 0; p < points; ++p)
     {
       const long* begin = grouped.data() + start[p];
@@ -198,7 +198,7 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
           }
           if (neighbour[fa] >= 0)
           {
-            shared = std::max(shared, faceCount - fa); // the lowest such face wins the max
+            shared = std::min(shared, fa);
             break;
           }
           neighbour[fa] = cellOf[fb];
@@ -207,11 +207,10 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       }
     }
   }
-  if (shared >= 0)
+  if (shared < faceCount)
   {
-    const long fa = faceCount - shared;
-    throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(cellOf[fa]) + ", " +
-      std::to_string(neighbour[fa]) + " and another)");
+    throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(cellOf[shared]) + ", " +
+      std::to_string(neighbour[shared]) + " and another)");
   }
   std::vector<InteriorFace> faces;
   for (long f = 0; f < faceCount; ++f)
