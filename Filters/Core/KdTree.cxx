@@ -21,6 +21,34 @@ struct TraversalStack
   bool empty() const { return count == 0; }
 };
 
+// A ball's squared distance over its squared radius (infinite for radius 0: never taken).
+double squaredRatio(double squaredDistance, double radius)
+{
+  return radius > 0 ? squaredDistance / (radius * radius) : std::numeric_limits<double>::infinity();
+}
+
+// Keeps the k least keys seen so far, sorted (k is small: insertion beats a heap); of equal keys
+// the first seen stays first.
+void insertSmallest(int k, double key, int index, std::vector<int>& indices, std::vector<double>& keys)
+{
+  if (k <= 0)
+  {
+    return;
+  }
+  if (static_cast<int>(indices.size()) == k)
+  {
+    if (!(key < keys.back()))
+    {
+      return;
+    }
+    indices.pop_back();
+    keys.pop_back();
+  }
+  const auto at = std::upper_bound(keys.begin(), keys.end(), key) - keys.begin();
+  keys.insert(keys.begin() + at, key);
+  indices.insert(indices.begin() + at, index);
+}
+
 // Pushes both children, the one of smaller bound (nearer) last so that it is visited first.
 template <typename Node, typename Nodes, typename Bound>
 void pushChildrenOf(const Node& node, const Nodes& nodes, TraversalStack& stack, Bound bound)
@@ -53,9 +81,11 @@ void KdTree::build(const PointList& points)
     buildNode(points, 0, static_cast<int>(points.size()));
   }
   Points.resize(points.size());
+  Position.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     Points[i] = points[Order[i]];
+    Position[Order[i]] = static_cast<int>(i);
   }
 }
 
@@ -169,7 +199,64 @@ void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vect
     indices, squaredDistances);
 }
 
-void KdTree::kLeastRelative(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredRatios) const
+void KdTree::leastRelativeCandidates(const Vec3& lower, const Vec3& upper, int k, std::vector<int>& candidates) const
+{
+  candidates.clear();
+  if (Nodes.empty() || Radii.size() != Points.size() || k <= 0)
+  {
+    return;
+  }
+  // Every x of the box has k balls with ratio at most U, the k-th least ratio of the box's farthest
+  // point; a ball nearer to the box than U times its radius may be among x's k least, no other.
+  const auto nearest = [&](const Vec3& a, const Vec3& b) { // squared, from the box to the box [a, b]
+    return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm();
+  };
+  const auto nodeBound = [&](const Node& node) { return squaredRatio(nearest(node.lower, node.upper), node.maxRadius); };
+  std::vector<int> indices;
+  std::vector<double> farthest;
+  kSmallest(
+    k,
+    [&](int i) {
+      return squaredRatio((Points[i] - lower).cwiseAbs().cwiseMax((Points[i] - upper).cwiseAbs()).squaredNorm(), Radii[i]);
+    },
+    nodeBound, indices, farthest);
+  if (farthest.empty())
+  {
+    return;
+  }
+  constexpr double Margin = 1 + 1e-9; // for the roundings of the bounds
+  const double bound = static_cast<int>(farthest.size()) < k ? std::numeric_limits<double>::infinity() : farthest.back() * Margin;
+  TraversalStack stack;
+  stack.push_back(0);
+  while (!stack.empty())
+  {
+    const Node& node = Nodes[stack.back()];
+    stack.pop_back();
+    if (nodeBound(node) > bound)
+    {
+      continue;
+    }
+    if (node.left < 0)
+    {
+      for (int i = node.begin; i < node.end; ++i)
+      {
+        if (Radii[i] > 0 && squaredRatio(nearest(Points[i], Points[i]), Radii[i]) <= bound)
+        {
+          candidates.push_back(Order[i]);
+        }
+      }
+    }
+    else
+    {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+}
+
+void KdTree::kLeastRelative(const Vec3& x, int k, const std::vector<int>& candidates, std::vector<int>& indices,
+  std::vector<double>& squaredRatios) const
 {
   indices.clear();
   squaredRatios.clear();
@@ -177,18 +264,16 @@ void KdTree::kLeastRelative(const Vec3& x, int k, std::vector<int>& indices, std
   {
     return;
   }
-  const auto squaredRatio = [](double squaredDistance, double radius) {
-    return radius > 0 ? squaredDistance / (radius * radius) : std::numeric_limits<double>::infinity();
-  };
-  kSmallest(
-    k, [&](int i) { return squaredRatio((Points[i] - x).squaredNorm(), Radii[i]); },
-    [&](const Node& node) { return squaredRatio(squaredDistanceToBox(node, x), node.maxRadius); }, indices, squaredRatios);
+  for (int j : candidates)
+  {
+    insertSmallest(k, squaredRatio((Points[Position[j]] - x).squaredNorm(), Radii[Position[j]]), j, indices, squaredRatios);
+  }
 }
 
 template <typename PointKey, typename NodeBound>
 void KdTree::kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& indices, std::vector<double>& keys) const
 {
-  // The best k so far, sorted by key (k is small: insertion beats a heap).
+  // The best k so far, sorted by key (insertSmallest).
   indices.clear();
   keys.clear();
   if (Nodes.empty() || k <= 0)
@@ -210,18 +295,7 @@ void KdTree::kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& i
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        const double value = key(i);
-        if (value < worst())
-        {
-          if (static_cast<int>(indices.size()) == k)
-          {
-            indices.pop_back();
-            keys.pop_back();
-          }
-          const auto at = std::upper_bound(keys.begin(), keys.end(), value) - keys.begin();
-          keys.insert(keys.begin() + at, value);
-          indices.insert(indices.begin() + at, Order[i]);
-        }
+        insertSmallest(k, key(i), Order[i], indices, keys);
       }
     }
     else
@@ -282,6 +356,49 @@ bool KdTree::containedInAtLeast(const Vec3& x, int count) const
   int found = 0;
   visitContaining(x, [&](int) { return ++found < count; });
   return found >= count;
+}
+
+void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const
+{
+  indices.clear();
+  if (Nodes.empty() || Radii.size() != Points.size())
+  {
+    return;
+  }
+  // A ball containing x of the box is nearer the box than its radius: |p - box| <= |p - x| < r
+  // (rounding is monotonic). The margin keeps that true whatever order the sums are taken in.
+  constexpr double Margin = 1 + 1e-9;
+  const auto squaredDistance = [&](const Vec3& a, const Vec3& b) {
+    return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm(); // from the box [a, b]
+  };
+  TraversalStack stack;
+  stack.push_back(0);
+  while (!stack.empty())
+  {
+    const Node& node = Nodes[stack.back()];
+    stack.pop_back();
+    if ((upper.array() < node.reachLower.array()).any() || (lower.array() > node.reachUpper.array()).any() ||
+      squaredDistance(node.lower, node.upper) >= node.maxRadius * node.maxRadius * Margin)
+    {
+      continue;
+    }
+    if (node.left < 0)
+    {
+      for (int i = node.begin; i < node.end; ++i)
+      {
+        if (squaredDistance(Points[i], Points[i]) < Radii[i] * Radii[i] * Margin)
+        {
+          indices.push_back(Order[i]);
+        }
+      }
+    }
+    else
+    {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+    }
+  }
+  std::sort(indices.begin(), indices.end());
 }
 
 template <typename Visit>

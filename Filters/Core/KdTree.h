@@ -20,16 +20,25 @@ public:
   int nearest(const Vec3& x) const;
   /// Up to k nearest points, closest first, with squared distances.
   void kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const;
-  /// Up to k points with the smallest |p_i - x| / radius_i, smallest first, with those ratios
-  /// squared (requires setRadii; points of radius 0 are never taken): the balls that must grow
-  /// least, relative to their radius, to contain x.
-  void kLeastRelative(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredRatios) const;
+  /// For positions in the box [lower, upper] sharing one search (requires setRadii): the balls i
+  /// that may be among the k of least |p_i - x| / radius_i for some x of the box, in increasing
+  /// order. Those of radius 0 are never taken.
+  void leastRelativeCandidates(const Vec3& lower, const Vec3& upper, int k, std::vector<int>& candidates) const;
+  /// Up to k of the candidates with the smallest |p_i - x| / radius_i, smallest first (ties by
+  /// index), with those ratios squared: the balls that must grow least, relative to their radius,
+  /// to contain x. With the candidates of a box holding x, the k least of all balls.
+  void kLeastRelative(const Vec3& x, int k, const std::vector<int>& candidates, std::vector<int>& indices,
+    std::vector<double>& squaredRatios) const;
   /// All points with |p - x| < radius.
   void withinRadius(const Vec3& x, double radius, std::vector<int>& indices) const;
   /// All points i with |p_i - x| < radius_i (requires setRadii), in increasing order.
   void containing(const Vec3& x, std::vector<int>& indices) const;
   /// Whether at least count balls contain x (stops as soon as it knows; requires setRadii).
   bool containedInAtLeast(const Vec3& x, int count) const;
+  /// All balls i that may contain a point of the box [lower, upper], in increasing order (requires
+  /// setRadii): a superset of containing(x) for every x in the box, so that nearby positions share
+  /// one search and each filters the list with the exact test |p_i - x| < radius_i.
+  void meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const;
 
   std::size_t size() const { return Points.size(); }
 
@@ -62,6 +71,7 @@ private:
   // points are contiguous in memory.
   PointList Points;
   std::vector<int> Order;
+  std::vector<int> Position; // inverse of Order
   std::vector<Node> Nodes;
   std::vector<double> Radii;
 };

@@ -1,5 +1,7 @@
 #include "Sampling.h"
 
+#include "ZOrder.h"
+
 #include "KdTree.h"
 
 #include <algorithm>
@@ -367,34 +369,69 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
   for (const PointList* list : positions)
   {
     const long count = static_cast<long>(list->size());
+    constexpr long Chunk = 4096;
+    constexpr std::size_t Group = 16; // nearby positions sharing one search (the result does not depend on it)
 #pragma omp parallel
     {
       std::vector<double> local(centers.size(), 0.0);
-      std::vector<int> indices;
+      std::vector<int> candidates, uncovered, indices;
       std::vector<double> squared;
-#pragma omp for schedule(dynamic, 4096) // the positions left uncovered cluster (a coarse region's)
-      for (long i = 0; i < count; ++i)
+#pragma omp for schedule(dynamic, 1) // the positions left uncovered cluster (a coarse region's)
+      for (long first = 0; first < count; first += Chunk)
       {
-        if (reachTree.containedInAtLeast((*list)[i], s))
-        {
-          continue;
-        }
-        if (relative)
-        {
-          reachTree.kLeastRelative((*list)[i], s, indices, squared);
-          for (std::size_t a = 0; a < indices.size(); ++a)
-          {
-            squared[a] *= reach[indices[a]] * reach[indices[a]]; // the squared distance
-          }
-        }
-        else
-        {
-          tree.kNearest((*list)[i], s, indices, squared);
-        }
-        for (std::size_t a = 0; a < indices.size(); ++a)
-        {
-          local[indices[a]] = std::max(local[indices[a]], std::sqrt(squared[a]) * (1 + 1e-9));
-        }
+        forEachNearbyGroup(*list, first, std::min(count, first + Chunk), Group,
+          [&](const int* begin, const int* end, const Vec3& lower, const Vec3& upper) {
+            // the positions of the group in fewer than s balls (the test of KdTree::containing)
+            reachTree.meetingBox(lower, upper, candidates);
+            uncovered.clear();
+            for (const int* i = begin; i < end; ++i)
+            {
+              const Vec3& x = (*list)[*i];
+              int in = 0;
+              for (std::size_t a = 0; a < candidates.size() && in < s; ++a)
+              {
+                in += (centers[candidates[a]] - x).squaredNorm() < reach[candidates[a]] * reach[candidates[a]];
+              }
+              if (in < s)
+              {
+                uncovered.push_back(*i);
+              }
+            }
+            if (uncovered.empty())
+            {
+              return;
+            }
+            if (relative)
+            {
+              Vec3 low = (*list)[uncovered[0]], high = low;
+              for (int i : uncovered)
+              {
+                low = low.cwiseMin((*list)[i]);
+                high = high.cwiseMax((*list)[i]);
+              }
+              reachTree.leastRelativeCandidates(low, high, s, candidates);
+            }
+            for (int i : uncovered)
+            {
+              const Vec3& x = (*list)[i];
+              if (relative)
+              {
+                reachTree.kLeastRelative(x, s, candidates, indices, squared);
+                for (std::size_t a = 0; a < indices.size(); ++a)
+                {
+                  squared[a] *= reach[indices[a]] * reach[indices[a]]; // the squared distance
+                }
+              }
+              else
+              {
+                tree.kNearest(x, s, indices, squared);
+              }
+              for (std::size_t a = 0; a < indices.size(); ++a)
+              {
+                local[indices[a]] = std::max(local[indices[a]], std::sqrt(squared[a]) * (1 + 1e-9));
+              }
+            }
+          });
       }
 #pragma omp critical
       for (std::size_t j = 0; j < centers.size(); ++j)

@@ -28,6 +28,18 @@ public:
   /// support). Thread-safe.
   virtual void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const = 0;
 
+  /// Lets nearby positions share one search: the indices j whose support may meet the box
+  /// [lower, upper], in increasing order; false when the basis has no such search.
+  virtual bool candidatesInBox(const Vec3& /*lower*/, const Vec3& /*upper*/, std::vector<int>& /*candidates*/) const
+  {
+    return false;
+  }
+  /// evaluate(x, ...) given the candidates of a box holding x; the same result.
+  virtual void evaluateAmong(const Vec3& x, const std::vector<int>& /*candidates*/, ShapeFunctionValues& out, bool withDerivatives) const
+  {
+    evaluate(x, out, withDerivatives);
+  }
+
   /// k, the number of shape functions.
   virtual std::size_t size() const = 0;
 };

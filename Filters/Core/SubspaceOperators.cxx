@@ -1,5 +1,7 @@
 #include "SubspaceOperators.h"
 
+#include "ZOrder.h"
+
 #include <omp.h>
 
 // The BLAS's symmetric rank-k update C = alpha A^T A + beta C (Fortran interface; CHOLMOD links
@@ -13,13 +15,16 @@ namespace
 {
 // Assembles a row-major sparse matrix with rowsPerPoint rows per position in row blocks of
 // Chunk positions, evaluated in parallel; fill(i, values, rows) writes the rows of position i
-// from its shape functions.
+// from its shape functions. Within a chunk the positions are taken in Z-order, Group at a time,
+// so that a group shares one search for its candidate shape functions (the result does not
+// depend on the grouping: each position filters the candidates with the exact support test).
 template <typename Fill>
 RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
   Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
   constexpr long Chunk = 4096;
+  constexpr std::size_t Group = 16;
   const long chunks = (n + Chunk - 1) / Chunk;
   RowBlocks A;
   A.rowsPerBlock = Chunk * rowsPerPoint;
@@ -31,45 +36,64 @@ RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, 
   {
     ShapeFunctionValues phi;
     std::vector<std::vector<double>> rows(rowsPerPoint);
-    std::vector<int> columns, rowLength;
+    std::vector<int> columns, candidates;
     std::vector<double> values;
+    std::vector<long> start(Chunk), rowLength(Chunk); // of each position's rows in columns and values
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < chunks; ++c)
     {
       columns.clear();
       values.clear();
-      rowLength.clear();
       const long first = c * Chunk, last = std::min(n, first + Chunk);
-      for (long i = first; i < last; ++i)
-      {
-        basis.evaluate(positions[i], phi, withDerivatives);
-        if (phi.empty())
+      forEachNearbyGroup(positions, first, last, Group, [&](const int* begin, const int* end, const Vec3& lower, const Vec3& upper) {
+        const bool shared = basis.candidatesInBox(lower, upper, candidates);
+        for (const int* at = begin; at < end; ++at)
         {
-          outsideOf[c].push_back(static_cast<int>(i));
+          const long i = *at;
+          if (shared)
+          {
+            basis.evaluateAmong(positions[i], candidates, phi, withDerivatives);
+          }
+          else
+          {
+            basis.evaluate(positions[i], phi, withDerivatives);
+          }
+          if (phi.empty())
+          {
+            outsideOf[c].push_back(static_cast<int>(i));
+          }
+          for (auto& row : rows)
+          {
+            row.resize(phi.index.size());
+          }
+          fill(i, phi, rows);
+          start[i - first] = static_cast<long>(columns.size());
+          rowLength[i - first] = static_cast<long>(phi.index.size());
+          for (const auto& row : rows)
+          {
+            columns.insert(columns.end(), phi.index.begin(), phi.index.end());
+            values.insert(values.end(), row.begin(), row.end());
+          }
         }
-        for (auto& row : rows)
-        {
-          row.resize(phi.index.size());
-        }
-        fill(i, phi, rows);
-        for (const auto& row : rows)
-        {
-          columns.insert(columns.end(), phi.index.begin(), phi.index.end());
-          values.insert(values.end(), row.begin(), row.end());
-          rowLength.push_back(static_cast<int>(phi.index.size()));
-        }
-      }
-      // the block in compressed row storage, at its exact size
+      });
+      std::sort(outsideOf[c].begin(), outsideOf[c].end());
+      // the block in compressed row storage, at its exact size, in the positions' order
       SparseRowMatrix& block = A.blocks[c];
       block.resize((last - first) * rowsPerPoint, A.columns);
       block.resizeNonZeros(static_cast<long>(values.size()));
-      std::copy(columns.begin(), columns.end(), block.innerIndexPtr());
-      std::copy(values.begin(), values.end(), block.valuePtr());
       auto* outer = block.outerIndexPtr();
       outer[0] = 0;
-      for (std::size_t row = 0; row < rowLength.size(); ++row)
+      long entry = 0, row = 0;
+      for (long i = first; i < last; ++i)
       {
-        outer[row + 1] = outer[row] + rowLength[row];
+        const long from = start[i - first], length = rowLength[i - first];
+        std::copy(columns.begin() + from, columns.begin() + from + rowsPerPoint * length, block.innerIndexPtr() + entry);
+        std::copy(values.begin() + from, values.begin() + from + rowsPerPoint * length, block.valuePtr() + entry);
+        for (int r = 0; r < rowsPerPoint; ++r, ++row)
+        {
+          entry += length;
+          outer[row + 1] = static_cast<int>(entry);
+        }
       }
 #pragma omp atomic
       ++done;

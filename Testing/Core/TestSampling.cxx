@@ -45,14 +45,30 @@ TEST(KdTreeQueriesMatchBruteForce)
   tree.setRadii(radii);
   std::vector<int> knn, within, containing;
   std::vector<double> d2;
-  for (const Vec3& x : randomPoints(100, Vec3(-0.1, -0.1, -0.1), Vec3(1.1, 1.1, 1.1), 2))
+  const PointList positions = randomPoints(100, Vec3(-0.1, -0.1, -0.1), Vec3(1.1, 1.1, 1.1), 2);
+  for (std::size_t p = 0; p < positions.size(); ++p)
   {
-    std::vector<int> relative;
+    const Vec3& x = positions[p];
+    // the searches shared by the positions of a box holding x: a point (p = 0), then boxes up to
+    // 0.3 wide, larger than most balls
+    const Vec3 lower = x - 0.1 * (p % 4) * Vec3(1.0, 0.5, 0.2), upper = x + 0.1 * (p % 3) * Vec3(0.3, 1.0, 0.6);
+    std::vector<int> relative, candidates, meeting;
     std::vector<double> ratio2;
     tree.kNearest(x, 5, knn, d2);
-    tree.kLeastRelative(x, 5, relative, ratio2);
+    tree.leastRelativeCandidates(lower, upper, 5, candidates);
+    CHECK(std::is_sorted(candidates.begin(), candidates.end()));
+    tree.kLeastRelative(x, 5, candidates, relative, ratio2);
     tree.withinRadius(x, 0.1, within);
     tree.containing(x, containing);
+    tree.meetingBox(lower, upper, meeting);
+    CHECK(std::is_sorted(meeting.begin(), meeting.end()));
+    std::vector<int> filtered;
+    for (int i : meeting)
+    {
+      if ((points[i] - x).squaredNorm() < radii[i] * radii[i])
+        filtered.push_back(i);
+    }
+    CHECK(filtered == containing);
     std::vector<std::pair<double, int>> all, ratios;
     std::size_t withinCount = 0, containingCount = 0;
     for (std::size_t i = 0; i < points.size(); ++i)
