@@ -123,6 +123,7 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   // (the lower cell). Groups are matched in parallel: each writes only its own faces' entries.
   const long faceCount = cells.faces();
   std::vector<int> cellOf(static_cast<std::size_t>(faceCount));
+#pragma omp parallel for schedule(static)
   for (int c = 0; c < cells.cells(); ++c)
   {
     std::fill(cellOf.begin() + cells.firstFace(c), cellOf.begin() + cells.firstFace(c + 1), c);
@@ -234,9 +235,10 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const std::
   if (work.interior.size() != static_cast<std::size_t>(cells.faces()))
   {
     work.interior.assign(static_cast<std::size_t>(cells.faces()), -1);
-    for (std::size_t i = 0; i < faces.size(); ++i)
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < static_cast<long>(faces.size()); ++i)
     {
-      work.interior[faces[i].face] = static_cast<long>(i);
+      work.interior[faces[i].face] = i;
     }
   }
   work.shared.resize(faces.size());
@@ -288,7 +290,8 @@ std::vector<int> faceOrientation(
 {
   cellCentres(points, cells, faces, out.inverted, work);
   std::vector<int> orientation(faces.size(), 1);
-  for (std::size_t i = 0; i < faces.size(); ++i)
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < static_cast<long>(faces.size()); ++i)
   {
     const FaceGeometry& g = work.shared[i];
     orientation[i] = g.area.dot(g.centre - work.centres[faces[i].owner]) < 0 ? -1 : 1;

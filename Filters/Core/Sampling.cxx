@@ -496,9 +496,15 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
   if (!dense.volume.empty())
   {
     const KdTree tree(out.integrationPoints);
-    for (std::size_t i = 0; i < dense.volume.size(); ++i)
+    std::vector<int> nearest(dense.volume.size());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < static_cast<long>(dense.volume.size()); ++i)
     {
-      out.volume[tree.nearest(dense.volume[i])] += dense.volumeShare[i];
+      nearest[i] = tree.nearest(dense.volume[i]);
+    }
+    for (std::size_t i = 0; i < dense.volume.size(); ++i) // summed in order: the same for any thread count
+    {
+      out.volume[nearest[i]] += dense.volumeShare[i];
     }
   }
   progress.report(0.8);
