@@ -120,6 +120,8 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
   }
   RegionNormals.clear();
   RegionTransposed.clear();
+  RegionNormals.reserve(RegionScale.size()); // Eigen's sparse matrices are copied, not moved, when a vector grows
+  RegionTransposed.reserve(RegionScale.size());
   for (std::size_t r = 0; r < RegionScale.size(); ++r)
   {
     const long n = RegionBegin[r + 1] - RegionBegin[r];

@@ -181,11 +181,13 @@ GramAccumulator::GramAccumulator(long size)
 void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
 {
   const long rows = end - begin;
-  const SparseRowMatrix range = A.middleRows(begin, rows);
-  if (range.nonZeros() > 0.25 * static_cast<double>(rows) * static_cast<double>(Size))
+  const int* outer = A.outerIndexPtr() + begin; // of the range's rows
+  const int* inner = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+  if (outer[rows] - outer[0] > 0.25 * static_cast<double>(rows) * static_cast<double>(Size))
   {
     // dense: DenseLower += B^T B with B = diag(sqrt(rowWeight)) A(begin:end, :)
-    Eigen::MatrixXd B = rowWeight.cwiseSqrt().asDiagonal() * Eigen::MatrixXd(range);
+    Eigen::MatrixXd B = rowWeight.cwiseSqrt().asDiagonal() * Eigen::MatrixXd(A.middleRows(begin, rows));
     if (DenseLower.size() == 0)
     {
       DenseLower = Eigen::MatrixXd::Zero(Size, Size);
@@ -196,16 +198,84 @@ void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const 
     return;
   }
   // chunks of a fixed number of rows, not one per thread: the partial sums, and so the rounding of
-  // their sum, must not depend on the number of threads
+  // their sum, must not depend on the number of threads. A chunk's rows (nearby positions) share
+  // few columns: its Gram is summed in a dense matrix over those, row by row as outer products,
+  // then stored sparse (Eigen's sparse product took 0.38 s for the 66k rows of a hull region).
   constexpr long ChunkRows = 8192;
   const long chunks = std::max(1L, (rows + ChunkRows - 1) / ChunkRows);
   std::vector<SparseMatrix> parts(chunks);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long c = 0; c < chunks; ++c)
+#pragma omp parallel
   {
-    const long first = c * ChunkRows, last = std::min(rows, first + ChunkRows);
-    const SparseRowMatrix part = range.middleRows(first, last - first);
-    parts[c] = SparseMatrix(part.transpose() * rowWeight.segment(first, last - first).asDiagonal() * part);
+    std::vector<int> local(static_cast<std::size_t>(Size), -1); // a column's number in the chunk
+    std::vector<int> used;                                      // the chunk's columns, increasing
+    std::vector<std::pair<int, double>> rowEntries; // (number in the chunk, value)
+    Eigen::MatrixXd G;
+    std::vector<Eigen::Triplet<double>> entries;
+#pragma omp for schedule(dynamic, 1)
+    for (long c = 0; c < chunks; ++c)
+    {
+      const long first = c * ChunkRows, last = std::min(rows, first + ChunkRows);
+      used.clear();
+      for (long e = outer[first]; e < outer[last]; ++e)
+      {
+        if (local[inner[e]] < 0)
+        {
+          local[inner[e]] = 0;
+          used.push_back(inner[e]);
+        }
+      }
+      std::sort(used.begin(), used.end());
+      const long m = static_cast<long>(used.size());
+      for (long i = 0; i < m; ++i)
+      {
+        local[used[i]] = static_cast<int>(i);
+      }
+      G.setZero(m, m);
+      for (long row = first; row < last; ++row)
+      {
+        const long begin = outer[row], n = outer[row + 1] - begin;
+        rowEntries.resize(n);
+        for (long a = 0; a < n; ++a)
+        {
+          rowEntries[a] = { local[inner[begin + a]], value[begin + a] };
+        }
+        if (!std::is_sorted(rowEntries.begin(), rowEntries.end())) // Phi's rows are; others need not be
+        {
+          std::sort(rowEntries.begin(), rowEntries.end());
+        }
+        for (long b = 0; b < n; ++b)
+        {
+          // the lower triangle: entry a >= b is in row >= column
+          const double weighted = rowWeight[row] * rowEntries[b].second;
+          double* column = G.col(rowEntries[b].first).data();
+          for (long a = b; a < n; ++a)
+          {
+            column[rowEntries[a].first] += weighted * rowEntries[a].second;
+          }
+        }
+      }
+      entries.clear();
+      for (long j = 0; j < m; ++j)
+      {
+        for (long i = j; i < m; ++i)
+        {
+          if (G(i, j) != 0)
+          {
+            entries.emplace_back(used[i], used[j], G(i, j));
+            if (i != j)
+            {
+              entries.emplace_back(used[j], used[i], G(i, j));
+            }
+          }
+        }
+      }
+      parts[c].resize(Size, Size);
+      parts[c].setFromTriplets(entries.begin(), entries.end());
+      for (int column : used)
+      {
+        local[column] = -1;
+      }
+    }
   }
   for (const SparseMatrix& part : parts)
   {

@@ -6,6 +6,7 @@
 #include "TestGeometry.h"
 #include "../TestHarness.h"
 
+#include <algorithm>
 #include <limits>
 
 using namespace mlsdeform;
@@ -77,6 +78,17 @@ TEST(GramMatricesOfDenseAndSparseBlocks)
   std::printf("round-off bound %.2e, error %.2e\n", roundOff, (Eigen::MatrixXd(gram.sum()) - expected).norm());
   CHECK((Eigen::MatrixXd(gram.sum()) - expected).norm() <= roundOff);
   CHECK((Eigen::MatrixXd(weightedGram(A, 0, 120, weight.head(120))) - dense.topRows(120).transpose() * weight.head(120).asDiagonal() * dense.topRows(120)).norm() <= roundOff);
+  // The same sparse rows with their entries stored in decreasing column order (rows not made by
+  // Phi's assembly need not be increasing).
+  SparseRowMatrix reversed = A.bottomRows(180);
+  for (long i = 0; i < reversed.rows(); ++i)
+  {
+    const int begin = reversed.outerIndexPtr()[i], end = reversed.outerIndexPtr()[i + 1];
+    std::reverse(reversed.innerIndexPtr() + begin, reversed.innerIndexPtr() + end);
+    std::reverse(reversed.valuePtr() + begin, reversed.valuePtr() + end);
+  }
+  const Eigen::MatrixXd bottom = dense.bottomRows(180);
+  CHECK((Eigen::MatrixXd(weightedGram(reversed, 0, 180, weight.tail(180))) - bottom.transpose() * weight.tail(180).asDiagonal() * bottom).norm() <= roundOff);
 }
 
 TEST(VolumetricNormalsAreGramMatricesOfTheDerivativeRows)
