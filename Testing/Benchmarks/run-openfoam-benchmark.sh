@@ -8,8 +8,9 @@
 # the sides (sideYmin, sideYmax), bottom and top slipping:
 #   (a) moveMesh (displacementLaplacian, inverseDistance diffusivity from the hull) on a copy of
 #       the case, timed with /usr/bin/time -v, then checkMesh on the moved mesh;
-#   (b) pvpython with the plugin (Examples/OpenFOAM/openfoam_variant.py: open_case, morph,
-#       save_variant), read -> deform -> write, timed with /usr/bin/time -v, followed in the same
+#   (b) pvpython --no-mpi (a serial run, as moveMesh's; MPI's start-up costs 0.35 s) with the
+#       plugin (Examples/OpenFOAM/openfoam_variant.py: open_case, morph, save_variant), read ->
+#       deform -> write, timed with /usr/bin/time -v, followed in the same
 #       process by 2 further variants (new hull translations: solve + write only), then checkMesh
 #       on each variant. compare_motion.py then checks that both moved the hull alike. The
 #       table's MLS Deform wall time is the process's less the further
@@ -96,7 +97,7 @@ done
 for ((i = 1; i <= runs; i++)); do
   echo "MLS Deform run $i/$runs (load $(load))"
   rm -rf "$run/mls"
-  LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/mls-$i.time" pvpython "$here/mls_benchmark.py" "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" \
+  LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/mls-$i.time" pvpython --no-mpi "$here/mls_benchmark.py" "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" \
     "$case/case.foam" "$run/mls" ${settings[@]+"${settings[@]}"} "$(IFS=,; echo "${motion[*]}")" "${further[@]}" \
     > "$run/mls-$i.log" 2>&1 ||
     { tail -30 "$run/mls-$i.log"; exit 1; }
