@@ -168,24 +168,27 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   long shared = faceCount; // the lowest owner's face found in a third cell (the same for any thread count)
 #pragma omp parallel
   {
-    std::vector<int> keys;   // the group's faces, each sorted, one after another
-    std::vector<long> first; // where each face starts in keys
+    std::vector<std::pair<long, int>> signature; // per face of the group: the sum and the largest of its points
 #pragma omp for schedule(dynamic, 4096) reduction(min : shared)
     for (int p = 0; p < points; ++p)
     {
       const long* begin = grouped.data() + start[p];
       const long count = start[p + 1] - start[p];
-      keys.clear();
-      first.assign(1, 0);
+      signature.resize(count);
       for (long g = 0; g < count; ++g)
       {
-        keys.insert(keys.end(), cells.face(begin[g]), cells.face(begin[g]) + cells.faceSize(begin[g]));
-        std::sort(keys.begin() + first.back(), keys.end());
-        first.push_back(static_cast<long>(keys.size()));
+        const int* face = cells.face(begin[g]);
+        const std::size_t n = cells.faceSize(begin[g]);
+        signature[g] = { std::accumulate(face, face + n, 0L), *std::max_element(face, face + n) };
       }
+      // the same points, each as often (a degenerate cell's face may repeat one): first the
+      // cheap size and signature, which tell most other faces apart
       auto same = [&](long a, long b) {
-        return first[a + 1] - first[a] == first[b + 1] - first[b] &&
-          std::equal(keys.begin() + first[a], keys.begin() + first[a + 1], keys.begin() + first[b]);
+        const int* fa = cells.face(begin[a]);
+        const int* fb = cells.face(begin[b]);
+        const std::size_t n = cells.faceSize(begin[a]);
+        return n == cells.faceSize(begin[b]) && signature[a] == signature[b] &&
+          std::all_of(fa, fa + n, [&](int point) { return std::count(fa, fa + n, point) == std::count(fb, fb + n, point); });
       };
       for (long a = 0; a < count; ++a)
       {
@@ -213,12 +216,28 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
     throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(cellOf[shared]) + ", " +
       std::to_string(neighbour[shared]) + " and another)");
   }
-  std::vector<InteriorFace> faces;
-  for (long f = 0; f < faceCount; ++f)
+  // the owner's copies in face order: counted per chunk of faces, then written in parallel
+  constexpr long Chunk = 1 << 16;
+  const long chunks = (faceCount + Chunk - 1) / Chunk;
+  std::vector<long> offset(static_cast<std::size_t>(chunks) + 1, 0);
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < chunks; ++c)
   {
-    if (neighbour[f] >= 0)
+    offset[c + 1] = std::count_if(neighbour.begin() + c * Chunk, neighbour.begin() + std::min(faceCount, (c + 1) * Chunk),
+      [](int n) { return n >= 0; });
+  }
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  std::vector<InteriorFace> faces(static_cast<std::size_t>(offset.back()));
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < chunks; ++c)
+  {
+    long next = offset[c];
+    for (long f = c * Chunk; f < std::min(faceCount, (c + 1) * Chunk); ++f)
     {
-      faces.push_back(InteriorFace{ cellOf[f], neighbour[f], f });
+      if (neighbour[f] >= 0)
+      {
+        faces[next++] = InteriorFace{ cellOf[f], neighbour[f], f };
+      }
     }
   }
   return faces;

@@ -138,6 +138,13 @@ TEST(InteriorFacesAreMatchedAndOriented)
   // a face shared by three cells is not a valid mesh
   nested.push_back(CellFaces{ nested[1][0] });
   CHECK_THROWS(interiorFaces(CellFaceList(nested)), std::invalid_argument);
+  // Degenerate faces (a collapsed cell's) repeat points: faces of the same points and point sum
+  // but other multiplicities are not one face; the same points listed in reverse are.
+  const std::vector<int> repeated = { 2, 2, 2, 1, 3 }, other = { 2, 1, 1, 3, 3 };
+  CHECK(interiorFaces(CellFaceList(std::vector<CellFaces>{ { repeated }, { other } })).empty());
+  const std::vector<int> reversed(repeated.rbegin(), repeated.rend());
+  const std::vector<InteriorFace> degenerate = interiorFaces(CellFaceList(std::vector<CellFaces>{ { repeated }, { reversed } }));
+  CHECK(degenerate.size() == 1 && degenerate[0].owner == 0 && degenerate[0].neighbour == 1);
 }
 
 TEST_MAIN
