@@ -132,6 +132,11 @@ double MLSBasis::weight(double r, double sigma)
 void MLSBasis::evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const
 {
   Supports.containing(x, out.index);
+  out.value.resize(out.index.size());
+  for (std::size_t a = 0; a < out.index.size(); ++a)
+  {
+    out.value[a] = (Centers[out.index[a]] - x).squaredNorm();
+  }
   evaluateSupports(x, out, withDerivatives);
 }
 
@@ -144,11 +149,14 @@ bool MLSBasis::candidatesInBox(const Vec3& lower, const Vec3& upper, std::vector
 void MLSBasis::evaluateAmong(const Vec3& x, const std::vector<int>& candidates, ShapeFunctionValues& out, bool withDerivatives) const
 {
   out.index.clear();
+  out.value.clear();
   for (int j : candidates)
   {
-    if ((Centers[j] - x).squaredNorm() < Radii[j] * Radii[j]) // the test of KdTree::containing
+    const double squared = (Centers[j] - x).squaredNorm();
+    if (squared < Radii[j] * Radii[j]) // the test of KdTree::containing
     {
       out.index.push_back(j);
+      out.value.push_back(squared);
     }
   }
   evaluateSupports(x, out, withDerivatives);
@@ -157,7 +165,6 @@ void MLSBasis::evaluateAmong(const Vec3& x, const std::vector<int>& candidates, 
 void MLSBasis::evaluateSupports(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const
 {
   const std::size_t n = out.index.size();
-  out.value.resize(n);
   out.gradient.resize(withDerivatives ? n : 0);
   out.laplacian.resize(withDerivatives ? n : 0);
   if (n == 0)
@@ -165,8 +172,8 @@ void MLSBasis::evaluateSupports(const Vec3& x, ShapeFunctionValues& out, bool wi
     return;
   }
 
-  // Weights w_j (kept in out.value until phi_j replaces them) and, for derivatives, their gradient
-  // and the diagonal of their Hessian.
+  // Weights w_j (in out.value, in place of the squared distances, until phi_j replaces them) and,
+  // for derivatives, their gradient and the diagonal of their Hessian.
   std::vector<double>& w = out.value;
   std::vector<Vec3> dw(withDerivatives ? n : 0), ddw(withDerivatives ? n : 0);
   double W = 0;
@@ -176,8 +183,7 @@ void MLSBasis::evaluateSupports(const Vec3& x, ShapeFunctionValues& out, bool wi
   {
     const int j = out.index[a];
     const double sigma = Radii[j];
-    const Vec3 u = x - Centers[j];
-    const double r = u.norm();
+    const double r = std::sqrt(out.value[a]);
     const double ratio = std::min(r / sigma, 1.0);
     double cosine, sine = 0; // of t = pi r / sigma; the sine only for derivatives
     if (withDerivatives)
@@ -198,6 +204,7 @@ void MLSBasis::evaluateSupports(const Vec3& x, ShapeFunctionValues& out, bool wi
       const double d2 = -M_PI * M_PI / (2 * sigma * sigma);
       const double dr = r > 1e-12 * sigma ? -M_PI / (2 * sigma) * sine / r : d2;
       const double ddr = d2 * cosine;
+      const Vec3 u = x - Centers[j];
       dw[a] = dr * u;
       for (int d = 0; d < 3; ++d)
       {

@@ -36,7 +36,8 @@ public:
   const std::vector<double>& supportRadii() const { return Radii; }
 
 private:
-  /// Evaluates the shape functions out.index, those whose support contains x.
+  /// Evaluates the shape functions out.index, those whose support contains x, given their squared
+  /// distances |x - c_j|^2 in out.value.
   void evaluateSupports(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const;
 
   PointList Centers;
