@@ -8,6 +8,8 @@
 #include <vtkIdList.h>
 #include <vtkMeshQuality.h>
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
@@ -18,46 +20,54 @@ namespace mlsgeometry
 {
 mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
 {
-  mlsdeform::CellFaceList cells;
-  // The faces of each fixed cell type as positions in its point list (setLocalCell).
+  // The faces of each fixed cell type present as positions in its point list (setLocalCell),
+  // made before the cells are listed in parallel.
   std::vector<mlsdeform::CellFaces> faceTemplates(VTK_NUMBER_OF_CELL_TYPES);
-  vtkNew<vtkGenericCell> cell;
-  std::vector<vtkIdType> polygon;
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  std::vector<bool> present(VTK_NUMBER_OF_CELL_TYPES, false);
+  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+  for (vtkIdType c = 0; types && c < types->GetNumberOfValues(); ++c)
   {
-    const int type = grid->GetCellType(c);
-    if (type == VTK_POLYHEDRON)
+    present[types->GetValue(c)] = true;
+  }
+  vtkNew<vtkGenericCell> cell;
+  for (int type = 0; type < VTK_NUMBER_OF_CELL_TYPES; ++type)
+  {
+    if (present[type] && type != VTK_POLYHEDRON && cellDimension(type) == 3)
     {
-      visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { cells.addFace(face, static_cast<std::size_t>(n)); });
-    }
-    else if (cellDimension(type) == 3)
-    {
-      mlsdeform::CellFaces& faces = faceTemplates[type];
-      if (faces.empty())
+      setLocalCell(cell, type);
+      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
       {
-        setLocalCell(cell, type);
-        for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
-        {
-          vtkIdList* ids = cell->GetFace(f)->GetPointIds();
-          faces.emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
-        }
+        vtkIdList* ids = cell->GetFace(f)->GetPointIds();
+        faceTemplates[type].emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+      }
+    }
+  }
+  return mlsdeform::CellFaceList::build(static_cast<int>(grid->GetNumberOfCells()), [&]() {
+    // per thread: GetCellPoints' thread-safe variant's list, a face's points
+    return [&, scratch = vtkSmartPointer<vtkIdList>::New(), polygon = std::vector<vtkIdType>()](int c, auto add) mutable {
+      const int type = grid->GetCellType(c);
+      if (type == VTK_POLYHEDRON)
+      {
+        visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { add(face, static_cast<std::size_t>(n)); });
+        return;
       }
       vtkIdType n = 0;
       const vtkIdType* points = nullptr;
-      grid->GetCellPoints(c, n, points);
-      for (const std::vector<int>& face : faces)
+      if (!faceTemplates[type].empty())
+      {
+        grid->GetCellPoints(c, n, points, scratch);
+      }
+      for (const std::vector<int>& face : faceTemplates[type])
       {
         polygon.resize(face.size());
         for (std::size_t i = 0; i < face.size(); ++i)
         {
           polygon[i] = points[face[i]];
         }
-        cells.addFace(polygon.data(), polygon.size());
+        add(polygon.data(), polygon.size());
       }
-    }
-    cells.endCell();
-  }
-  return cells;
+    };
+  });
 }
 
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)

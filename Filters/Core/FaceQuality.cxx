@@ -105,15 +105,15 @@ double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Face
 }
 
 CellFaceList::CellFaceList(const std::vector<CellFaces>& cells)
+  : CellFaceList(build(static_cast<int>(cells.size()), [&]() {
+    return [&](int c, auto add) {
+      for (const std::vector<int>& face : cells[c])
+      {
+        add(face.data(), face.size());
+      }
+    };
+  }))
 {
-  for (const CellFaces& cell : cells)
-  {
-    for (const std::vector<int>& face : cell)
-    {
-      addFace(face.data(), face.size());
-    }
-    endCell();
-  }
 }
 
 std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)

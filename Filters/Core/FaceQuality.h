@@ -9,6 +9,8 @@
 
 #include "CoreTypes.h"
 
+#include <algorithm>
+#include <numeric>
 #include <vector>
 
 namespace mlsdeform
@@ -64,14 +66,11 @@ public:
   CellFaceList() = default;
   explicit CellFaceList(const std::vector<CellFaces>& cells);
 
-  /// Appends a face of n points to the cell being built; endCell() closes it.
-  template <typename Index>
-  void addFace(const Index* points, std::size_t n)
-  {
-    Points.insert(Points.end(), points, points + n);
-    FaceStart.push_back(static_cast<long>(Points.size()));
-  }
-  void endCell() { CellStart.push_back(faces()); }
+  /// Lists the faces of cells 0 .. count - 1 in parallel. Each thread makes its own visitor with
+  /// newVisitor(); visitor(c, add) calls add(points, n) for each face of cell c, the same faces
+  /// each time (it runs twice: to count them, then to store them in place).
+  template <typename NewVisitor>
+  static CellFaceList build(int count, NewVisitor newVisitor);
 
   int cells() const { return static_cast<int>(CellStart.size()) - 1; }
   long faces() const { return static_cast<long>(FaceStart.size()) - 1; }
@@ -84,6 +83,48 @@ private:
   std::vector<long> FaceStart{ 0 };
   std::vector<int> Points;
 };
+
+template <typename NewVisitor>
+CellFaceList CellFaceList::build(int count, NewVisitor newVisitor)
+{
+  CellFaceList list;
+  list.CellStart.assign(static_cast<std::size_t>(count) + 1, 0);
+  std::vector<long> pointStart(static_cast<std::size_t>(count) + 1, 0);
+#pragma omp parallel
+  {
+    auto visitor = newVisitor();
+#pragma omp for schedule(dynamic, 4096)
+    for (int c = 0; c < count; ++c)
+    {
+      long faces = 0, points = 0;
+      visitor(c, [&](const auto*, std::size_t n) {
+        ++faces;
+        points += static_cast<long>(n);
+      });
+      list.CellStart[c + 1] = faces;
+      pointStart[c + 1] = points;
+    }
+  }
+  std::partial_sum(list.CellStart.begin(), list.CellStart.end(), list.CellStart.begin());
+  std::partial_sum(pointStart.begin(), pointStart.end(), pointStart.begin());
+  list.FaceStart.assign(static_cast<std::size_t>(list.CellStart.back()) + 1, 0);
+  list.Points.resize(static_cast<std::size_t>(pointStart.back()));
+#pragma omp parallel
+  {
+    auto visitor = newVisitor();
+#pragma omp for schedule(dynamic, 4096)
+    for (int c = 0; c < count; ++c)
+    {
+      long face = list.CellStart[c], point = pointStart[c];
+      visitor(c, [&](const auto* points, std::size_t n) {
+        std::copy(points, points + n, list.Points.begin() + point);
+        point += static_cast<long>(n);
+        list.FaceStart[++face] = point;
+      });
+    }
+  }
+  return list;
+}
 
 /// A face shared by two cells; `face` is the owner's copy (a face number of the CellFaceList).
 struct InteriorFace
