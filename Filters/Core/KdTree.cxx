@@ -305,80 +305,47 @@ void KdTree::kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& i
   }
 }
 
-void KdTree::withinRadius(const Vec3& x, double radius, std::vector<int>& indices) const
-{
-  indices.clear();
-  if (Nodes.empty())
-  {
-    return;
-  }
-  const double r2 = radius * radius;
-  TraversalStack stack;
-  stack.push_back(0);
-  while (!stack.empty())
-  {
-    const Node& node = Nodes[stack.back()];
-    stack.pop_back();
-    if (squaredDistanceToBox(node, x) >= r2)
-    {
-      continue;
-    }
-    if (node.left < 0)
-    {
-      for (int i = node.begin; i < node.end; ++i)
-      {
-        if ((Points[i] - x).squaredNorm() < r2)
-        {
-          indices.push_back(Order[i]);
-        }
-      }
-    }
-    else
-    {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
-    }
-  }
-}
-
 void KdTree::containing(const Vec3& x, std::vector<int>& indices) const
 {
-  indices.clear();
-  visitContaining(x, [&](int j) {
-    indices.push_back(j);
-    return true;
-  });
-  std::sort(indices.begin(), indices.end());
-}
-
-bool KdTree::containedInAtLeast(const Vec3& x, int count) const
-{
-  int found = 0;
-  visitContaining(x, [&](int) { return ++found < count; });
-  return found >= count;
+  collectBalls(
+    [&](const Node& node) {
+      return !(x.array() < node.reachLower.array()).any() && !(x.array() > node.reachUpper.array()).any() &&
+        squaredDistanceToBox(node, x) < node.maxRadius * node.maxRadius;
+    },
+    [&](int i) { return (Points[i] - x).squaredNorm() < Radii[i] * Radii[i]; }, indices);
 }
 
 void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const
 {
-  indices.clear();
-  if (Nodes.empty() || Radii.size() != Points.size())
-  {
-    return;
-  }
   // A ball containing x of the box is nearer the box than its radius: |p - box| <= |p - x| < r
   // (rounding is monotonic). The margin keeps that true whatever order the sums are taken in.
   constexpr double Margin = 1 + 1e-9;
   const auto squaredDistance = [&](const Vec3& a, const Vec3& b) {
     return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm(); // from the box [a, b]
   };
+  collectBalls(
+    [&](const Node& node) {
+      return !(upper.array() < node.reachLower.array()).any() && !(lower.array() > node.reachUpper.array()).any() &&
+        squaredDistance(node.lower, node.upper) < node.maxRadius * node.maxRadius * Margin;
+    },
+    [&](int i) { return squaredDistance(Points[i], Points[i]) < Radii[i] * Radii[i] * Margin; }, indices);
+}
+
+template <typename NodeMeets, typename BallMeets>
+void KdTree::collectBalls(NodeMeets nodeMeets, BallMeets ballMeets, std::vector<int>& indices) const
+{
+  indices.clear();
+  if (Nodes.empty() || Radii.size() != Points.size())
+  {
+    return;
+  }
   TraversalStack stack;
   stack.push_back(0);
   while (!stack.empty())
   {
     const Node& node = Nodes[stack.back()];
     stack.pop_back();
-    if ((upper.array() < node.reachLower.array()).any() || (lower.array() > node.reachUpper.array()).any() ||
-      squaredDistance(node.lower, node.upper) >= node.maxRadius * node.maxRadius * Margin)
+    if (!nodeMeets(node))
     {
       continue;
     }
@@ -386,7 +353,7 @@ void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& 
     {
       for (int i = node.begin; i < node.end; ++i)
       {
-        if (squaredDistance(Points[i], Points[i]) < Radii[i] * Radii[i] * Margin)
+        if (ballMeets(i))
         {
           indices.push_back(Order[i]);
         }
@@ -399,41 +366,5 @@ void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& 
     }
   }
   std::sort(indices.begin(), indices.end());
-}
-
-template <typename Visit>
-void KdTree::visitContaining(const Vec3& x, Visit visit) const
-{
-  if (Nodes.empty() || Radii.size() != Points.size())
-  {
-    return;
-  }
-  TraversalStack stack;
-  stack.push_back(0);
-  while (!stack.empty())
-  {
-    const Node& node = Nodes[stack.back()];
-    stack.pop_back();
-    if ((x.array() < node.reachLower.array()).any() || (x.array() > node.reachUpper.array()).any() ||
-      squaredDistanceToBox(node, x) >= node.maxRadius * node.maxRadius)
-    {
-      continue;
-    }
-    if (node.left < 0)
-    {
-      for (int i = node.begin; i < node.end; ++i)
-      {
-        if ((Points[i] - x).squaredNorm() < Radii[i] * Radii[i] && !visit(Order[i]))
-        {
-          return;
-        }
-      }
-    }
-    else
-    {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
-    }
-  }
 }
 } // namespace mlsdeform

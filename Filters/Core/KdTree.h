@@ -1,5 +1,5 @@
-// A static kd-tree over 3D points: nearest neighbours, radius queries and, given one radius per
-// point, "which balls contain x" (the MLS supports covering a position).
+// A static kd-tree over 3D points: nearest neighbours and, given one radius per point, "which
+// balls contain x" (the MLS supports covering a position) and searches shared by nearby positions.
 #pragma once
 
 #include "CoreTypes.h"
@@ -29,12 +29,8 @@ public:
   /// to contain x. With the candidates of a box holding x, the k least of all balls.
   void kLeastRelative(const Vec3& x, int k, const std::vector<int>& candidates, std::vector<int>& indices,
     std::vector<double>& squaredRatios) const;
-  /// All points with |p - x| < radius.
-  void withinRadius(const Vec3& x, double radius, std::vector<int>& indices) const;
   /// All points i with |p_i - x| < radius_i (requires setRadii), in increasing order.
   void containing(const Vec3& x, std::vector<int>& indices) const;
-  /// Whether at least count balls contain x (stops as soon as it knows; requires setRadii).
-  bool containedInAtLeast(const Vec3& x, int count) const;
   /// All balls i that may contain a point of the box [lower, upper], in increasing order (requires
   /// setRadii): a superset of containing(x) for every x in the box, so that nearby positions share
   /// one search and each filters the list with the exact test |p_i - x| < radius_i.
@@ -52,9 +48,10 @@ private:
     int left = -1, right = -1;
   };
   int buildNode(const PointList& points, int begin, int end);
-  /// Calls visit(j) for every ball j containing x until visit returns false.
-  template <typename Visit>
-  void visitContaining(const Vec3& x, Visit visit) const;
+  /// The balls (input numbers, increasing) of the nodes with nodeMeets(node) whose
+  /// ballMeets(position in Order) holds (requires setRadii).
+  template <typename NodeMeets, typename BallMeets>
+  void collectBalls(NodeMeets nodeMeets, BallMeets ballMeets, std::vector<int>& indices) const;
   void setReach(int node);
   /// The k points of least key(position in Order), visiting only nodes whose bound(node) is below the
   /// k-th least key found so far; sorted by key.
