@@ -220,39 +220,10 @@ void KdTree::leastRelativeCandidates(const Vec3& lower, const Vec3& upper, int k
       return squaredRatio((Points[i] - lower).cwiseAbs().cwiseMax((Points[i] - upper).cwiseAbs()).squaredNorm(), Radii[i]);
     },
     nodeBound, indices, farthest);
-  if (farthest.empty())
-  {
-    return;
-  }
   constexpr double Margin = 1 + 1e-9; // for the roundings of the bounds
   const double bound = static_cast<int>(farthest.size()) < k ? std::numeric_limits<double>::infinity() : farthest.back() * Margin;
-  TraversalStack stack;
-  stack.push_back(0);
-  while (!stack.empty())
-  {
-    const Node& node = Nodes[stack.back()];
-    stack.pop_back();
-    if (nodeBound(node) > bound)
-    {
-      continue;
-    }
-    if (node.left < 0)
-    {
-      for (int i = node.begin; i < node.end; ++i)
-      {
-        if (Radii[i] > 0 && squaredRatio(nearest(Points[i], Points[i]), Radii[i]) <= bound)
-        {
-          candidates.push_back(Order[i]);
-        }
-      }
-    }
-    else
-    {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
-    }
-  }
-  std::sort(candidates.begin(), candidates.end());
+  collectBalls([&](const Node& node) { return nodeBound(node) <= bound; },
+    [&](int i) { return Radii[i] > 0 && squaredRatio(nearest(Points[i], Points[i]), Radii[i]) <= bound; }, candidates);
 }
 
 void KdTree::kLeastRelative(const Vec3& x, int k, const std::vector<int>& candidates, std::vector<int>& indices,
@@ -313,6 +284,17 @@ void KdTree::containing(const Vec3& x, std::vector<int>& indices) const
         squaredDistanceToBox(node, x) < node.maxRadius * node.maxRadius;
     },
     [&](int i) { return (Points[i] - x).squaredNorm() < Radii[i] * Radii[i]; }, indices);
+}
+
+bool KdTree::containedInAtLeast(const Vec3& x, int count, const std::vector<int>& candidates) const
+{
+  int found = 0;
+  for (std::size_t a = 0; a < candidates.size() && found < count; ++a)
+  {
+    const int i = Position[candidates[a]];
+    found += (Points[i] - x).squaredNorm() < Radii[i] * Radii[i]; // the test of containing
+  }
+  return found >= count;
 }
 
 void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const

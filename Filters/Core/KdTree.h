@@ -31,6 +31,8 @@ public:
     std::vector<double>& squaredRatios) const;
   /// All points i with |p_i - x| < radius_i (requires setRadii), in increasing order.
   void containing(const Vec3& x, std::vector<int>& indices) const;
+  /// Whether at least count of the candidates (meetingBox of a box holding x) contain x.
+  bool containedInAtLeast(const Vec3& x, int count, const std::vector<int>& candidates) const;
   /// All balls i that may contain a point of the box [lower, upper], in increasing order (requires
   /// setRadii): a superset of containing(x) for every x in the box, so that nearby positions share
   /// one search and each filters the list with the exact test |p_i - x| < radius_i.

@@ -1,8 +1,7 @@
 #include "Sampling.h"
 
-#include "ZOrder.h"
-
 #include "KdTree.h"
+#include "ZOrder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -381,18 +380,12 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
       {
         forEachNearbyGroup(*list, first, std::min(count, first + Chunk), Group,
           [&](const int* begin, const int* end, const Vec3& lower, const Vec3& upper) {
-            // the positions of the group in fewer than s balls (the test of KdTree::containing)
+            // the positions of the group in fewer than s balls
             reachTree.meetingBox(lower, upper, candidates);
             uncovered.clear();
             for (const int* i = begin; i < end; ++i)
             {
-              const Vec3& x = (*list)[*i];
-              int in = 0;
-              for (std::size_t a = 0; a < candidates.size() && in < s; ++a)
-              {
-                in += (centers[candidates[a]] - x).squaredNorm() < reach[candidates[a]] * reach[candidates[a]];
-              }
-              if (in < s)
+              if (!reachTree.containedInAtLeast((*list)[*i], s, candidates))
               {
                 uncovered.push_back(*i);
               }

@@ -86,6 +86,8 @@ TEST(KdTreeQueriesMatchBruteForce)
       CHECK_NEAR(std::sqrt(ratio2[a]), ratios[a].first, 1e-12 * ratios[a].first); // a few roundings of ratios ~1
     }
     CHECK(containing.size() == containingCount);
+    for (std::size_t count : { containingCount, containingCount + 1 })
+      CHECK(tree.containedInAtLeast(x, static_cast<int>(count), meeting) == (containingCount >= count));
   }
 }
 
