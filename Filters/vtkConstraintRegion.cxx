@@ -261,6 +261,7 @@ vtkConstraintRegion::vtkConstraintRegion()
 {
   this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  this->SetProgressText("Constraint Region");
 }
 
 vtkConstraintRegion::~vtkConstraintRegion()

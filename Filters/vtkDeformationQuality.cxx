@@ -162,6 +162,7 @@ vtkDeformationQuality::vtkDeformationQuality()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
+  this->SetProgressText("Deformation Quality");
 }
 
 int vtkDeformationQuality::FillInputPortInformation(int port, vtkInformation* info)

@@ -49,6 +49,7 @@ Samples readSamples(vtkPolyData* centers, vtkPolyData* integration)
 vtkMLSDeformFilter::vtkMLSDeformFilter()
   : vtkSubspaceDeformFilter(4)
 {
+  this->SetProgressText("MLS Deform");
 }
 
 mlsgeometry::SubspaceDependencies vtkMLSDeformFilter::GetSubspaceDependencies(vtkInformationVector** inputVector)

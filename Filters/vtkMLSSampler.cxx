@@ -13,6 +13,7 @@ vtkStandardNewMacro(vtkMLSSampler);
 vtkMLSSampler::vtkMLSSampler()
 {
   this->SetNumberOfOutputPorts(2);
+  this->SetProgressText("MLS Sampler");
 }
 
 int vtkMLSSampler::FillInputPortInformation(int, vtkInformation* info)

@@ -115,6 +115,7 @@ vtkSmartPointer<vtkTable> primitiveTable(const std::vector<DetectedPrimitive>& f
 vtkPrimitiveDetector::vtkPrimitiveDetector()
 {
   this->SetNumberOfOutputPorts(2);
+  this->SetProgressText("Primitive Detector");
 }
 
 int vtkPrimitiveDetector::FillInputPortInformation(int, vtkInformation* info)

@@ -12,6 +12,7 @@ vtkStandardNewMacro(vtkShellDeformFilter);
 vtkShellDeformFilter::vtkShellDeformFilter()
   : vtkSubspaceDeformFilter(2)
 {
+  this->SetProgressText("Shell Deform");
 }
 
 mlsgeometry::SubspaceDependencies vtkShellDeformFilter::GetSubspaceDependencies(vtkInformationVector**)
