@@ -1,5 +1,6 @@
 #include "vtkConstraintRegion.h"
 
+#include "HandleMotion.h"
 #include "KdTree.h"
 #include "MLSGeometry.h"
 
@@ -15,14 +16,12 @@
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkMath.h>
-#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
-#include <vtkTransform.h>
 
 
 vtkStandardNewMacro(vtkConstraintRegion);
@@ -427,16 +426,13 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
       pivot += x / static_cast<double>(selected.size());
     }
   }
-  vtkNew<vtkTransform> motion;
-  motion->PostMultiply();
-  motion->Translate(-pivot.x(), -pivot.y(), -pivot.z());
-  motion->Scale(this->Scale);
-  motion->RotateX(this->Rotation[0]);
-  motion->RotateY(this->Rotation[1]);
-  motion->RotateZ(this->Rotation[2]);
-  motion->Translate(pivot.x() + this->Translation[0], pivot.y() + this->Translation[1], pivot.z() + this->Translation[2]);
+  std::copy(pivot.data(), pivot.data() + 3, this->Pivot);
+  mlsgeometry::HandleMotion motion;
+  std::copy(this->Translation, this->Translation + 3, motion.translation);
+  std::copy(this->Rotation, this->Rotation + 3, motion.rotation);
+  std::copy(this->Scale, this->Scale + 3, motion.scale);
   double matrix[16];
-  vtkMatrix4x4::DeepCopy(matrix, motion->GetMatrix());
+  mlsgeometry::handleMotionMatrix(motion, this->Pivot, matrix);
 
   output->ShallowCopy(selection.cloud);
   if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)

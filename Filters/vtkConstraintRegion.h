@@ -142,6 +142,10 @@ public:
   vtkBooleanMacro(UseCentroid, bool);
   ///@}
 
+  /// The point the last update rotated and scaled about (the centroid or Center); the GUI's handle
+  /// widget converts between its box and the motion with it.
+  vtkGetVector3Macro(Pivot, double);
+
   ///@{
   /// Relative weight of this region among the regions of its role (default 1).
   vtkSetClampMacro(Weight, double, 0.0, 1e6);
@@ -176,6 +180,7 @@ protected:
   double Scale[3] = { 1.0, 1.0, 1.0 };
   double Center[3] = { 0.0, 0.0, 0.0 };
   bool UseCentroid = true;
+  double Pivot[3] = { 0.0, 0.0, 0.0 };
   double Weight = 1.0;
   int NumberOfSelections = 0;
 
