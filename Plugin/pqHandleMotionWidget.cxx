@@ -1,0 +1,152 @@
+#include "pqHandleMotionWidget.h"
+
+#include "HandleMotion.h"
+
+#include <pqActiveObjects.h>
+#include <pqCoreUtilities.h>
+#include <pqDoubleLineEdit.h>
+#include <vtkBoundingBox.h>
+#include <vtkBoxRepresentation.h>
+#include <vtkCommand.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkSMNewWidgetRepresentationProxy.h>
+#include <vtkSMPropertyGroup.h>
+#include <vtkSMPropertyHelper.h>
+#include <vtkSMUncheckedPropertyHelper.h>
+#include <vtkTransform.h>
+
+#include <QCheckBox>
+#include <QGridLayout>
+#include <QLabel>
+
+#include <algorithm>
+#include <string>
+
+namespace
+{
+// The group's properties by function (not the box widget's own property names, so that
+// ParaView does not link them to the widget unconverted).
+const char* const Functions[3] = { "HandleTranslation", "HandleRotation", "HandleScale" };
+}
+
+pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup* group, QWidget* parent)
+  : Superclass("representations", "BoxWidgetRepresentation", proxy, group, parent)
+{
+  this->setShowLabel(false);
+  this->setChangeAvailableAsChangeFinished(true); // each step of a drag is applied by Auto Apply
+  auto* layout = new QGridLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  auto* heading = new QLabel(QString("<b>%1</b>").arg(group->GetXMLLabel()), this); // as ParaView's group headings
+  layout->addWidget(heading, 0, 0, 1, 4);
+  for (int row = 1; row <= 3; ++row)
+  {
+    vtkSMProperty* property = group->GetProperty(Functions[row - 1]);
+    this->Motion[row - 1] = property;
+    auto* label = new QLabel(property->GetXMLLabel(), this);
+    label->setToolTip(pqPropertyWidget::getTooltip(property));
+    layout->addWidget(label, row, 0);
+    for (int c = 0; c < 3; ++c)
+    {
+      auto* field = new pqDoubleLineEdit(this);
+      field->setObjectName(QString("%1_%2").arg(property->GetXMLName()).arg(c));
+      field->setToolTip(pqPropertyWidget::getTooltip(property));
+      layout->addWidget(field, row, c + 1);
+      this->addPropertyLink(field, "text2", SIGNAL(textChangedAndEditingFinished()), property, c);
+    }
+    pqCoreUtilities::connect(property, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(motionEdited()));
+    pqCoreUtilities::connect(property, vtkCommand::ModifiedEvent, this, SLOT(motionEdited()));
+  }
+  auto* show = new QCheckBox("Show Box", this);
+  show->setObjectName("ShowBox");
+  show->setToolTip("Show the handle's box in the render view: drag its centre to move the handle, "
+                   "its faces to rotate it about the pivot, its face handles to scale it.");
+  layout->addWidget(show, 4, 0, 1, 4);
+  this->connect(show, SIGNAL(toggled(bool)), SLOT(setWidgetVisible(bool)));
+  show->connect(this, SIGNAL(widgetVisibilityToggled(bool)), SLOT(setChecked(bool)));
+  show->setChecked(true);
+  this->setWidgetVisible(true);
+
+  // named so that a script finds it among the view's widgets (Testing/Python/test_gui_handle_widget.py)
+  this->widgetProxy()->SetLogName((std::string("handle motion box of ") + proxy->GetLogNameOrDefault()).c_str());
+  this->setDataSource(proxy); // the box surrounds the region's output: the selected positions
+  this->connect(this, SIGNAL(interaction()), SLOT(boxMoved()));
+  this->connect(this, SIGNAL(endInteraction()), SLOT(boxMoved()));
+  this->connect(&pqActiveObjects::instance(), SIGNAL(dataUpdated()), SLOT(placeWidget()));
+}
+
+void pqHandleMotionWidget::hideEvent(QHideEvent* event)
+{
+  const bool shown = this->isWidgetVisible();
+  this->Superclass::hideEvent(event);
+  this->VisibleState = shown;
+}
+
+void pqHandleMotionWidget::placeWidget()
+{
+  vtkSMProxy* region = this->proxy();
+  if (vtkSMProperty* pivot = region->GetProperty("PivotInfo"))
+  {
+    region->UpdatePropertyInformation(pivot);
+    vtkSMPropertyHelper(pivot).Get(this->Pivot, 3);
+  }
+  const vtkBoundingBox selected = this->dataBounds();
+  if (!selected.IsValid())
+  {
+    return;
+  }
+  // a box centred on the pivot that holds the selected positions, at least 1% of their extent
+  // thick (a plane's positions would give a flat box that the widget cannot rotate)
+  double bounds[6];
+  const double least = 0.01 * std::max(selected.GetDiagonalLength(), 1e-300);
+  for (int i = 0; i < 3; ++i)
+  {
+    const double half = std::max({ this->Pivot[i] - selected.GetMinPoint()[i], selected.GetMaxPoint()[i] - this->Pivot[i], least });
+    bounds[2 * i] = this->Pivot[i] - half;
+    bounds[2 * i + 1] = this->Pivot[i] + half;
+  }
+  vtkSMNewWidgetRepresentationProxy* box = this->widgetProxy();
+  vtkSMPropertyHelper(box, "PlaceWidget").Set(bounds, 6);
+  box->UpdateVTKObjects();
+  this->motionEdited();
+}
+
+void pqHandleMotionWidget::motionEdited()
+{
+  if (this->Updating)
+  {
+    return;
+  }
+  mlsgeometry::HandleMotion motion;
+  vtkSMUncheckedPropertyHelper(this->Motion[0]).Get(motion.translation, 3);
+  vtkSMUncheckedPropertyHelper(this->Motion[1]).Get(motion.rotation, 3);
+  vtkSMUncheckedPropertyHelper(this->Motion[2]).Get(motion.scale, 3);
+  const mlsgeometry::BoxTransform transform = mlsgeometry::boxTransform(motion, this->Pivot);
+  vtkSMNewWidgetRepresentationProxy* box = this->widgetProxy();
+  this->Updating = true;
+  vtkSMPropertyHelper(box, "Position").Set(transform.position, 3);
+  vtkSMPropertyHelper(box, "Rotation").Set(transform.rotation, 3);
+  vtkSMPropertyHelper(box, "Scale").Set(transform.scale, 3);
+  box->UpdateVTKObjects();
+  this->Updating = false;
+  this->render();
+}
+
+void pqHandleMotionWidget::boxMoved()
+{
+  auto* representation = vtkBoxRepresentation::SafeDownCast(this->widgetProxy()->GetRepresentationProxy()->GetClientSideObject());
+  if (this->Updating || !representation)
+  {
+    return;
+  }
+  vtkNew<vtkTransform> transform;
+  representation->GetTransform(transform);
+  double matrix[16];
+  vtkMatrix4x4::DeepCopy(matrix, transform->GetMatrix());
+  const mlsgeometry::HandleMotion motion = mlsgeometry::handleMotion(matrix, this->Pivot);
+  this->Updating = true;
+  vtkSMUncheckedPropertyHelper(this->Motion[0]).Set(motion.translation, 3);
+  vtkSMUncheckedPropertyHelper(this->Motion[1]).Set(motion.rotation, 3);
+  vtkSMUncheckedPropertyHelper(this->Motion[2]).Set(motion.scale, 3);
+  this->Updating = false;
+}

@@ -1,0 +1,41 @@
+// The handle motion of a Constraint Region in the ParaView GUI: a box in the render view around
+// the selected positions, centred on the pivot, that the designer drags (its centre handle moves
+// the handle, its faces rotate it about the pivot, its face handles scale it), and the
+// Translation, Rotation and Scale fields, which follow the box and move it when typed. The box
+// shows where the handle region goes.
+#pragma once
+
+#include <pqInteractivePropertyWidget.h>
+
+class pqDoubleLineEdit;
+class vtkSMProperty;
+
+class pqHandleMotionWidget : public pqInteractivePropertyWidget
+{
+  Q_OBJECT
+  using Superclass = pqInteractivePropertyWidget;
+
+public:
+  pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup* group, QWidget* parent = nullptr);
+
+protected:
+  /// Keeps the designer's Show Box choice while the panel is hidden (the base keeps whether the
+  /// box was on screen, which it is not while the region is not the active source).
+  void hideEvent(QHideEvent* event) override;
+
+protected Q_SLOTS:
+  /// Places the box around the selected positions (the region's output at rest), centred on the
+  /// pivot of the last update, and moves it by the current motion.
+  void placeWidget() override;
+
+private Q_SLOTS:
+  /// The box was dragged: the motion fields take its transform.
+  void boxMoved();
+  /// The motion fields changed (typed, reset, or set from Python): the box follows.
+  void motionEdited();
+
+private:
+  vtkSMProperty* Motion[3]; // Translation, Rotation, Scale
+  double Pivot[3] = { 0, 0, 0 };
+  bool Updating = false; // set while one side is written from the other
+};

@@ -1,0 +1,149 @@
+"""Issue 13 point 1 in the GUI: the Constraint Region's handle box moves the handle. Two runs:
+
+    paraview --dr --script=test_gui_handle_widget.py --test-script=handle_widget.xml
+             --test-baseline=... --exit
+        builds the fandisk pipeline (environment: MLSDEFORM_PLUGIN, MLSDEFORM_DATA_DIR,
+        MLSDEFORM_GUI_RESULT) with the handle region active, checks that its box surrounds the
+        selected positions centred on the pivot, then moves the box as a drag does (the box's
+        representation is transformed and the widget fires its interaction events): up by 10% of
+        the part's height and 20 degrees about the view axis about the box centre. The Translation
+        and Rotation fields must take that motion before Apply; the recorded events then press
+        Apply and save the state, and ParaView compares the view with the baseline image.
+    pvpython test_gui_handle_widget.py PLUGIN DATA_DIR RESULT STATE
+        checks the GUI's result file, that the saved state holds the applied motion, and that the
+        state's deformation equals the deformation with that motion typed in pvpython.
+"""
+import os
+import sys
+import xml.etree.ElementTree as ElementTree
+
+import paraview.simple as pvs
+
+in_gui = 'MLSDEFORM_GUI_RESULT' in os.environ
+plugin, data = (os.environ['MLSDEFORM_PLUGIN'], os.environ['MLSDEFORM_DATA_DIR']) if in_gui else sys.argv[1:3]
+pvs.LoadPlugin(plugin, remote=False)
+
+# The motion the box is given: up (z) by 10% of the height, 20 degrees about z (the view axis).
+LIFT, TURN = 0.1, 20.0
+# The box's points are transformed and its transform recovered (vtkBoxRepresentation::GetTransform)
+# through ~20 operations on coordinates of size ~1: ~1e-14; the Euler angles from it: ~1e-13 degrees.
+TOLERANCE = 1e-9
+
+
+def fandisk_pipeline():
+    """The fandisk with its bottom 10% Fixed and its top 25% the Handle, as in Examples/."""
+    part = pvs.OpenDataFile(os.path.join(data, 'fandisk.off'))
+    part.UpdatePipeline()
+    xmin, xmax, ymin, ymax, zmin, zmax = part.GetDataInformation().GetBounds()
+    height = zmax - zmin
+    margin = 0.01 * height
+
+    def box_region(role, low, high):
+        region = pvs.ConstraintRegion(Input=part, Role=role)  # noqa: F821 (from the plugin)
+        region.Region = 'Box'
+        region.Region.Position = [xmin - margin, ymin - margin, low]
+        region.Region.Length = [xmax - xmin + 2 * margin, ymax - ymin + 2 * margin, high - low]
+        return region
+    fixed = box_region('Fixed', zmin - margin, zmin + 0.1 * height)
+    handle = box_region('Handle', zmax - 0.25 * height, zmax + margin)
+    deformed = pvs.MLSDeform(Input=part, Regions=[fixed, handle])  # noqa: F821
+    return part, handle, deformed, height
+
+
+def gui_run():
+    from paraview.vtk import vtkTransform
+    failures = []
+    part, handle, deformed, height = fandisk_pipeline()
+    view = pvs.GetActiveViewOrCreate('RenderView')
+    pvs.Show(deformed, view)
+    pvs.Show(handle, view)
+    handle.UpdatePipeline()
+    pvs.SetActiveSource(handle)
+    pvs.Render(view)
+    boxes = [p for p in view.GetProperty('HiddenRepresentations')
+             if (p.SMProxy.GetLogName() or '').startswith('handle motion box of ')]
+    active = [b for b in boxes if b.SMProxy.GetProperty('Visibility').GetElement(0)]
+    if len(active) != 1:
+        return ['expected one visible handle box, found %d of %d' % (len(active), len(boxes))]
+    widget = active[0].SMProxy
+    representation = widget.GetRepresentationProxy().GetClientSideObject()
+    handle.UpdatePropertyInformation()
+    pivot = list(handle.GetProperty('PivotInfo'))
+    lower_upper = representation.GetBounds()
+    centre = [(lower_upper[2 * i] + lower_upper[2 * i + 1]) / 2 for i in range(3)]
+    if max(abs(c - p) for c, p in zip(centre, pivot)) > TOLERANCE * height:
+        failures.append('the box centre %s is not the pivot %s' % (centre, pivot))
+    # a drag: the representation moves, the widget reports the interaction
+    transform = vtkTransform()
+    representation.GetTransform(transform)
+    transform.PostMultiply()
+    transform.Translate(-centre[0], -centre[1], -centre[2])
+    transform.RotateZ(TURN)
+    transform.Translate(centre[0], centre[1], centre[2] + LIFT * height)
+    representation.SetTransform(transform)
+    for event in ('StartInteractionEvent', 'InteractionEvent', 'EndInteractionEvent'):
+        widget.GetWidget().InvokeEvent(event)
+    fields = {name: [handle.GetProperty(name).SMProperty.GetUncheckedElement(i) for i in range(3)]
+              for name in ('Translation', 'Rotation', 'Scale')}
+    expected = {'Translation': [0, 0, LIFT * height], 'Rotation': [0, 0, TURN], 'Scale': [1, 1, 1]}
+    for name, values in expected.items():
+        if max(abs(a - b) for a, b in zip(fields[name], values)) > TOLERANCE * max(1, height):
+            failures.append('%s after the drag is %s, expected %s' % (name, fields[name], values))
+    view.CameraPosition = [0, -3 * height, 2 * height]
+    view.CameraFocalPoint = pivot
+    view.CameraViewUp = [0, 0, 1]
+    view.ResetCamera()
+    return failures
+
+
+def pvpython_run(result, state):
+    failures = []
+    with open(result) as f:
+        message = f.read().strip()
+    if message != 'ok':
+        failures.append('in the GUI: ' + message)
+    # the applied motion in the saved state: the handle region's (the one with Role 0)
+    regions = [p for p in ElementTree.parse(state).getroot().iter('Proxy')
+               if p.get('group') == 'filters' and p.get('type') == 'ConstraintRegion']
+
+    def values(proxy, name):
+        prop = [p for p in proxy.iter('Property') if p.get('name') == name][0]
+        return [float(e.get('value')) for e in prop.iter('Element')]
+    handles = [r for r in regions if values(r, 'Role') == [0.0]]
+    _, handle, deformed, height = fandisk_pipeline()
+    typed = {'Translation': [0, 0, LIFT * height], 'Rotation': [0, 0, TURN], 'Scale': [1, 1, 1]}
+    if len(handles) != 1:
+        failures.append('expected one handle region in the state, found %d' % len(handles))
+    else:
+        for name, expected in typed.items():
+            applied = values(handles[0], name)
+            if max(abs(a - b) for a, b in zip(applied, expected)) > TOLERANCE * max(1, height):
+                failures.append('%s applied in the GUI is %s, expected %s' % (name, applied, expected))
+    # the GUI's pipeline, loaded from its state, deforms as the typed motion does
+    for name, value in typed.items():
+        setattr(handle, name, value)
+    from paraview import servermanager
+    from paraview.vtk.util.numpy_support import vtk_to_numpy
+    typed_points = vtk_to_numpy(servermanager.Fetch(deformed).GetPoints().GetData())
+    pvs.ResetSession()
+    pvs.LoadPlugin(plugin, remote=False)
+    pvs.LoadState(state, data_directory=data)
+    gui_deformed = [s for s in pvs.GetSources().values() if s.GetXMLName() == 'MLSDeform'][0]
+    gui_points = vtk_to_numpy(servermanager.Fetch(gui_deformed).GetPoints().GetData())
+    # the same solve of the same motion: equal up to the motion's round trip through the GUI
+    difference = abs(gui_points - typed_points).max() if gui_points.shape == typed_points.shape else float('inf')
+    if difference > TOLERANCE * height:
+        failures.append('the GUI deformation differs from the typed one by %g' % difference)
+    print('\n'.join(failures) or 'ok: the box moved the handle; state and deformation equal the typed motion')
+    return failures
+
+
+if in_gui:
+    try:
+        message = '\n'.join(gui_run()) or 'ok'
+    except Exception as error:  # reported through the result file, the GUI swallows exceptions
+        message = 'error: %r' % error
+    with open(os.environ['MLSDEFORM_GUI_RESULT'], 'w') as f:
+        f.write(message)
+else:
+    sys.exit(1 if pvpython_run(*sys.argv[3:5]) else 0)
