@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for MLSDeform and builds it: installs the Debian packages that are
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
-# Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb and PyQt5 for the GUI tests, and for the paper comparisons gmsh
+# Qt's OpenGL module for the plugin's GUI part, Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb and PyQt5 for the GUI tests, and for the paper comparisons gmsh
 # and matplotlib, OpenFOAM for the CFD round-trip tests and examples), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
@@ -12,6 +12,7 @@ packages=(
   cmake g++ make
   paraview paraview-dev python3-paraview python3-numpy
   qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools libutfcpp-dev
+  libqt5opengl5-dev
   libopenmpi-dev libhdf5-openmpi-dev libnetcdf-dev libgdal-dev libboost-dev
   libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libfreetype-dev
   libglew-dev libgl2ps-dev libjpeg-dev libpng-dev libtiff-dev libtheora-dev
