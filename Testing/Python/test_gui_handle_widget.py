@@ -47,16 +47,24 @@ def fandisk_pipeline():
     fixed = box_region('Fixed', zmin - margin, zmin + 0.1 * height)
     handle = box_region('Handle', zmax - 0.25 * height, zmax + margin)
     deformed = pvs.MLSDeform(Input=part, Regions=[fixed, handle])  # noqa: F821
-    return part, handle, deformed, height
+    return part, fixed, handle, deformed, height
 
 
 def gui_run():
     from paraview.vtk import vtkTransform
     failures = []
-    part, handle, deformed, height = fandisk_pipeline()
+    part, fixed, handle, deformed, height = fandisk_pipeline()
     view = pvs.GetActiveViewOrCreate('RenderView')
-    pvs.Show(deformed, view)
-    pvs.Show(handle, view)
+    shown = {source: pvs.Show(source, view) for source in (deformed, fixed, handle)}
+    # the default look (issue 13 point 3): the model coloured by displacement, the regions as
+    # points in their role's colour (Plugin/pqRegionColoring.cxx)
+    if list(shown[deformed].ColorArrayName) != ['POINTS', 'Displacement']:
+        failures.append('the deformed model is coloured by %s' % list(shown[deformed].ColorArrayName))
+    for region, colour in ((fixed, [0.15, 0.35, 1.0]), (handle, [0.9, 0.1, 0.1])):
+        look = shown[region]
+        if look.Representation != 'Points' or list(look.DiffuseColor) != colour or look.ColorArrayName[1]:
+            failures.append('the %s region is drawn as %s in %s coloured by %s' % (
+                region.Role, look.Representation, list(look.DiffuseColor), list(look.ColorArrayName)))
     handle.UpdatePipeline()
     pvs.SetActiveSource(handle)
     pvs.Render(view)
@@ -64,7 +72,7 @@ def gui_run():
              if (p.SMProxy.GetLogName() or '').startswith('handle motion box of ')]
     active = [b for b in boxes if b.SMProxy.GetProperty('Visibility').GetElement(0)]
     if len(active) != 1:
-        return ['expected one visible handle box, found %d of %d' % (len(active), len(boxes))]
+        return failures + ['expected one visible handle box, found %d of %d' % (len(active), len(boxes))]
     widget = active[0].SMProxy
     representation = widget.GetRepresentationProxy().GetClientSideObject()
     handle.UpdatePropertyInformation()
@@ -110,7 +118,7 @@ def pvpython_run(result, state):
         prop = [p for p in proxy.iter('Property') if p.get('name') == name][0]
         return [float(e.get('value')) for e in prop.iter('Element')]
     handles = [r for r in regions if values(r, 'Role') == [0.0]]
-    _, handle, deformed, height = fandisk_pipeline()
+    _, _, handle, deformed, height = fandisk_pipeline()
     typed = {'Translation': [0, 0, LIFT * height], 'Rotation': [0, 0, TURN], 'Scale': [1, 1, 1]}
     if len(handles) != 1:
         failures.append('expected one handle region in the state, found %d' % len(handles))
