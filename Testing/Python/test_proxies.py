@@ -36,6 +36,23 @@ check(deform_defaults.Cover == 5 and deform_defaults.IntegrationPointRatio == 4,
 check(deform_defaults.Basis == 'MLS' and deform_defaults.EnergyDiscretization == 'Volumetric', 'Basis MLS and EnergyDiscretization Volumetric by default')
 Delete(deform_defaults)
 
+# Regions accept Constraint Region outputs only (vtkSMProducerDomain), tried as ParaView's Change
+# Input dialog tries a candidate: as the property's unchecked value.
+sphere = Sphere()
+candidate_region = ConstraintRegion(Input=sphere, SelectionMode='AllPoints')
+regions = MLSDeform(Input=sphere).GetProperty('Regions').SMProperty
+
+
+def accepts(*inputs):
+    regions.RemoveAllUncheckedProxies()
+    for source in inputs:
+        regions.AddUncheckedInputConnection(source.SMProxy, 0)
+    return regions.IsInDomains()
+
+
+check(accepts(candidate_region) == 1 and accepts(candidate_region, candidate_region) == 1, 'Regions accept Constraint Regions')
+check(accepts(sphere) == 0 and accepts(candidate_region, sphere) == 0, 'Regions refuse a Sphere, alone or beside a region')
+
 # OpenDataFile on .off goes to the plugin's reader.
 part = OpenDataFile(data_dir + '/fandisk.off')
 check(part is not None and part.GetXMLName() == 'OFFReader', 'OpenDataFile(fandisk.off) uses the OFF reader')
