@@ -143,7 +143,16 @@ void pqHandleMotionWidget::boxMoved()
   representation->GetTransform(transform);
   double matrix[16];
   vtkMatrix4x4::DeepCopy(matrix, transform->GetMatrix());
-  const mlsgeometry::HandleMotion motion = mlsgeometry::handleMotion(matrix, this->Pivot);
+  mlsgeometry::HandleMotion motion = mlsgeometry::handleMotion(matrix, this->Pivot);
+  // the round-off of the box's transform (~1e-16 of its size) shown as the exact value it stands
+  // for: a box moved straight up reads Translation (0, 0, dz), not (1e-16, -7e-18, dz)
+  const double size = std::max(1.0, vtkBoundingBox(representation->GetBounds()).GetMaxLength());
+  for (int i = 0; i < 3; ++i)
+  {
+    motion.translation[i] = std::abs(motion.translation[i]) < 1e-12 * size ? 0.0 : motion.translation[i];
+    motion.rotation[i] = std::abs(motion.rotation[i]) < 1e-9 ? 0.0 : motion.rotation[i];
+    motion.scale[i] = std::abs(motion.scale[i] - 1) < 1e-12 ? 1.0 : motion.scale[i];
+  }
   this->Updating = true;
   vtkSMUncheckedPropertyHelper(this->Motion[0]).Set(motion.translation, 3);
   vtkSMUncheckedPropertyHelper(this->Motion[1]).Set(motion.rotation, 3);
