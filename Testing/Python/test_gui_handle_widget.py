@@ -6,7 +6,8 @@
         MLSDEFORM_GUI_RESULT) with the handle region active, checks that its box surrounds the
         selected positions centred on the pivot, then moves the box as a drag does (the box's
         representation is transformed and the widget fires its interaction events): up by 10% of
-        the part's height and 20 degrees about the view axis about the box centre. The Translation
+        the part's height and 20 degrees about the view axis about the box centre (after a typed
+        translation has moved the box and been typed back). The Translation
         and Rotation fields must take that motion before Apply; the recorded events then press
         Apply and save the state, and ParaView compares the view with the baseline image.
     pvpython test_gui_handle_widget.py PLUGIN DATA_DIR RESULT STATE
@@ -81,6 +82,14 @@ def gui_run():
     centre = [(lower_upper[2 * i] + lower_upper[2 * i + 1]) / 2 for i in range(3)]
     if max(abs(c - p) for c, p in zip(centre, pivot)) > TOLERANCE * height:
         failures.append('the box centre %s is not the pivot %s' % (centre, pivot))
+    # typing a translation moves the box by it; typing it back returns the box
+    translation = handle.GetProperty('Translation').SMProperty
+    for lift, where in ((0.05 * height, 'after typing a translation'), (0.0, 'after typing it back')):
+        translation.SetUncheckedElement(2, lift)
+        moved = representation.GetBounds()
+        moved_centre = [(moved[2 * i] + moved[2 * i + 1]) / 2 for i in range(3)]
+        if max(abs(m - c - d) for m, c, d in zip(moved_centre, centre, [0, 0, lift])) > TOLERANCE * height:
+            failures.append('the box centre %s is not the pivot moved by %s %s' % (moved_centre, lift, where))
     # a drag: the representation moves, the widget reports the interaction
     transform = vtkTransform()
     representation.GetTransform(transform)
