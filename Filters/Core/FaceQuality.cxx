@@ -163,8 +163,8 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   }
   std::vector<int>().swap(smallest);
 
-  // copy[f]: for the owner's copy f, the neighbour's copy; -2 marks a neighbour's copy
-  std::vector<long> copy(static_cast<std::size_t>(faceCount), -1);
+  // neighbour[f]: the other cell of the owner's copy f; -2 marks a neighbour's copy
+  std::vector<int> neighbour(static_cast<std::size_t>(faceCount), -1);
   long shared = faceCount; // the lowest owner's face found in a third cell (the same for any thread count)
 #pragma omp parallel
   {
@@ -193,20 +193,20 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       for (long a = 0; a < count; ++a)
       {
         const long fa = begin[a];
-        for (long b = a + 1; b < count && copy[fa] != -2; ++b)
+        for (long b = a + 1; b < count && neighbour[fa] != -2; ++b)
         {
           const long fb = begin[b];
-          if (copy[fb] == -2 || !same(a, b))
+          if (neighbour[fb] == -2 || !same(a, b))
           {
             continue;
           }
-          if (copy[fa] >= 0)
+          if (neighbour[fa] >= 0)
           {
             shared = std::min(shared, fa);
             break;
           }
-          copy[fa] = fb;
-          copy[fb] = -2;
+          neighbour[fa] = cellOf[fb];
+          neighbour[fb] = -2;
         }
       }
     }
@@ -214,7 +214,7 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   if (shared < faceCount)
   {
     throw std::invalid_argument("a face is shared by more than two cells (cells " + std::to_string(cellOf[shared]) + ", " +
-      std::to_string(cellOf[copy[shared]]) + " and another)");
+      std::to_string(neighbour[shared]) + " and another)");
   }
   // the owner's copies in face order: counted per chunk of faces, then written in parallel
   constexpr long Chunk = 1 << 16;
@@ -223,8 +223,8 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 #pragma omp parallel for schedule(static)
   for (long c = 0; c < chunks; ++c)
   {
-    offset[c + 1] = std::count_if(
-      copy.begin() + c * Chunk, copy.begin() + std::min(faceCount, (c + 1) * Chunk), [](long n) { return n >= 0; });
+    offset[c + 1] = std::count_if(neighbour.begin() + c * Chunk, neighbour.begin() + std::min(faceCount, (c + 1) * Chunk),
+      [](int n) { return n >= 0; });
   }
   std::partial_sum(offset.begin(), offset.end(), offset.begin());
   std::vector<InteriorFace> faces(static_cast<std::size_t>(offset.back()));
@@ -234,9 +234,9 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
     long next = offset[c];
     for (long f = c * Chunk; f < std::min(faceCount, (c + 1) * Chunk); ++f)
     {
-      if (copy[f] >= 0)
+      if (neighbour[f] >= 0)
       {
-        faces[next++] = InteriorFace{ cellOf[f], cellOf[copy[f]], f, copy[f] };
+        faces[next++] = InteriorFace{ cellOf[f], neighbour[f], f };
       }
     }
   }
@@ -245,52 +245,22 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 
 namespace
 {
-// Whether polygon b lists the points of polygon a (both of n points) in reverse cyclic order: the
-// same face seen from the other cell.
-bool listedInReverse(const int* a, const int* b, std::size_t n)
-{
-  for (std::size_t start = 0; start < n; ++start)
-  {
-    std::size_t i = 0;
-    while (i < n && b[(start + n - i) % n] == a[i])
-    {
-      ++i;
-    }
-    if (i == n)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-// Every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid). Each
-// interior face's geometry is computed once, from the owner's copy (as OpenFOAM does), kept in
-// work.shared and used by both cells and by the face measures.
+// Every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid), its faces'
+// geometry computed once per cell; the geometry of each interior face's owner copy is kept in
+// work.shared, so that the face measures do not compute it again.
 void cellCentres(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
   std::vector<unsigned char>& inverted, FaceWorkspace& work)
 {
-  const long interiorCount = static_cast<long>(faces.size());
   if (work.interior.size() != static_cast<std::size_t>(cells.faces()))
   {
     work.interior.assign(static_cast<std::size_t>(cells.faces()), -1);
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < interiorCount; ++i)
+    for (long i = 0; i < static_cast<long>(faces.size()); ++i)
     {
-      const InteriorFace& f = faces[i];
-      work.interior[f.face] = i;
-      if (listedInReverse(cells.face(f.face), cells.face(f.neighbourFace), cells.faceSize(f.face)))
-      {
-        work.interior[f.neighbourFace] = -2 - i;
-      }
+      work.interior[faces[i].face] = i;
     }
   }
   work.shared.resize(faces.size());
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < interiorCount; ++i)
-  {
-    work.shared[i] = faceGeometry(points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
-  }
   work.centres.resize(cells.cells());
   inverted.resize(cells.cells());
 #pragma omp parallel
@@ -302,19 +272,10 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const std::
       g.clear();
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
-        const long i = work.interior[f];
-        if (i >= 0)
+        g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+        if (work.interior[f] >= 0)
         {
-          g.push_back(work.shared[i]);
-        }
-        else if (i <= -2)
-        {
-          g.push_back(work.shared[-2 - i]);
-          g.back().area = -g.back().area;
-        }
-        else
-        {
-          g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+          work.shared[work.interior[f]] = g.back();
         }
       }
       work.centres[c] = cellGeometry(g).centre;

@@ -126,14 +126,12 @@ CellFaceList CellFaceList::build(int count, NewVisitor newVisitor)
   return list;
 }
 
-/// A face shared by two cells; `face` is the owner's copy and `neighbourFace` the neighbour's
-/// (face numbers of the CellFaceList).
+/// A face shared by two cells; `face` is the owner's copy (a face number of the CellFaceList).
 struct InteriorFace
 {
   int owner = -1;
   int neighbour = -1;
   long face = -1;
-  long neighbourFace = -1;
 };
 
 /// The faces shared by two cells, matched by their point sets (the owner is the lower cell index).
@@ -161,10 +159,7 @@ FaceMeasures faceMeasures(
 /// another deformation allocates nothing.
 struct FaceWorkspace
 {
-  // per face of the cells: i for the owner's copy of interior face i, -2 - i for a neighbour's
-  // copy that lists the owner's points in reverse (its geometry is the owner's, area negated),
-  // -1 for any other face (computed on its own)
-  std::vector<long> interior;
+  std::vector<long> interior; // per face of the cells: the interior face it is the owner's copy of, or -1
   std::vector<FaceGeometry> shared; // per interior face: its geometry from the owner's copy
   std::vector<Vec3> centres;        // per cell
 };
