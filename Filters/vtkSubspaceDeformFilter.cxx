@@ -650,8 +650,6 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       offset += n;
       outSets[s]->SetPoints(moved);
       outSets[s]->GetPointData()->AddArray(displacement);
-      // the active scalars: ParaView colours the deformed model by its displacement magnitude
-      outSets[s]->GetPointData()->SetActiveScalars("Displacement");
     }
     const double solveTime = secondsSince(solveStart);
 

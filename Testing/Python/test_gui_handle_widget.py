@@ -58,7 +58,7 @@ def gui_run():
     view = pvs.GetActiveViewOrCreate('RenderView')
     shown = {source: pvs.Show(source, view) for source in (deformed, fixed, handle)}
     # the default look (issue 13 point 3): the model coloured by displacement, the regions as
-    # points in their role's colour (Plugin/pqRegionColoring.cxx)
+    # points in their role's colour (Plugin/pqOutputColoring.cxx)
     if list(shown[deformed].ColorArrayName) != ['POINTS', 'Displacement']:
         failures.append('the deformed model is coloured by %s' % list(shown[deformed].ColorArrayName))
     for region, colour in ((fixed, [0.15, 0.35, 1.0]), (handle, [0.9, 0.1, 0.1])):

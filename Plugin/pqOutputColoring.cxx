@@ -1,4 +1,4 @@
-#include "pqRegionColoring.h"
+#include "pqOutputColoring.h"
 
 #include <pqApplicationCore.h>
 #include <pqRepresentation.h>
@@ -25,18 +25,18 @@ const double* roleColour(int role)
 }
 }
 
-pqRegionColoring::pqRegionColoring(QObject* parent)
+pqOutputColoring::pqOutputColoring(QObject* parent)
   : QObject(parent)
 {
 }
 
-void pqRegionColoring::onStartup()
+void pqOutputColoring::onStartup()
 {
   QObject::connect(pqApplicationCore::instance()->getServerManagerModel(), &pqServerManagerModel::representationAdded, this,
-    &pqRegionColoring::representationAdded);
+    &pqOutputColoring::representationAdded);
 }
 
-void pqRegionColoring::representationAdded(pqRepresentation* representation)
+void pqOutputColoring::representationAdded(pqRepresentation* representation)
 {
   vtkSMProxy* proxy = representation ? representation->getProxy() : nullptr;
   // not while a state file is loaded (it has its own colours), only geometry representations
@@ -45,8 +45,16 @@ void pqRegionColoring::representationAdded(pqRepresentation* representation)
   {
     return;
   }
-  auto* region = vtkSMSourceProxy::SafeDownCast(vtkSMPropertyHelper(proxy, "Input").GetAsProxy());
-  if (!region || std::strcmp(region->GetXMLName(), "ConstraintRegion") != 0)
+  auto* producer = vtkSMSourceProxy::SafeDownCast(vtkSMPropertyHelper(proxy, "Input").GetAsProxy());
+  const char* name = producer ? producer->GetXMLName() : "";
+  if (std::strcmp(name, "MLSDeform") == 0 || std::strcmp(name, "ShellDeform") == 0)
+  {
+    vtkSMPVRepresentationProxy::SetScalarColoring(proxy, "Displacement", vtkDataObject::POINT); // by magnitude
+    proxy->UpdateVTKObjects();
+    return;
+  }
+  vtkSMSourceProxy* region = producer;
+  if (std::strcmp(name, "ConstraintRegion") != 0)
   {
     return;
   }

@@ -1,0 +1,23 @@
+// The GUI's default look of the plugin's outputs: a deformed model (MLS Deform, Shell Deform)
+// coloured by its displacement's magnitude, and Constraint Regions' positions drawn as points in
+// one colour per role (Handle red, Fixed blue, geometric constraints green, Slip orange), so that
+// the regions of a deformation can be told apart at a glance. Applied once, when an output is
+// first shown; a state file's or the designer's own colours are kept.
+#pragma once
+
+#include <QObject>
+
+class pqRepresentation;
+
+class pqOutputColoring : public QObject
+{
+  Q_OBJECT
+
+public:
+  explicit pqOutputColoring(QObject* parent = nullptr);
+  void onStartup();
+  void onShutdown() {}
+
+private Q_SLOTS:
+  void representationAdded(pqRepresentation* representation);
+};
