@@ -7,9 +7,10 @@
         selected positions centred on the pivot, then moves the box as a drag does (the box's
         representation is transformed and the widget fires its interaction events): up by 10% of
         the part's height and 20 degrees about the view axis about the box centre (after a typed
-        translation has moved the box and been typed back). The Translation
-        and Rotation fields must take that motion before Apply; the recorded events then press
-        Apply and save the state, and ParaView compares the view with the baseline image.
+        translation has moved the box and been typed back). The Translation and Rotation fields
+        must take that motion before Apply, and with Auto Apply on it is applied before the drag
+        ends; the recorded events then press Apply (nothing is left to apply) and save the state,
+        and ParaView compares the view with the baseline image.
     pvpython test_gui_handle_widget.py PLUGIN DATA_DIR RESULT STATE
         checks the GUI's result file, that the saved state holds the applied motion, and that the
         state's deformation equals the deformation with that motion typed in pvpython.
@@ -98,7 +99,7 @@ def gui_run():
     transform.RotateZ(TURN)
     transform.Translate(centre[0], centre[1], centre[2] + LIFT * height)
     representation.SetTransform(transform)
-    for event in ('StartInteractionEvent', 'InteractionEvent', 'EndInteractionEvent'):
+    for event in ('StartInteractionEvent', 'InteractionEvent'):
         widget.GetWidget().InvokeEvent(event)
     fields = {name: [handle.GetProperty(name).SMProperty.GetUncheckedElement(i) for i in range(3)]
               for name in ('Translation', 'Rotation', 'Scale')}
@@ -106,6 +107,18 @@ def gui_run():
     for name, values in expected.items():
         if max(abs(a - b) for a, b in zip(fields[name], values)) > TOLERANCE * max(1, height):
             failures.append('%s after the drag is %s, expected %s' % (name, fields[name], values))
+    # With Auto Apply on, the step is applied while the drag goes on (before its end event): the
+    # region's applied Translation is the step's
+    from PyQt5.QtWidgets import QApplication
+    from paraview.modules.vtkRemotingSettings import vtkPVGeneralSettings
+    settings = vtkPVGeneralSettings.GetInstance()
+    settings.SetAutoApply(True)
+    for _ in range(100):  # the panel's and Auto Apply's zero-delay timers
+        QApplication.processEvents()
+    settings.SetAutoApply(False)
+    if max(abs(a - b) for a, b in zip(handle.Translation, expected['Translation'])) > TOLERANCE * height:
+        failures.append('Auto Apply during the drag applied Translation %s' % list(handle.Translation))
+    widget.GetWidget().InvokeEvent('EndInteractionEvent')
     view.CameraPosition = [0, -3 * height, 2 * height]
     view.CameraFocalPoint = pivot
     view.CameraViewUp = [0, 0, 1]
