@@ -7,11 +7,16 @@ from paraview.simple import (ColorBy, CreateLayout, CreateView, GetColorTransfer
                              GetScalarBar, LoadPlugin, OpenDataFile, SaveScreenshot, Show)
 
 
+def load_plugin(plugin):
+    """Loads the plugin; its proxies become attributes of this module (scene.MLSDeform)."""
+    LoadPlugin(plugin, remote=False, ns=globals())
+
+
 def open_fandisk():
     """From the command line PLUGIN FANDISK.off OUTPUT_DIR: loads the plugin, opens the part and
     creates the output folder. Returns the part, its bounds and the folder."""
     plugin, mesh, out_dir = sys.argv[1:4]
-    LoadPlugin(plugin, remote=False, ns=globals())
+    load_plugin(plugin)
     os.makedirs(out_dir, exist_ok=True)
     part = OpenDataFile(mesh)
     part.UpdatePipeline()

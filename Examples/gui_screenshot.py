@@ -10,11 +10,13 @@ presses Apply, grabs the main window with PyQt5 and quits.
 """
 import os
 import runpy
+import sys
 
 from PyQt5.QtCore import Qt
 from PyQt5.QtWidgets import QApplication, QDockWidget, QPushButton, QScrollArea, QWidget
 
 os.environ['MLSDEFORM_GUI_RESULT'] = os.environ['MLSDEFORM_SCREENSHOT'] + '.result'
+sys.path.insert(0, 'Examples')  # fandisk_scene
 runpy.run_path(os.path.join('Testing', 'Python', 'test_gui_handle_widget.py'))
 window = [w for w in QApplication.topLevelWidgets() if w.objectName() == 'pqClientMainWindow'][0]
 window.resize(1400, 900)

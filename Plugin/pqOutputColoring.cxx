@@ -53,12 +53,11 @@ void pqOutputColoring::representationAdded(pqRepresentation* representation)
     proxy->UpdateVTKObjects();
     return;
   }
-  vtkSMSourceProxy* region = producer;
   if (std::strcmp(name, "ConstraintRegion") != 0)
   {
     return;
   }
-  const double* colour = roleColour(vtkSMPropertyHelper(region, "Role").GetAsInt());
+  const double* colour = roleColour(vtkSMPropertyHelper(producer, "Role").GetAsInt());
   vtkSMPVRepresentationProxy::SetScalarColoring(proxy, nullptr, vtkDataObject::POINT);
   vtkSMPropertyHelper(proxy, "DiffuseColor").Set(colour, 3);
   vtkSMPropertyHelper(proxy, "AmbientColor").Set(colour, 3);

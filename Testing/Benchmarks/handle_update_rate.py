@@ -7,6 +7,7 @@ percentile time per update over a sweep of motions.
 
     pvpython --no-mpi handle_update_rate.py PLUGIN FANDISK.off [UPDATES]
 """
+import os
 import statistics
 import sys
 import time
@@ -15,25 +16,16 @@ import paraview.simple as pvs
 
 plugin, mesh = sys.argv[1:3]
 updates = int(sys.argv[3]) if len(sys.argv) > 3 else 60
-pvs.LoadPlugin(plugin, remote=False)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'Examples'))
+import fandisk_scene as scene  # noqa: E402
+
+scene.load_plugin(plugin)
 part = pvs.OpenDataFile(mesh)
 part.UpdatePipeline()
-xmin, xmax, ymin, ymax, zmin, zmax = part.GetDataInformation().GetBounds()
-height = zmax - zmin
-margin = 0.01 * height
-
-
-def box_region(role, low, high):
-    region = pvs.ConstraintRegion(Input=part, Role=role)  # noqa: F821 (from the plugin)
-    region.Region = 'Box'
-    region.Region.Position = [xmin - margin, ymin - margin, low]
-    region.Region.Length = [xmax - xmin + 2 * margin, ymax - ymin + 2 * margin, high - low]
-    return region
-
-
-fixed = box_region('Fixed', zmin - margin, zmin + 0.1 * height)
-handle = box_region('Handle', zmax - 0.25 * height, zmax + margin)
-deformed = pvs.MLSDeform(Input=part, Regions=[fixed, handle])  # noqa: F821
+bounds = part.GetDataInformation().GetBounds()
+height = bounds[5] - bounds[4]
+fixed, handle = scene.fixed_and_handle(part, bounds)  # the scene of Examples/ and the GUI test
+deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle])
 view = pvs.CreateRenderView()
 view.ViewSize = [800, 600]
 display = pvs.Show(deformed, view)

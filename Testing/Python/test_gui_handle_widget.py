@@ -3,7 +3,7 @@
     paraview --dr --script=test_gui_handle_widget.py --test-script=handle_widget.xml
              --test-baseline=... --exit
         builds the fandisk pipeline (environment: MLSDEFORM_PLUGIN, MLSDEFORM_DATA_DIR,
-        MLSDEFORM_GUI_RESULT) with the handle region active, checks that its box surrounds the
+        MLSDEFORM_GUI_RESULT; Examples/ on PYTHONPATH in both runs) with the handle region active, checks that its box surrounds the
         selected positions centred on the pivot, then moves the box as a drag does (the box's
         representation is transformed and the widget fires its interaction events): up by 10% of
         the part's height and 20 degrees about the view axis about the box centre (after a typed
@@ -21,9 +21,11 @@ import xml.etree.ElementTree as ElementTree
 
 import paraview.simple as pvs
 
+import fandisk_scene as scene  # Examples/, on PYTHONPATH
+
 in_gui = 'MLSDEFORM_GUI_RESULT' in os.environ
 plugin, data = (os.environ['MLSDEFORM_PLUGIN'], os.environ['MLSDEFORM_DATA_DIR']) if in_gui else sys.argv[1:3]
-pvs.LoadPlugin(plugin, remote=False)
+scene.load_plugin(plugin)
 
 # The motion the box is given: up (z) by 10% of the height, 20 degrees about z (the view axis).
 LIFT, TURN = 0.1, 20.0
@@ -33,23 +35,14 @@ TOLERANCE = 1e-9
 
 
 def fandisk_pipeline():
-    """The fandisk with its bottom 10% Fixed and its top 25% the Handle, as in Examples/."""
+    """The fandisk of Examples/fandisk_scene.py (bottom 10% Fixed, top 25% the Handle), unmoved."""
     part = pvs.OpenDataFile(os.path.join(data, 'fandisk.off'))
     part.UpdatePipeline()
-    xmin, xmax, ymin, ymax, zmin, zmax = part.GetDataInformation().GetBounds()
-    height = zmax - zmin
-    margin = 0.01 * height
-
-    def box_region(role, low, high):
-        region = pvs.ConstraintRegion(Input=part, Role=role)  # noqa: F821 (from the plugin)
-        region.Region = 'Box'
-        region.Region.Position = [xmin - margin, ymin - margin, low]
-        region.Region.Length = [xmax - xmin + 2 * margin, ymax - ymin + 2 * margin, high - low]
-        return region
-    fixed = box_region('Fixed', zmin - margin, zmin + 0.1 * height)
-    handle = box_region('Handle', zmax - 0.25 * height, zmax + margin)
-    deformed = pvs.MLSDeform(Input=part, Regions=[fixed, handle])  # noqa: F821
-    return part, fixed, handle, deformed, height
+    bounds = part.GetDataInformation().GetBounds()
+    fixed, handle = scene.fixed_and_handle(part, bounds)
+    handle.Translation = [0, 0, 0]
+    deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle])
+    return part, fixed, handle, deformed, bounds[5] - bounds[4]
 
 
 def gui_run():
@@ -156,7 +149,7 @@ def pvpython_run(result, state):
     from paraview.vtk.util.numpy_support import vtk_to_numpy
     typed_points = vtk_to_numpy(servermanager.Fetch(deformed).GetPoints().GetData())
     pvs.ResetSession()
-    pvs.LoadPlugin(plugin, remote=False)
+    scene.load_plugin(plugin)
     pvs.LoadState(state, data_directory=data)
     gui_deformed = [s for s in pvs.GetSources().values() if s.GetXMLName() == 'MLSDeform'][0]
     gui_points = vtk_to_numpy(servermanager.Fetch(gui_deformed).GetPoints().GetData())
