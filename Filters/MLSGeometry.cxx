@@ -1,5 +1,7 @@
 #include "MLSGeometry.h"
 
+#include "PositionHash.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -9,6 +11,8 @@
 #include <vtkCellType.h>
 #include <vtkCellTypes.h>
 #include <vtkCompositeDataIterator.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
@@ -173,8 +177,13 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     addIds(simplex);
   };
   auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
+  vtkUnsignedCharArray* ghosts = set->GetCellGhostArray();
   for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
   {
+    if (ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL))
+    {
+      continue; // another process's cell, sampled there
+    }
     const int type = set->GetCellType(c);
     if (type == simplexType)
     {
@@ -255,7 +264,7 @@ int cellDimension(int type)
   return known[type] - 1;
 }
 
-mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)
+mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group)
 {
   mlsdeform::SamplingDomain domain;
   domain.points = points(sets);
@@ -266,31 +275,77 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets)
     simplices<4>(set, 3, nullptr, offset, domain.tetrahedra);
     offset += static_cast<int>(set->GetNumberOfPoints());
   }
-  if (domain.triangles.empty() && !domain.tetrahedra.empty())
+  if (group.any(!domain.triangles.empty()) || !group.any(!domain.tetrahedra.empty()))
   {
-    // A volume mesh without surface cells: its boundary faces are the surface.
-    offset = 0;
-    for (vtkPointSet* set : sets)
+    return domain;
+  }
+  // A volume mesh without surface cells: its boundary faces are the surface. Split over
+  // processes, a piece's boundary also holds the faces it shares with another piece: those are
+  // found by their vertices' positions on two processes, and left out.
+  std::vector<vtkSmartPointer<vtkPolyData>> boundaries;
+  std::vector<std::int64_t> keys;
+  for (vtkPointSet* set : sets)
+  {
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
+    if (!grid)
     {
-      if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
-      {
-        vtkNew<vtkGeometryFilter> boundary;
-        boundary->SetInputData(grid);
-        boundary->SetPassThroughPointIds(true);
-        boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
-        boundary->MergingOff();
-        boundary->Update();
-        vtkPolyData* faces = boundary->GetOutput();
-        // The faces refer to renumbered points with their original ids in an array, or (the fast
-        // path for unstructured grids) to the grid's own points.
-        auto* ids = vtkIdTypeArray::SafeDownCast(faces->GetPointData()->GetArray("MLSOriginalPointIds"));
-        if (ids || faces->GetNumberOfPoints() == grid->GetNumberOfPoints())
-        {
-          simplices<3>(faces, 2, ids ? ids->GetPointer(0) : nullptr, offset, domain.triangles);
-        }
-      }
-      offset += static_cast<int>(set->GetNumberOfPoints());
+      boundaries.emplace_back();
+      continue;
     }
+    vtkNew<vtkGeometryFilter> boundary;
+    boundary->SetInputData(grid);
+    boundary->SetPassThroughPointIds(true);
+    boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
+    boundary->MergingOff();
+    boundary->Update();
+    boundaries.emplace_back(boundary->GetOutput());
+    vtkPolyData* faces = boundaries.back();
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType f = 0; group.size() > 1 && f < faces->GetNumberOfCells(); ++f)
+    {
+      faces->GetCellPoints(f, ids);
+      std::uint64_t key = 0;
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        mlsdeform::Vec3 x;
+        faces->GetPoint(ids->GetId(k), x.data());
+        key += mlsdeform::positionKey(x); // a sum: the same for either side's vertex order
+      }
+      keys.push_back(static_cast<std::int64_t>(key));
+    }
+  }
+  std::vector<std::int64_t> shared = group.size() > 1 ? group.gather(keys) : std::vector<std::int64_t>();
+  std::sort(shared.begin(), shared.end());
+  std::size_t face = 0;
+  offset = 0;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    if (vtkPolyData* faces = boundaries[s])
+    {
+      // The faces refer to renumbered points with their original ids in an array, or (the fast
+      // path for unstructured grids) to the grid's own points.
+      auto* ids = vtkIdTypeArray::SafeDownCast(faces->GetPointData()->GetArray("MLSOriginalPointIds"));
+      if (group.size() > 1)
+      {
+        vtkNew<vtkCellArray> outer;
+        vtkNew<vtkIdList> facePoints;
+        for (vtkIdType f = 0; f < faces->GetNumberOfCells(); ++f, ++face)
+        {
+          const auto range = std::equal_range(shared.begin(), shared.end(), keys[face]);
+          if (range.second - range.first < 2)
+          {
+            faces->GetCellPoints(f, facePoints);
+            outer->InsertNextCell(facePoints);
+          }
+        }
+        faces->SetPolys(outer); // the geometry filter's output holds polygons only
+      }
+      if (ids || faces->GetNumberOfPoints() == sets[s]->GetNumberOfPoints())
+      {
+        simplices<3>(faces, 2, ids ? ids->GetPointer(0) : nullptr, offset, domain.triangles);
+      }
+    }
+    offset += static_cast<int>(sets[s]->GetNumberOfPoints());
   }
   return domain;
 }

@@ -28,9 +28,11 @@ std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped = nullptr
 /// All points of the point sets, concatenated.
 mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
 
-/// Surface triangles and volume tetrahedra of the point sets (indices into points(sets)). When
-/// there are 3D cells but no 2D cells, the boundary faces of the 3D cells are the surface.
-mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets);
+/// Surface triangles and volume tetrahedra of the point sets (indices into points(sets)); ghost
+/// cells (another process's) are left out. When there are 3D cells but no 2D cells (on all
+/// processes of group), the boundary faces of the 3D cells are the surface, without the faces
+/// that pieces on different processes share.
+mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group = mlsdeform::serial());
 
 /// The dimension of a VTK cell type (0 for an unknown type). vtkCellTypes::GetDimension builds a
 /// cell of the type on every call (for a snappyHexMesh cell, a polyhedron object); this asks it

@@ -2,9 +2,11 @@
 
 #include "HandleMotion.h"
 #include "KdTree.h"
+#include "GatheredPositions.h"
 #include "MLSGeometry.h"
+#include "PositionHash.h"
+#include "ProcessCollective.h"
 
-#include <vtkBoundingBox.h>
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>
@@ -22,6 +24,9 @@
 #include <vtkPointSet.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <unordered_set>
 
 
 vtkStandardNewMacro(vtkConstraintRegion);
@@ -71,37 +76,84 @@ struct PointRule
   }
 };
 
-// The cells of set within `layers` cell layers of the surface's points (those within tolerance
-// of a point of set): layer 1 holds the cells with such a point, layer n + 1 the cells that share
-// a point with layer n.
-std::vector<char> cellLayers(vtkPointSet* set, const mlsdeform::KdTree& surface, const mlsdeform::PointList& surfacePoints,
-  double tolerance, int layers)
+// Positions compared exactly (the same point in two blocks or on two processes has the same
+// coordinates: they come from the same file).
+struct PositionKey
 {
-  std::vector<char> reached(set->GetNumberOfPoints(), 0), cells(set->GetNumberOfCells(), 0);
-  for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+  std::size_t operator()(const mlsdeform::Vec3& x) const { return static_cast<std::size_t>(mlsdeform::positionKey(x)); }
+};
+using PositionSet = std::unordered_set<mlsdeform::Vec3, PositionKey>;
+
+// The cells of the sets within `layers` cell layers of the surface's points (those within
+// tolerance of a point of a set): layer 1 holds the cells with such a point, layer n + 1 the cells
+// that share a point with layer n. A point reached in one set (or on one process) is reached in
+// every set and on every process that holds its position, so that layers cross blocks and pieces.
+std::vector<std::vector<char>> cellLayers(const std::vector<vtkPointSet*>& sets, const mlsdeform::KdTree& surface,
+  const mlsdeform::PointList& surfacePoints, double tolerance, int layers, const mlsdeform::Collective& group)
+{
+  std::vector<std::vector<char>> reached(sets.size()), cells(sets.size());
+  for (std::size_t s = 0; s < sets.size(); ++s)
   {
-    mlsdeform::Vec3 x;
-    set->GetPoint(i, x.data());
-    reached[i] = (surfacePoints[surface.nearest(x)] - x).norm() <= tolerance;
+    vtkPointSet* set = sets[s];
+    reached[s].assign(set->GetNumberOfPoints(), 0);
+    cells[s].assign(set->GetNumberOfCells(), 0);
+    for (vtkIdType i = 0; i < set->GetNumberOfPoints() && !surfacePoints.empty(); ++i)
+    {
+      mlsdeform::Vec3 x;
+      set->GetPoint(i, x.data());
+      reached[s][i] = (surfacePoints[surface.nearest(x)] - x).norm() <= tolerance;
+    }
   }
   vtkNew<vtkIdList> ids;
   for (int layer = 0; layer < layers; ++layer)
   {
-    std::vector<char> next = reached;
-    for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
+    // the next layer's cells; the positions they newly reach, from every set and process
+    std::vector<double> newly;
+    std::vector<std::vector<char>> next = reached;
+    for (std::size_t s = 0; s < sets.size(); ++s)
     {
-      if (cells[c])
+      vtkPointSet* set = sets[s];
+      for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
       {
-        continue;
+        if (cells[s][c])
+        {
+          continue;
+        }
+        set->GetCellPoints(c, ids);
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds() && !cells[s][c]; ++k)
+        {
+          cells[s][c] = reached[s][ids->GetId(k)];
+        }
+        for (vtkIdType k = 0; cells[s][c] && k < ids->GetNumberOfIds(); ++k)
+        {
+          const vtkIdType i = ids->GetId(k);
+          if (!next[s][i])
+          {
+            next[s][i] = 1;
+            double x[3];
+            set->GetPoint(i, x);
+            newly.insert(newly.end(), x, x + 3);
+          }
+        }
       }
-      set->GetCellPoints(c, ids);
-      for (vtkIdType k = 0; k < ids->GetNumberOfIds() && !cells[c]; ++k)
+    }
+    if (layer + 1 == layers)
+    {
+      break;
+    }
+    const std::vector<double> all = group.gather(newly);
+    PositionSet positions;
+    for (std::size_t i = 0; i < all.size(); i += 3)
+    {
+      positions.insert(mlsdeform::Vec3(all[i], all[i + 1], all[i + 2]));
+    }
+    for (std::size_t s = 0; s < sets.size(); ++s)
+    {
+      for (vtkIdType i = 0; i < sets[s]->GetNumberOfPoints() && !positions.empty(); ++i)
       {
-        cells[c] = reached[ids->GetId(k)];
-      }
-      for (vtkIdType k = 0; cells[c] && k < ids->GetNumberOfIds(); ++k)
-      {
-        next[ids->GetId(k)] = 1;
+        mlsdeform::Vec3 x;
+        sets[s]->GetPoint(i, x.data());
+        next[s][i] = next[s][i] || positions.count(x) > 0;
       }
     }
     reached = std::move(next);
@@ -121,22 +173,34 @@ struct SelectedPositions
 // Cells are chosen by layers around the surface (mode CellLayers) or when all their points
 // follow the rule; with cell sets only cells of dimension 2 or 3 count.
 SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values,
-  const PointRule& rule, bool cellSets, const mlsdeform::PointList& surface, int layers)
+  const PointRule& rule, bool cellSets, const mlsdeform::PointList& surface, int layers, const mlsdeform::Collective& group)
 {
   SelectedPositions out;
   const bool byLayers = rule.mode == vtkConstraintRegion::CellLayers;
-  mlsdeform::KdTree surfaceTree;
-  double tolerance = 0;
+  std::vector<std::vector<char>> layerCells;
   if (byLayers)
   {
+    mlsdeform::KdTree surfaceTree;
     surfaceTree.build(surface);
-    // a patch and the mesh share their points up to float round-off (1e-7 relative)
-    vtkBoundingBox box;
+    // a patch and the mesh share their points up to float round-off (1e-7 relative of the
+    // diagonal of all processes' points)
+    std::vector<double> extremes(6, -VTK_DOUBLE_MAX);
     for (vtkPointSet* set : sets)
     {
-      box.AddBounds(set->GetBounds());
+      const double* b = set->GetNumberOfPoints() > 0 ? set->GetBounds() : nullptr;
+      for (int c = 0; b && c < 3; ++c)
+      {
+        extremes[c] = std::max(extremes[c], -b[2 * c]);
+        extremes[3 + c] = std::max(extremes[3 + c], b[2 * c + 1]);
+      }
     }
-    tolerance = 1e-6 * box.GetDiagonalLength();
+    group.maximum(extremes);
+    double diagonal = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      diagonal += std::max(0.0, extremes[3 + c] + extremes[c]) * std::max(0.0, extremes[3 + c] + extremes[c]);
+    }
+    layerCells = cellLayers(sets, surfaceTree, surface, 1e-6 * std::sqrt(diagonal), layers, group);
   }
   vtkNew<vtkIdList> ids;
   double cellSet = 0; // the set number of the next cell (cellSets)
@@ -163,12 +227,16 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
         continue;
       }
     }
-    const std::vector<char> layerCells = byLayers ? cellLayers(set, surfaceTree, surface, tolerance, layers) : std::vector<char>();
     std::vector<char> used(set->GetNumberOfPoints(), 0);
+    vtkUnsignedCharArray* ghosts = set->GetCellGhostArray();
     for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
     {
+      if (ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL))
+      {
+        continue; // another process's cell, selected there
+      }
       set->GetCellPoints(c, ids);
-      bool take = byLayers ? layerCells[c] != 0 : ids->GetNumberOfIds() > 0;
+      bool take = byLayers ? layerCells[s][c] != 0 : ids->GetNumberOfIds() > 0;
       for (vtkIdType k = 0; take && !byLayers && k < ids->GetNumberOfIds(); ++k)
       {
         take = chosen[ids->GetId(k)];
@@ -249,8 +317,10 @@ struct vtkConstraintRegion::Selection
 {
   SelectionInputs inputs;
   bool valid = false;
-  mlsdeform::PointList positions;
+  mlsdeform::PointList positions; // this process's
   std::vector<double> sets;
+  mlsdeform::Vec3 centroid = mlsdeform::Vec3::Zero(); // of all processes' positions, each once
+  bool selectedAnywhere = false;
   vtkSmartPointer<vtkPolyData> cloud;
   vtkSmartPointer<vtkDoubleArray> displacement;
 };
@@ -305,6 +375,9 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   const std::vector<vtkPointSet*> sets = mlsgeometry::pointSets(input);
+  // Split over processes, each selects from its own piece; what depends on the whole selection
+  // (the pivot, the layers around a surface) is computed over all of them.
+  const mlsgeometry::ProcessCollective group;
   if (this->SelectionMode == ImplicitFunction && !this->Region)
   {
     vtkErrorMacro(<< "SelectionMode is ImplicitFunction but no Region function is set.");
@@ -318,12 +391,13 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   }
   vtkDataObject* surfaceInput = this->GetNumberOfInputConnections(1) > 0 ? vtkDataObject::GetData(inputVector[1], 0) : nullptr;
   const std::vector<vtkPointSet*> surfaceSets = surfaceInput ? mlsgeometry::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
-  vtkIdType surfacePoints = 0;
+  std::vector<std::int64_t> surfacePoints{ 0 };
   for (vtkPointSet* set : surfaceSets)
   {
-    surfacePoints += set->GetNumberOfPoints();
+    surfacePoints[0] += set->GetNumberOfPoints();
   }
-  if (this->SelectionMode == CellLayers && surfacePoints == 0)
+  group.sum(surfacePoints);
+  if (this->SelectionMode == CellLayers && surfacePoints[0] == 0)
   {
     vtkErrorMacro(<< "SelectionMode CellLayers needs a Surface input with points (e.g. the wall patch whose layer cells are selected).");
     return 0;
@@ -336,6 +410,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
         : this->SelectionMode == Primitive           ? set->GetPointData()->GetArray("PrimitiveIds")
                                                      : nullptr);
   }
+  std::string problem; // a check on this process's data: every process stops if one fails
   if (this->SelectionMode == Primitive)
   {
     // the primitive must exist in the detector's output; its type gives the FromPrimitive role
@@ -346,25 +421,28 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     }
     if (!types)
     {
-      vtkErrorMacro(<< "SelectionMode Primitive needs a Primitive Detector's output as input (field data PrimitiveTypes and "
-                       "point array PrimitiveIds are missing).");
-      return 0;
+      problem = "SelectionMode Primitive needs a Primitive Detector's output as input (field data PrimitiveTypes and "
+                "point array PrimitiveIds are missing).";
     }
-    if (this->PrimitiveId >= types->GetNumberOfTuples())
+    else if (this->PrimitiveId >= types->GetNumberOfTuples())
     {
-      vtkErrorMacro(<< "There is no primitive " << this->PrimitiveId << ": the detector found " << types->GetNumberOfTuples()
-                    << " (ids 0 to " << types->GetNumberOfTuples() - 1 << ").");
-      return 0;
+      problem = "There is no primitive " + std::to_string(this->PrimitiveId) + ": the detector found " +
+        std::to_string(types->GetNumberOfTuples()) + " (ids 0 to " + std::to_string(types->GetNumberOfTuples() - 1) + ").";
     }
-    if (this->Role == FromPrimitive)
+    else if (this->Role == FromPrimitive)
     {
       role = roleOfPrimitive(static_cast<int>(types->GetComponent(this->PrimitiveId, 0)));
       if (role < 0)
       {
-        vtkErrorMacro(<< "Primitive " << this->PrimitiveId << " has an unknown type.");
-        return 0;
+        problem = "Primitive " + std::to_string(this->PrimitiveId) + " has an unknown type.";
       }
     }
+  }
+  problem = group.firstError(problem);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
   }
   if (this->CellSets && (role < Planarity || role > Rigid))
   {
@@ -396,36 +474,39 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     inputs.stamp.add(array);
   }
   Selection& selection = *this->Selected;
-  if (!selection.valid || !(inputs == selection.inputs))
+  if (group.any(!selection.valid || !(inputs == selection.inputs)))
   {
     selection.valid = false;
     const PointRule rule{ this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId };
-    SelectedPositions chosen = selectPositions(sets, values, rule, this->CellSets,
-      this->SelectionMode == CellLayers ? mlsgeometry::points(surfaceSets) : mlsdeform::PointList(), this->NumberOfLayers);
+    // the surface's points of all processes
+    const mlsdeform::PointList surface = this->SelectionMode == CellLayers
+      ? mlsgeometry::gatherPositions(mlsgeometry::points(surfaceSets), {}, group).positions
+      : mlsdeform::PointList();
+    SelectedPositions chosen = selectPositions(sets, values, rule, this->CellSets, surface, this->NumberOfLayers, group);
     selection.positions = std::move(chosen.positions);
     selection.sets = std::move(chosen.sets);
     selection.cloud = this->CellSets ? mlsgeometry::pointCloud(selection.positions, { { "ConstraintSet", &selection.sets } })
                                      : mlsgeometry::pointCloud(selection.positions, {});
+    // the centroid of the selected positions of all processes, each position once
+    const mlsdeform::PointList all = mlsgeometry::gatherPositions(selection.positions, {}, group).positions;
+    selection.selectedAnywhere = !all.empty();
+    selection.centroid.setZero();
+    for (const auto& x : all)
+    {
+      selection.centroid += x / static_cast<double>(all.size());
+    }
     selection.inputs = std::move(inputs);
     selection.valid = true;
     ++this->NumberOfSelections;
   }
   const mlsdeform::PointList& selected = selection.positions;
-  if (selected.empty() && input->GetNumberOfElements(vtkDataObject::POINT) > 0)
+  if (!selection.selectedAnywhere && group.any(input->GetNumberOfElements(vtkDataObject::POINT) > 0) && group.rank() == 0)
   {
     vtkWarningMacro(<< GetRoleName(role) << " region selects no point.");
   }
 
   // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
-  mlsdeform::Vec3 pivot(this->Center);
-  if (this->UseCentroid && !selected.empty())
-  {
-    pivot.setZero();
-    for (const auto& x : selected)
-    {
-      pivot += x / static_cast<double>(selected.size());
-    }
-  }
+  const mlsdeform::Vec3 pivot = this->UseCentroid && selection.selectedAnywhere ? selection.centroid : mlsdeform::Vec3(this->Center);
   std::copy(pivot.data(), pivot.data() + 3, this->Pivot);
   mlsgeometry::HandleMotion motion;
   std::copy(this->Translation, this->Translation + 3, motion.translation);

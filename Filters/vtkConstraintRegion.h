@@ -21,6 +21,10 @@
  * cell on its own (paper section 7.3: each boundary-layer cell rigid): each cell of dimension 2 or
  * 3 with all its points selected (CellLayers: each selected cell) is one constraint set.
  *
+ * Split over MPI processes, each selects from its own piece; the pivot (centroid) is that of the
+ * positions of all processes, each once, and cell layers grow across pieces (and blocks) through
+ * the positions they share.
+ *
  * Output: vtkPolyData with the selected positions as vertices, point array
  * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
  * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight".

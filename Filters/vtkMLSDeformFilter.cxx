@@ -1,6 +1,8 @@
 #include "vtkMLSDeformFilter.h"
 
+#include "GatheredPositions.h"
 #include "MLSGeometry.h"
+#include "ProcessCollective.h"
 #include "ShellOperators.h"
 #include "SpaceDeformation.h"
 
@@ -18,29 +20,42 @@ vtkStandardNewMacro(vtkMLSDeformFilter);
 
 namespace
 {
-Samples readSamples(vtkPolyData* centers, vtkPolyData* integration)
+// Positions with one value each (a point array) from all processes, in the canonical order of
+// GatheredPositions.h: replicated or split samples give every process the same list.
+void gatherWithValues(vtkPolyData* data, vtkDataArray* array, PointList& positions, std::vector<double>& values, const Collective& group)
 {
+  std::vector<double> local(static_cast<std::size_t>(array->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    local[i] = array->GetTuple1(i);
+  }
+  const mlsgeometry::GatheredPositions gathered = mlsgeometry::gatherPositions(mlsgeometry::points({ data }), {}, group);
+  positions = gathered.positions;
+  values = mlsgeometry::gatherValues(local.data(), static_cast<long>(local.size()), 1, gathered, group);
+}
+
+Samples readSamples(vtkPolyData* centers, vtkPolyData* integration, const Collective& group)
+{
+  vtkDataArray* radius = centers && integration ? centers->GetPointData()->GetArray("SupportRadius") : nullptr;
+  vtkDataArray* volume = centers && integration ? integration->GetPointData()->GetArray("Volume") : nullptr;
+  std::string problem;
   if (!integration)
   {
-    throw InvalidInputException("MLS samples were given without integration points (connect both outputs of MLSSampler)");
+    problem = "MLS samples were given without integration points (connect both outputs of MLSSampler)";
   }
-  vtkDataArray* radius = centers->GetPointData()->GetArray("SupportRadius");
-  vtkDataArray* volume = integration->GetPointData()->GetArray("Volume");
-  if (!radius || !volume)
+  else if (!radius || !volume || radius->GetNumberOfTuples() != centers->GetNumberOfPoints() ||
+    volume->GetNumberOfTuples() != integration->GetNumberOfPoints())
   {
-    throw InvalidInputException("the Samples input needs a SupportRadius array and the IntegrationPoints input a Volume array");
+    problem = "the Samples input needs a SupportRadius array and the IntegrationPoints input a Volume array";
+  }
+  problem = group.firstError(problem);
+  if (!problem.empty())
+  {
+    throw InvalidInputException(problem);
   }
   Samples samples;
-  samples.centers = mlsgeometry::points({ centers });
-  samples.integrationPoints = mlsgeometry::points({ integration });
-  for (vtkIdType i = 0; i < radius->GetNumberOfTuples(); ++i)
-  {
-    samples.supportRadius.push_back(radius->GetTuple1(i));
-  }
-  for (vtkIdType i = 0; i < volume->GetNumberOfTuples(); ++i)
-  {
-    samples.volume.push_back(volume->GetTuple1(i));
-  }
+  gatherWithValues(centers, radius, samples.centers, samples.supportRadius, group);
+  gatherWithValues(integration, volume, samples.integrationPoints, samples.volume, group);
   return samples;
 }
 
@@ -82,10 +97,11 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
 {
   vtkPolyData* externalCenters = vtkPolyData::GetData(inputVector[2], 0);
   vtkPolyData* externalIntegration = vtkPolyData::GetData(inputVector[3], 0);
+  const mlsgeometry::ProcessCollective group;
   Samples samples;
   if (externalCenters)
   {
-    samples = readSamples(externalCenters, externalIntegration);
+    samples = readSamples(externalCenters, externalIntegration, group);
   }
   else
   {
@@ -97,12 +113,16 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     parameters.cover = this->Cover;
     parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
     parameters.followMeshGrading = this->FollowMeshGrading != 0;
-    samples = sampleDomain(mlsgeometry::samplingDomain(inSets), parameters, { &mlsgeometry::reportProgress, this, 0.0, 0.4 });
+    samples = sampleDomain(mlsgeometry::samplingDomain(inSets, group), parameters, { &mlsgeometry::reportProgress, this, 0.0, 0.4 }, group);
   }
   const BasisKind kind = static_cast<BasisKind>(this->Basis);
   if (this->EnergyDiscretization == SurfaceVertices)
   {
     // eq. 11: the shell energy of the input's triangles with d = Phi w at its vertices
+    if (group.size() > 1)
+    {
+      throw InvalidInputException("EnergyDiscretization SurfaceVertices integrates on the whole surface mesh and runs on one process only (use Volumetric)");
+    }
     const SamplingDomain mesh = mlsgeometry::samplingDomain(inSets);
     if (!mesh.tetrahedra.empty())
     {

@@ -1,6 +1,7 @@
 #include "vtkMLSSampler.h"
 
 #include "MLSGeometry.h"
+#include "ProcessCollective.h"
 
 #include <vtkDataObject.h>
 #include <vtkInformation.h>
@@ -41,8 +42,15 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
   parameters.followMeshGrading = this->FollowMeshGrading != 0;
   try
   {
-    const mlsdeform::SamplingDomain domain = mlsgeometry::samplingDomain(mlsgeometry::pointSets(input));
-    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsgeometry::reportProgress, this });
+    // Split over processes, the samples of the whole input are computed by all of them together
+    // and given out once, by the first (MLS Deform gathers its Samples input from every process).
+    const mlsgeometry::ProcessCollective group;
+    const mlsdeform::SamplingDomain domain = mlsgeometry::samplingDomain(mlsgeometry::pointSets(input), group);
+    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsgeometry::reportProgress, this }, group);
+    if (group.rank() > 0)
+    {
+      return 1;
+    }
     if (static_cast<int>(samples.centers.size()) < this->NumberOfSurfaceSamples + this->NumberOfVolumeSamples)
     {
       vtkWarningMacro(<< "Only " << samples.centers.size() << " distinct MLS samples could be placed.");

@@ -1,6 +1,7 @@
 #include "vtkShellDeformFilter.h"
 
 #include "MLSGeometry.h"
+#include "ProcessCollective.h"
 #include "ShellOperators.h"
 
 #include <vtkObjectFactory.h>
@@ -22,6 +23,10 @@ mlsgeometry::SubspaceDependencies vtkShellDeformFilter::GetSubspaceDependencies(
 
 std::unique_ptr<SpaceDeformation> vtkShellDeformFilter::BuildSubspace(const std::vector<vtkPointSet*>& inSets, vtkInformationVector**)
 {
+  if (mlsgeometry::ProcessCollective().size() > 1)
+  {
+    throw InvalidInputException("Shell Deform's shape functions are the whole mesh's vertices: it runs on one process only");
+  }
   const SamplingDomain mesh = mlsgeometry::samplingDomain(inSets);
   this->UpdateProgress(0.1);
   DeformationEnergy energy = shellEnergy(mesh);

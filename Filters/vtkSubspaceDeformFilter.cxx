@@ -3,7 +3,9 @@
 #include "SpaceDeformation.h"
 
 #include "ArrayRanges.h"
+#include "GatheredPositions.h"
 #include "MLSGeometry.h"
+#include "ProcessCollective.h"
 #include "VolumeMeshQuality.h"
 #include "SubspaceOperators.h"
 #include "vtkConstraintRegion.h"
@@ -18,7 +20,6 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
-#include <vtkMultiProcessController.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
@@ -29,6 +30,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <memory>
@@ -45,18 +48,25 @@ double secondsSince(Clock::time_point start)
 }
 
 // One Regions input as last read (paper sections 3 and 6: handle and fixed regions, geometric
-// constraints). Its positions are read again only when the stamp of its points changes, and
-// get a new version only when their values do.
+// constraints). Its local positions are read again only when the stamp of its points changes;
+// the positions of all processes are gathered again (GatheredPositions.h) when a process's
+// changed, and get a new version only when their values do.
 struct RegionInput
 {
   int role = 0;
   double weight = 1;
   mlsgeometry::Stamp stamp;
+  PointList localPositions;
+  std::vector<int> localSets; // a ConstraintSet per local position (a ConstraintRegion with CellSets), or empty
+  bool localChanged = true;   // since the last gathering
+  vtkDataArray* displacement = nullptr; // this update's local PrescribedDisplacement
+
+  // gathered from all processes, in canonical order
   PointList positions;
-  std::vector<int> sets; // a ConstraintSet per position (a ConstraintRegion with CellSets), or empty
+  std::vector<int> sets; // the set of each position, or empty: one set
   int setCount = 1;      // the number of distinct sets
   long version = -1;
-  vtkDataArray* displacement = nullptr; // this update's PrescribedDisplacement
+  mlsgeometry::GatheredPositions order;
 };
 
 bool isConstraint(int role)
@@ -108,11 +118,10 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   }
 }
 
-// Reads the Regions inputs into regions (one per connection); versions come from nextVersion.
-void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& regions, long& nextVersion)
+// Reads this process's part of the Regions inputs into regions (one per connection).
+void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& regions)
 {
   regions.resize(connections->GetNumberOfInformationObjects());
-  bool handle = false;
   for (int c = 0; c < connections->GetNumberOfInformationObjects(); ++c)
   {
     vtkPolyData* data = vtkPolyData::GetData(connections, c);
@@ -128,10 +137,6 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     region.displacement = displacement;
     vtkDataArray* weight = data->GetFieldData()->GetArray("Weight");
     region.weight = weight ? weight->GetTuple1(0) : 1.0;
-    if (data->GetNumberOfPoints() == 0)
-    {
-      throw InvalidInputException(which + " (" + vtkConstraintRegion::GetRoleName(region.role) + ") selects no point");
-    }
     mlsgeometry::Stamp stamp = mlsgeometry::pointsStamp({ data });
     if (stamp != region.stamp)
     {
@@ -149,20 +154,54 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
       {
         throw InvalidInputException(which + ": one ConstraintSet per point is needed");
       }
-      if (positions != region.positions || sets != region.sets || region.version < 0)
+      if (positions != region.localPositions || sets != region.localSets)
       {
-        region.positions = std::move(positions);
-        region.sets = std::move(sets);
-        region.setCount = region.sets.empty() ? 1 : static_cast<int>(std::set<int>(region.sets.begin(), region.sets.end()).size());
-        region.version = nextVersion++;
+        region.localPositions = std::move(positions);
+        region.localSets = std::move(sets);
+        region.localChanged = true;
       }
       region.stamp = std::move(stamp);
     }
-    if (displacement->GetNumberOfTuples() != static_cast<vtkIdType>(region.positions.size()))
+    if (displacement->GetNumberOfTuples() != static_cast<vtkIdType>(region.localPositions.size()))
     {
       throw InvalidInputException(which + ": one PrescribedDisplacement per point is needed");
     }
-    handle = handle || region.role == vtkConstraintRegion::Handle;
+  }
+}
+
+// Gathers the regions' positions from all processes when one process's changed (versions from
+// nextVersion); throws for a region that selects no point anywhere and when no region is a handle.
+void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const Collective& group)
+{
+  bool changed = false;
+  for (const RegionInput& region : regions)
+  {
+    changed = changed || region.localChanged;
+  }
+  if (group.any(changed))
+  {
+    for (RegionInput& region : regions)
+    {
+      mlsgeometry::GatheredPositions gathered = mlsgeometry::gatherPositions(region.localPositions, region.localSets, group);
+      if (gathered.positions != region.positions || gathered.sets != region.sets || region.version < 0)
+      {
+        region.positions = gathered.positions;
+        region.sets = gathered.sets;
+        region.setCount = gathered.setCount;
+        region.version = nextVersion++;
+      }
+      region.order = std::move(gathered);
+      region.localChanged = false;
+    }
+  }
+  bool handle = false;
+  for (std::size_t c = 0; c < regions.size(); ++c)
+  {
+    if (regions[c].positions.empty())
+    {
+      throw InvalidInputException("Regions input #" + std::to_string(c) + " (" + vtkConstraintRegion::GetRoleName(regions[c].role) + ") selects no point");
+    }
+    handle = handle || regions[c].role == vtkConstraintRegion::Handle;
   }
   if (!handle)
   {
@@ -298,8 +337,7 @@ Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
 // Field data with one tuple per constraint region: type, points, sets, residual (largest distance
 // to the projection over its sets, relative to the bounding-box diagonal), iterations, converged.
 // Returns the largest relative residual.
-double reportConstraints(
-  vtkFieldData* field, const std::vector<RegionInput>& regions, const SpaceDeformation::Solution& solution, const PointList& points)
+double reportConstraints(vtkFieldData* field, const std::vector<RegionInput>& regions, const SpaceDeformation::Solution& solution, double diagonal)
 {
   std::vector<const RegionInput*> constraints;
   for (const RegionInput& r : regions)
@@ -313,7 +351,6 @@ double reportConstraints(
   {
     return 0;
   }
-  const double diagonal = boundingBox(points).size().norm();
   vtkNew<vtkStringArray> type;
   type->SetName("ConstraintType");
   vtkNew<vtkIntArray> count, setCount, iterations, converged;
@@ -340,6 +377,28 @@ double reportConstraints(
     field->AddArray(array);
   }
   return residual->GetRange()[1];
+}
+
+// Runs a step that reads this process's data; when it fails on any process, every process throws
+// its message (the first process's), so that none waits for the others in a collective step.
+template <typename Step>
+void agree(const Collective& group, Step step)
+{
+  std::string problem;
+  try
+  {
+    step();
+  }
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+    problem = problem.empty() ? "unknown error" : problem;
+  }
+  problem = group.firstError(problem);
+  if (!problem.empty())
+  {
+    throw InvalidInputException(group.size() > 1 ? problem + " (on one of " + std::to_string(group.size()) + " processes)" : problem);
+  }
 }
 
 void addField(vtkFieldData* field, const char* name, double value)
@@ -385,7 +444,8 @@ struct vtkSubspaceDeformFilter::Cache
   // the output arrays per point set, written again by the next update when no one else holds them
   std::vector<vtkSmartPointer<vtkPoints>> moved;
   std::vector<vtkSmartPointer<vtkDoubleArray>> displacement;
-  std::vector<PointDisplacements> prescribed; // copies of PrescribedDisplacement arrays that are not double
+  std::vector<std::vector<double>> prescribed; // the regions' PrescribedDisplacement of all processes, gathered
+  double diagonal = -1;                         // of the bounding box of all processes' points (-1: not known)
 
   // the volume mesh's faces and its quality before deformation, per point set (MeshQuality)
   mlsgeometry::Stamp qualityStamp; // of the cells and points they were measured on
@@ -442,41 +502,48 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   {
     vtkWarningMacro(<< skipped << " block(s) are not point sets and are passed through unchanged.");
   }
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (controller && controller->GetNumberOfProcesses() > 1)
-  {
-    if (input->GetNumberOfElements(vtkDataObject::POINT) == 0)
-    {
-      return 1; // this process holds no piece
-    }
-    vtkWarningMacro(<< "Running on " << controller->GetNumberOfProcesses()
-                    << " processes: each deforms its own piece with its own samples and regions, so pieces may not "
-                       "match at their boundaries. Run on one process for a consistent deformation.");
-  }
+  // Split over processes, every process holds the same samples, regions and factorization and
+  // deforms its own points; what one process finds wrong stops all of them at the same step.
+  const mlsgeometry::ProcessCollective group;
   Cache& cache = *this->Cached;
   bool resampled = false, refactorized = false;
   try
   {
     const auto setupStart = Clock::now();
-    // The input points: read again when their stamp changes, a new version when their values do.
-    mlsgeometry::Stamp pointsStamp = mlsgeometry::pointsStamp(inSets);
-    if (pointsStamp != cache.pointsStamp)
-    {
-      PointList points = mlsgeometry::points(inSets);
-      if (points.empty())
+    agree(group, [&] {
+      // The input points: read again when their stamp changes, a new version when their values do.
+      mlsgeometry::Stamp pointsStamp = mlsgeometry::pointsStamp(inSets);
+      if (pointsStamp != cache.pointsStamp)
       {
-        throw InvalidInputException("the input has no points");
+        PointList points = mlsgeometry::points(inSets);
+        requireFinite(points, "input points");
+        if (points != cache.points || cache.pointsVersion < 0)
+        {
+          cache.points = std::move(points);
+          cache.pointsVersion = cache.nextVersion++;
+          cache.diagonal = -1;
+        }
+        cache.pointsStamp = std::move(pointsStamp);
       }
-      requireFinite(points, "input points");
-      if (points != cache.points || cache.pointsVersion < 0)
-      {
-        cache.points = std::move(points);
-        cache.pointsVersion = cache.nextVersion++;
-      }
-      cache.pointsStamp = std::move(pointsStamp);
-    }
+      readRegions(inputVector[1], cache.regions);
+    });
     const PointList& points = cache.points;
-    readRegions(inputVector[1], cache.regions, cache.nextVersion);
+    if (!group.any(!points.empty()))
+    {
+      throw InvalidInputException("the input has no points");
+    }
+    if (group.any(cache.diagonal < 0))
+    {
+      std::vector<double> extremes(6, -std::numeric_limits<double>::infinity());
+      if (!points.empty())
+      {
+        const BoundingBox box = boundingBox(points);
+        extremes = { -box.lower[0], -box.lower[1], -box.lower[2], box.upper[0], box.upper[1], box.upper[2] };
+      }
+      group.maximum(extremes);
+      cache.diagonal = std::sqrt(std::pow(extremes[0] + extremes[3], 2) + std::pow(extremes[1] + extremes[4], 2) + std::pow(extremes[2] + extremes[5], 2));
+    }
+    gatherRegions(cache.regions, cache.nextVersion, group);
     // the slip planes: fitted again only when a region's positions or role change
     std::vector<std::pair<long, int>> regionKey;
     for (const RegionInput& r : cache.regions)
@@ -495,7 +562,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     mlsgeometry::SubspaceDependencies dependencies = this->GetSubspaceDependencies(inputVector);
     mlsgeometry::Stamp cellsStamp = dependencies.geometry ? mlsgeometry::cellsStamp(inSets) : mlsgeometry::Stamp();
     const long modelPoints = dependencies.geometry ? cache.pointsVersion : 0;
-    if (!cache.model || !(dependencies == cache.dependencies) || cellsStamp != cache.cellsStamp || modelPoints != cache.modelPoints)
+    if (group.any(!cache.model || !(dependencies == cache.dependencies) || cellsStamp != cache.cellsStamp || modelPoints != cache.modelPoints))
     {
       cache.resetModel();
       cache.model = this->BuildSubspace(inSets, inputVector);
@@ -508,17 +575,19 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     SpaceDeformation& model = *cache.model;
 
     // 2. Phi at the points to deform.
-    if (cache.phiPoints != cache.pointsVersion)
-    {
-      std::vector<int> outside;
-      cache.geometrySubspace = subspaceBlocks(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
-      if (!outside.empty())
+    agree(group, [&] {
+      if (cache.phiPoints != cache.pointsVersion)
       {
-        throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
-          std::to_string(outside[0]) + "): the samples do not cover the input; sample this input or raise Cover");
+        std::vector<int> outside;
+        cache.geometrySubspace = subspaceBlocks(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
+        if (!outside.empty())
+        {
+          throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
+            std::to_string(outside[0]) + "): the samples do not cover the input; sample this input or raise Cover");
+        }
+        cache.phiPoints = cache.pointsVersion;
       }
-      cache.phiPoints = cache.pointsVersion;
-    }
+    });
 
     // 3. Regions, 4. constraints and 5. the factorization of eq. 14 (17).
     std::vector<std::pair<long, double>> dirichlet;
@@ -593,19 +662,25 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       {
         continue;
       }
+      // this process's values, as doubles, then every process's in the regions' gathered order
       const vtkIdType n = d->GetNumberOfTuples();
-      if (auto* values = vtkDoubleArray::SafeDownCast(d))
+      std::vector<double> local;
+      const double* values = nullptr;
+      if (auto* doubles = vtkDoubleArray::SafeDownCast(d))
       {
-        prescribed.emplace_back(values->GetPointer(0), n, 3);
-        continue;
+        values = doubles->GetPointer(0);
       }
-      PointDisplacements& copy = cache.prescribed[r];
-      copy.resize(n, 3);
-      for (vtkIdType i = 0; i < n; ++i)
+      else
       {
-        d->GetTuple(i, copy.row(i).data());
+        local.resize(3 * static_cast<std::size_t>(n));
+        for (vtkIdType i = 0; i < n; ++i)
+        {
+          d->GetTuple(i, &local[3 * i]);
+        }
+        values = local.data();
       }
-      prescribed.emplace_back(copy.data(), n, 3);
+      cache.prescribed[r] = mlsgeometry::gatherValues(values, n, 3, cache.regions[r].order, group);
+      prescribed.emplace_back(cache.prescribed[r].data(), static_cast<long>(cache.regions[r].positions.size()), 3);
     }
     IterationSettings settings;
     settings.maxIterations = this->MaxIterations;
@@ -675,10 +750,10 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     addField(field, "ReciprocalCondition", model.reciprocalCondition());
     addField(field, "Resampled", resampled ? 1 : 0);
     addField(field, "Refactorized", refactorized ? 1 : 0);
-    const double constraintResidual = reportConstraints(field, cache.regions, solution, points);
+    const double constraintResidual = reportConstraints(field, cache.regions, solution, cache.diagonal);
     if (this->MeshQuality)
     {
-      this->ReportMeshQuality(inSets, outSets, field);
+      this->ReportMeshQuality(inSets, outSets, field, group);
     }
     if (!solution.converged)
     {
@@ -705,17 +780,20 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
 }
 
 void vtkSubspaceDeformFilter::ReportMeshQuality(
-  const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field)
+  const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field, const Collective& group)
 {
-  // Faces and the original's measures once per input mesh; the deformed mesh's every update.
+  // Faces and the original's measures once per input mesh; the deformed mesh's every update. Split
+  // over processes, each measures its own piece (the faces between pieces are not measured) and
+  // the summaries are combined exactly: counts added, largest values kept.
   Cache& cache = *this->Cached;
   mlsgeometry::Stamp stamp = mlsgeometry::cellsStamp(inSets);
   const mlsgeometry::Stamp points = mlsgeometry::pointsStamp(inSets);
   stamp.objects.insert(stamp.objects.end(), points.objects.begin(), points.objects.end());
-  if (stamp != cache.qualityStamp)
+  if (group.any(stamp != cache.qualityStamp))
   {
     cache.quality.clear();
     cache.originalQuality = mlsgeometry::QualitySummary();
+    std::string problem;
     try
     {
       for (vtkPointSet* set : inSets)
@@ -730,9 +808,14 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
     }
     catch (const std::exception& e)
     {
+      problem = e.what();
+    }
+    problem = group.firstError(problem);
+    if (!problem.empty())
+    {
       // the deformation stands; this mesh's quality is not reported (said once per mesh)
       cache.quality.clear();
-      vtkWarningMacro(<< "The mesh quality is not reported: " << e.what()
+      vtkWarningMacro(<< "The mesh quality is not reported: " << problem
                       << ". (ParaView's OpenFOAM reader with Decompose polyhedra on makes such cells; turn it off to "
                          "measure OpenFOAM's own cells.)");
     }
@@ -749,15 +832,19 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
       measured = true;
     }
   }
-  if (!measured)
+  if (!group.any(measured))
   {
     return;
   }
-  for (const auto& [prefix, q] : { std::make_pair("", deformed), std::make_pair("Original", cache.originalQuality) })
+  for (auto [prefix, q] : { std::make_pair("", deformed), std::make_pair("Original", cache.originalQuality) })
   {
-    addField(field, (std::string(prefix) + "InvertedCells").c_str(), static_cast<double>(q.inverted));
-    addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), q.maxNonOrthogonality);
-    addField(field, (std::string(prefix) + "MaxSkewness").c_str(), q.maxSkewness);
+    std::vector<std::int64_t> inverted{ q.inverted };
+    group.sum(inverted);
+    std::vector<double> largest{ q.maxNonOrthogonality, q.maxSkewness };
+    group.maximum(largest);
+    addField(field, (std::string(prefix) + "InvertedCells").c_str(), static_cast<double>(inverted[0]));
+    addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), largest[0]);
+    addField(field, (std::string(prefix) + "MaxSkewness").c_str(), largest[1]);
   }
 }
 

@@ -29,6 +29,15 @@
  * side, a back-substitution and a sparse product at the points, written into the output arrays
  * of the previous update when no one else holds them.
  *
+ * Split over MPI processes (pvbatch or pvserver under mpiexec), every process gathers the same
+ * regions (their positions from all processes, sorted, each once: GatheredPositions.h), samples
+ * the whole domain together with the others (Sampling.h) and so holds the same samples,
+ * factorization and coefficients w; it evaluates d(x) at its own points only. The result is the
+ * one-process result (the same for any split), a point held by two pieces moves alike in both,
+ * and the field data's figures are global. What a process finds wrong in its own piece stops
+ * every process with the message. Shell Deform and the SurfaceVertices energies need the whole
+ * mesh and run on one process only.
+ *
  * Errors (bad input, a singular system) leave the output as the unchanged input with the field
  * data string "DeformationError" holding the message, report it in the output window, and set
  * the error code (GetErrorCode() is vtkErrorCode::UserError; NoError after a success). The
@@ -50,6 +59,7 @@ class vtkFieldData;
 class vtkPointSet;
 namespace mlsdeform
 {
+class Collective;
 class SpaceDeformation;
 }
 namespace mlsgeometry
@@ -158,7 +168,8 @@ protected:
     const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) = 0;
 
   /// The quality summaries of the volume cells of the input and output point sets, into field.
-  void ReportMeshQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field);
+  void ReportMeshQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
+    const mlsdeform::Collective& group);
 
   double StretchWeight = 0.0;
   double BendWeight = 1.0;

@@ -13,7 +13,7 @@ packages=(
   paraview paraview-dev python3-paraview python3-numpy
   qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools libutfcpp-dev
   libqt5opengl5-dev
-  libopenmpi-dev libhdf5-openmpi-dev libnetcdf-dev libgdal-dev libboost-dev
+  libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libnetcdf-dev libgdal-dev libboost-dev
   libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libfreetype-dev
   libglew-dev libgl2ps-dev libjpeg-dev libpng-dev libtiff-dev libtheora-dev
   libxml2-dev libx11-dev zlib1g-dev python3-dev

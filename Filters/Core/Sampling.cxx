@@ -1,6 +1,7 @@
 #include "Sampling.h"
 
 #include "KdTree.h"
+#include "PositionHash.h"
 #include "ZOrder.h"
 
 #include <algorithm>
@@ -22,7 +23,8 @@ constexpr double SupportMargin = 1.5;
 constexpr double GradedSpread = 2;
 
 // Dense random samples, each with the size of the element it was drawn from (its spacing, for
-// the farthest-point selection) and, in the volume, its share of the domain's volume.
+// the farthest-point selection) and, in the volume, its share of the domain's volume. Sorted by
+// their coordinates: the same list however the elements were ordered or split over processes.
 struct DenseSamples
 {
   PointList surface;
@@ -32,6 +34,9 @@ struct DenseSamples
   std::vector<double> volumeShare; // sums to volumeOfDomain
   double volumeOfDomain = 0;
 };
+
+// A dense sample as gathered: x, y, z, spacing, share.
+constexpr std::size_t DenseFields = 5;
 
 double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c)
 {
@@ -43,115 +48,251 @@ double tetrahedronVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
   return std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
 }
 
-// Draws `count` elements of dimension `dimension` (2: triangles, 3: tetrahedra), each with
-// probability proportional to its measure, or, following the grading, the same for every element
-// of positive measure; each drawn point gets the spacing measure^(1/dimension) of its element (1
-// when uniform) and an importance weight measure / probability, scaled so that the weights sum
-// to the total measure (a Monte Carlo estimate of the measure nearest to each point).
-template <typename Measure, typename Draw>
-void sampleElements(std::size_t elements, int count, int dimension, bool followGrading, Measure measure, Draw draw,
-  std::mt19937_64& random, PointList& out, std::vector<double>& spacing, std::vector<double>* share, double& total)
+template <std::size_t N>
+double simplexMeasure(const std::array<Vec3, N>& v)
 {
-  std::vector<double> measures(elements), cumulative(elements);
-  double drawn = 0;
-  total = 0;
-  for (std::size_t e = 0; e < elements; ++e)
+  if constexpr (N == 3)
   {
-    measures[e] = measure(e);
-    total += measures[e];
-    drawn += followGrading ? (measures[e] > 0 ? 1.0 : 0.0) : measures[e];
-    cumulative[e] = drawn;
+    return triangleArea(v[0], v[1], v[2]);
   }
-  if (!(total > 0))
+  else
   {
-    return;
+    return tetrahedronVolume(v[0], v[1], v[2], v[3]);
   }
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  out.reserve(count);
-  spacing.reserve(count);
-  double weights = 0;
-  for (int i = 0; i < count; ++i)
+}
+
+// A uniform point in a triangle or (folding the unit cube, Rocchini & Cignoni 2000) a tetrahedron.
+template <std::size_t N>
+Vec3 uniformPoint(const std::array<Vec3, N>& v, KeyedRandom& random)
+{
+  if constexpr (N == 3)
   {
-    const double t = uniform(random) * drawn;
-    const std::size_t e = std::min<std::size_t>(elements - 1, std::upper_bound(cumulative.begin(), cumulative.end(), t) - cumulative.begin());
-    out.push_back(draw(e, uniform));
-    spacing.push_back(followGrading ? std::pow(measures[e], 1.0 / dimension) : 1.0);
-    if (share)
+    const double r1 = std::sqrt(random.uniform()), r2 = random.uniform();
+    return (1 - r1) * v[0] + r1 * (1 - r2) * v[1] + r1 * r2 * v[2];
+  }
+  else
+  {
+    double s = random.uniform(), u = random.uniform(), w = random.uniform();
+    if (s + u > 1)
     {
-      share->push_back(followGrading ? measures[e] : 1.0);
-      weights += share->back();
+      s = 1 - s;
+      u = 1 - u;
+    }
+    if (u + w > 1)
+    {
+      const double tmp = w;
+      w = 1 - s - u;
+      u = 1 - tmp;
+    }
+    else if (s + u + w > 1)
+    {
+      const double tmp = w;
+      w = s + u + w - 1;
+      s = 1 - u - tmp;
+    }
+    return (1 - s - u - w) * v[0] + s * v[1] + u * v[2] + w * v[3];
+  }
+}
+
+// The sum of the measures over all processes, exactly: each in fixed point (2^62 units of the
+// largest), summed as integers in 32-bit limbs, so that it does not depend on the split or order.
+double exactTotal(const std::vector<double>& measures, const Collective& group)
+{
+  std::vector<double> largest{ 0.0 };
+  for (double m : measures)
+  {
+    largest[0] = std::max(largest[0], m);
+  }
+  group.maximum(largest);
+  if (!(largest[0] > 0))
+  {
+    return 0;
+  }
+  unsigned __int128 local = 0;
+  for (double m : measures)
+  {
+    local += static_cast<std::uint64_t>(std::llround(std::ldexp(m / largest[0], 62)));
+  }
+  std::vector<std::int64_t> limbs(4);
+  for (int l = 0; l < 4; ++l)
+  {
+    limbs[l] = static_cast<std::int64_t>((local >> (32 * l)) & 0xffffffffULL);
+  }
+  group.sum(limbs);
+  unsigned __int128 total = 0;
+  for (int l = 0; l < 4; ++l)
+  {
+    total += static_cast<unsigned __int128>(limbs[l]) << (32 * l);
+  }
+  return std::ldexp(static_cast<double>(total), -62) * largest[0];
+}
+
+// Dense samples of the triangles (N = 3) or tetrahedra (N = 4) of all processes, about `count`
+// in all: each element of positive measure draws floor(lambda) or floor(lambda) + 1 points
+// (expected lambda = count / elements following the grading, count * measure / total
+// otherwise), uniform within it, from random numbers keyed by its vertices' positions (sorted, so
+// that the element draws the same wherever it is stored). Each point gets the spacing
+// measure^(1/dimension) of its element (1 when uniform) and the share measure (1 when uniform);
+// out gets every process's points sorted, total the measure of all elements.
+template <std::size_t N>
+void sampleSimplices(const PointList& x, const std::vector<std::array<int, N>>& elements, int count, bool grading,
+  std::uint64_t seed, const Collective& group, std::vector<double>& out, double& total)
+{
+  const long n = static_cast<long>(elements.size());
+  std::vector<double> measures(elements.size());
+#pragma omp parallel for schedule(static)
+  for (long e = 0; e < n; ++e)
+  {
+    std::array<Vec3, N> v;
+    for (std::size_t k = 0; k < N; ++k)
+    {
+      v[k] = x[elements[e][k]];
+    }
+    measures[e] = simplexMeasure(v);
+  }
+  total = exactTotal(measures, group);
+  std::vector<std::int64_t> positive{ static_cast<std::int64_t>(std::count_if(measures.begin(), measures.end(), [](double m) { return m > 0; })) };
+  group.sum(positive);
+  std::vector<double> local;
+  if (total > 0 && count > 0)
+  {
+    const std::uint64_t salt = mixBits(seed * 0x9e3779b97f4a7c15ULL + N);
+#pragma omp parallel
+    {
+      std::vector<double> mine; // the order does not matter: the samples are sorted below
+#pragma omp for schedule(static) nowait
+      for (long e = 0; e < n; ++e)
+      {
+        if (!(measures[e] > 0))
+        {
+          continue;
+        }
+        std::array<Vec3, N> v;
+        std::uint64_t key = salt;
+        for (std::size_t k = 0; k < N; ++k)
+        {
+          v[k] = x[elements[e][k]];
+          key += positionKey(v[k]); // a sum: the same for any vertex order
+        }
+        KeyedRandom random(key);
+        const double lambda = grading ? count / static_cast<double>(positive[0]) : count * measures[e] / total;
+        const double whole = std::floor(lambda);
+        const int draws = static_cast<int>(whole) + (random.uniform() < lambda - whole ? 1 : 0);
+        if (draws == 0)
+        {
+          continue;
+        }
+        std::sort(v.begin(), v.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
+        for (int d = 0; d < draws; ++d)
+        {
+          const Vec3 p = uniformPoint(v, random);
+          mine.insert(mine.end(), { p[0], p[1], p[2], grading ? std::pow(measures[e], 1.0 / (N - 1)) : 1.0, grading ? measures[e] : 1.0 });
+        }
+      }
+#pragma omp critical
+      local.insert(local.end(), mine.begin(), mine.end());
     }
   }
-  if (share)
+  out = group.gather(local);
+  // sorted as tuples of DenseFields values
+  std::vector<std::size_t> order(out.size() / DenseFields);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::lexicographical_compare(&out[a * DenseFields], &out[a * DenseFields] + DenseFields, &out[b * DenseFields], &out[b * DenseFields] + DenseFields);
+  });
+  std::vector<double> sorted(out.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
   {
-    for (double& w : *share)
+    std::copy_n(&out[order[i] * DenseFields], DenseFields, &sorted[i * DenseFields]);
+  }
+  out = std::move(sorted);
+}
+
+// Splits gathered dense samples into positions, spacings and shares.
+void unpack(const std::vector<double>& flat, PointList& points, std::vector<double>& spacing, std::vector<double>* share)
+{
+  for (std::size_t i = 0; i + DenseFields <= flat.size(); i += DenseFields)
+  {
+    points.emplace_back(flat[i], flat[i + 1], flat[i + 2]);
+    spacing.push_back(flat[i + 3]);
+    if (share)
     {
-      w *= total / weights;
+      share->push_back(flat[i + 4]);
     }
   }
 }
 
+// The bounding box of the points of all processes.
+BoundingBox globalBoundingBox(const PointList& points, const Collective& group)
+{
+  const BoundingBox local = boundingBox(points);
+  const double none = -std::numeric_limits<double>::infinity();
+  std::vector<double> extremes(6, none);
+  if (!points.empty())
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      extremes[c] = -local.lower[c];
+      extremes[3 + c] = local.upper[c];
+    }
+  }
+  group.maximum(extremes);
+  BoundingBox box;
+  for (int c = 0; c < 3; ++c)
+  {
+    box.lower[c] = -extremes[c];
+    box.upper[c] = extremes[3 + c];
+  }
+  return box;
+}
+
 DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int volumeCount, const SamplingParameters& parameters,
-  std::mt19937_64& random)
+  const Collective& group)
 {
   DenseSamples dense;
   const PointList& x = domain.points;
   const bool grading = parameters.followMeshGrading;
+  std::vector<double> flat;
   double area = 0;
-  sampleElements(
-    domain.triangles.size(), surfaceCount, 2, grading,
-    [&](std::size_t t) {
-      const auto& f = domain.triangles[t];
-      return triangleArea(x[f[0]], x[f[1]], x[f[2]]);
-    },
-    [&](std::size_t t, std::uniform_real_distribution<double>& uniform) {
-      const auto& f = domain.triangles[t];
-      const double r1 = std::sqrt(uniform(random)), r2 = uniform(random); // uniform in a triangle
-      return Vec3((1 - r1) * x[f[0]] + r1 * (1 - r2) * x[f[1]] + r1 * r2 * x[f[2]]);
-    },
-    random, dense.surface, dense.surfaceSpacing, nullptr, area);
+  sampleSimplices(x, domain.triangles, surfaceCount, grading, parameters.randomSeed, group, flat, area);
+  unpack(flat, dense.surface, dense.surfaceSpacing, nullptr);
   if (dense.surface.empty())
   {
-    dense.surface = x; // a point cloud (or only degenerate faces): the points are the surface
-    dense.surfaceSpacing.assign(x.size(), 1.0);
+    // a point cloud (or only degenerate faces): the points of all processes are the surface,
+    // sorted, each position once
+    std::vector<double> local;
+    for (const Vec3& p : x)
+    {
+      local.insert(local.end(), { p[0], p[1], p[2] });
+    }
+    const std::vector<double> all = group.gather(local);
+    for (std::size_t i = 0; i < all.size(); i += 3)
+    {
+      dense.surface.emplace_back(all[i], all[i + 1], all[i + 2]);
+    }
+    std::sort(dense.surface.begin(), dense.surface.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
+    dense.surface.erase(std::unique(dense.surface.begin(), dense.surface.end()), dense.surface.end());
+    dense.surfaceSpacing.assign(dense.surface.size(), 1.0);
   }
-  sampleElements(
-    domain.tetrahedra.size(), volumeCount, 3, grading,
-    [&](std::size_t t) {
-      const auto& c = domain.tetrahedra[t];
-      return tetrahedronVolume(x[c[0]], x[c[1]], x[c[2]], x[c[3]]);
-    },
-    [&](std::size_t t, std::uniform_real_distribution<double>& uniform) {
-      const auto& c = domain.tetrahedra[t];
-      // uniform in a tetrahedron: fold the unit cube (Rocchini & Cignoni 2000)
-      double s = uniform(random), u = uniform(random), v = uniform(random);
-      if (s + u > 1)
-      {
-        s = 1 - s;
-        u = 1 - u;
-      }
-      if (u + v > 1)
-      {
-        const double tmp = v;
-        v = 1 - s - u;
-        u = 1 - tmp;
-      }
-      else if (s + u + v > 1)
-      {
-        const double tmp = v;
-        v = s + u + v - 1;
-        s = 1 - u - tmp;
-      }
-      return Vec3((1 - s - u - v) * x[c[0]] + s * x[c[1]] + u * x[c[2]] + v * x[c[3]]);
-    },
-    random, dense.volume, dense.volumeSpacing, &dense.volumeShare, dense.volumeOfDomain);
+  sampleSimplices(x, domain.tetrahedra, volumeCount, grading, parameters.randomSeed, group, flat, dense.volumeOfDomain);
+  unpack(flat, dense.volume, dense.volumeSpacing, &dense.volumeShare);
+  double shares = 0;
+  for (double w : dense.volumeShare)
+  {
+    shares += w;
+  }
+  for (double& w : dense.volumeShare)
+  {
+    w *= dense.volumeOfDomain / shares; // a Monte Carlo estimate of the volume nearest to each point
+  }
   if (dense.volume.empty() && volumeCount > 0)
   {
     // No volume cells: sample the padded bounding box around the input (no grading to follow).
-    BoundingBox box = boundingBox(x);
+    BoundingBox box = globalBoundingBox(x, group);
     const double pad = parameters.boundsPadding * box.size().norm();
     box.lower.array() -= pad;
     box.upper.array() += pad;
+    std::mt19937_64 random(parameters.randomSeed);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     dense.volume.reserve(volumeCount);
     for (int i = 0; i < volumeCount; ++i)
@@ -325,7 +466,8 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
   }
 }
 
-std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover, bool volumeMesh)
+std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover, bool volumeMesh,
+  const Collective& group)
 {
   // The reach r_j of a sample starts at the distance to its s-th nearest fellow sample, so that
   // supports follow the local sample density (dense on the surface, coarse in the volume).
@@ -433,6 +575,7 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
       }
     }
   }
+  group.maximum(extended); // each process covered its own positions
   const double largest = *std::max_element(extended.begin(), extended.end());
   for (double& r : extended)
   {
@@ -441,14 +584,27 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
   return extended;
 }
 
-Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress)
+Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress, const Collective& group)
 {
-  if (domain.points.empty())
+  std::string problem;
+  try
+  {
+    requireFinite(domain.points, "input points");
+  }
+  catch (const InvalidInputException& e)
+  {
+    problem = e.what();
+  }
+  problem = group.firstError(problem); // every process stops, not only the one with the bad point
+  if (!problem.empty())
+  {
+    throw InvalidInputException(problem);
+  }
+  if (!group.any(!domain.points.empty()))
   {
     throw InvalidInputException("the input has no points");
   }
-  requireFinite(domain.points, "input points");
-  if (!(boundingBox(domain.points).size().norm() > 0))
+  if (!(globalBoundingBox(domain.points, group).size().norm() > 0))
   {
     throw InvalidInputException("all input points coincide: the domain has zero extent");
   }
@@ -462,9 +618,8 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
   const int ns = static_cast<int>(std::lround(ratio * ks)), nv = static_cast<int>(std::lround(ratio * kv));
   const int perSample = std::max(1, parameters.denseSamplesPerSample);
 
-  std::mt19937_64 random(parameters.randomSeed);
   // Volume dense samples are always drawn: they measure the Voronoi volumes of integration points.
-  DenseSamples dense = denseSampling(domain, perSample * (ks + ns), perSample * (kv + nv + ns), parameters, random);
+  DenseSamples dense = denseSampling(domain, perSample * (ks + ns), perSample * (kv + nv + ns), parameters, group);
   progress.report(0.1);
 
   PointList all = dense.surface;
@@ -502,7 +657,7 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
   }
   progress.report(0.8);
   out.supportRadius = coverSupportRadii(out.centers, { &out.integrationPoints, &domain.points }, parameters.cover,
-    !domain.tetrahedra.empty());
+    group.any(!domain.tetrahedra.empty()), group);
   progress.report(1.0);
   return out;
 }

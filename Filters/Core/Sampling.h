@@ -4,6 +4,7 @@
 // volumes of the integration points.
 #pragma once
 
+#include "Collective.h"
 #include "CoreTypes.h"
 
 #include <array>
@@ -51,8 +52,13 @@ struct Samples
 };
 
 /// The whole sampling of Fig. 2 / section 5. Throws InvalidInputException on empty or
-/// non-finite input and on a domain of zero extent.
-Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress = {});
+/// non-finite input and on a domain of zero extent. A domain split over the processes of group
+/// (each holding its own elements and points) gives every process the samples of the whole
+/// domain, the same as sampling it whole on one process: dense samples are drawn per element from
+/// random numbers keyed by its vertices' positions and sorted, so that neither the order nor the
+/// split of the elements matters.
+Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress = {},
+  const Collective& group = serial());
 
 /// Farthest-point selection of up to count indices of candidates, starting from the points
 /// already chosen (or from a random candidate): each step takes the candidate farthest from the
@@ -70,8 +76,9 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
 /// sample), enlarged so that each of the positions lies within reach of at least s samples (its
 /// s nearest grow, or on a graded volume mesh those that grow least relative to their reach); a
 /// margin makes the weight at the reach w(1/margin) = 0.25.
-std::vector<double> coverSupportRadii(
-  const PointList& centers, const std::vector<const PointList*>& positions, double cover, bool volumeMesh = false);
+/// The positions may be split over the processes of group (centers are the same on all).
+std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover,
+  bool volumeMesh = false, const Collective& group = serial());
 
 /// The axis-aligned bounding box of points (both corners zero for none).
 struct BoundingBox

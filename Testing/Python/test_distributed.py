@@ -1,0 +1,164 @@
+"""Issue 14: MLS Deform split over MPI ranks gives the serial deformation.
+
+  pvbatch test_distributed.py PLUGIN WORK reference
+      writes WORK/scene.vtm (a polydata body inside a tetrahedral box, one block each) and, on one
+      process, the deformed positions of every point (WORK/reference.npz);
+  mpiexec -n N pvbatch test_distributed.py PLUGIN WORK compare
+      reads the scene in parallel (the XML reader hands out blocks), redistributes it over the N
+      ranks (RedistributeDataSet), deforms it and checks every point against the reference.
+
+The regions: a Handle (the body, moved and turned), the box's sides Fixed, its floor Slip, a
+Planarity patch and a Rigid block of tetrahedra (one constraint set per cell), so that the
+gathering of positions, constraint sets and slip planes is exercised. Then NaN coordinates in some
+pieces: every rank reports the error (none waits for another forever).
+"""
+import os
+import sys
+
+import numpy as np
+import paraview.simple as pvs
+from paraview import servermanager
+from paraview.simple import LoadPlugin
+from vtk.numpy_interface import dataset_adapter as dsa
+
+plugin, work, mode = sys.argv[1:4]
+LoadPlugin(plugin, remote=False, ns=globals())
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what, flush=True)
+    if not condition:
+        failures.append(what)
+
+
+def write_scene(path):
+    """A sphere's surface (polydata) inside a tetrahedralized box [-1, 1]^3 (unstructured grid)."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData, vtkMultiBlockDataSet
+    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+    from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter
+    sphere = vtkSphereSource()
+    sphere.SetRadius(0.3)
+    sphere.SetThetaResolution(24)
+    sphere.SetPhiResolution(16)
+    sphere.SetOutputPointsPrecision(1)  # double
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(sphere.GetOutputPort())
+    triangles.Update()
+    image = vtkImageData()
+    image.SetDimensions(13, 13, 13)
+    image.SetOrigin(-1, -1, -1)
+    image.SetSpacing(2 / 12, 2 / 12, 2 / 12)
+    tets = vtkDataSetTriangleFilter()
+    tets.SetInputData(image)
+    tets.Update()
+    scene = vtkMultiBlockDataSet()
+    scene.SetBlock(0, triangles.GetOutput())
+    scene.SetBlock(1, tets.GetOutput())
+    writer = vtkXMLMultiBlockDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(scene)
+    writer.Write()
+
+
+def box_region(source, role, bounds, **properties):
+    region = ConstraintRegion(Input=source, Role=role)
+    region.Region = 'Box'
+    region.Region.UseReferenceBounds = 0
+    region.Region.Position = bounds[0::2]
+    region.Region.Length = [bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]]
+    for name, value in properties.items():
+        setattr(region, name, value)
+    return region
+
+
+def deformed(source):
+    """The MLS Deform of source with the regions above, and its field data and points gathered
+    on the first rank: rest position (the input's, a point array) and deformed position."""
+    rest = pvs.Calculator(Input=source, AttributeType='Point Data', ResultArrayName='Rest', Function='coords',
+                          ResultArrayType='Double')
+    handle = box_region(rest, 'Handle', [-0.35, 0.35] * 3, Translation=[0.05, 0.1, 0.15], Rotation=[0, 0, 10])
+    fixed = ConstraintRegion(Input=rest, Role='Fixed', InsideOut=1)
+    fixed.Region = 'Box'
+    fixed.Region.UseReferenceBounds = 0
+    fixed.Region.Position = [-0.99, -0.99, -1.01]
+    fixed.Region.Length = [1.98, 1.98, 2.0]
+    slip = box_region(rest, 'Slip', [-0.99, 0.99, -0.99, 0.99, -1.01, -0.99])
+    planar = box_region(rest, 'Planarity', [0.45, 0.8, -0.5, 0.5, 0.3, 0.34])
+    rigid = box_region(rest, 'Rigid', [-0.8, -0.5, -0.3, 0.3, -0.3, 0.3], CellSets=1)
+    deform = MLSDeform(Input=rest, Regions=[handle, fixed, slip, planar, rigid], NumberOfSamples=400)
+    data = servermanager.Fetch(deform)
+    out = dsa.WrapDataObject(data)
+    fields = data.GetFieldData()
+    field = {}
+    for a in range(fields.GetNumberOfArrays()):
+        array = fields.GetArray(a)  # None for string arrays
+        if array is not None:
+            field[array.GetName()] = np.array([array.GetTuple1(t) for t in range(array.GetNumberOfTuples())])
+    error = fields.GetAbstractArray('DeformationError')
+    keys, moved = [], []
+    for block in out:
+        if block.VTKObject.GetPointData().GetArray('Displacement') is not None:
+            field['Displacement'] = True
+        if block.GetNumberOfPoints() == 0:
+            continue
+        keys.append(np.asarray(block.PointData['Rest']))
+        # in double precision: the output's points have the precision of the input's, and
+        # RedistributeDataSet makes float points double
+        # (without Displacement, after an error: the points)
+        moved.append(keys[-1] + np.asarray(block.PointData['Displacement']) if 'Displacement' in field
+                     else np.asarray(block.Points, dtype=float))
+    return (np.concatenate(keys), np.concatenate(moved), field,
+            error.GetValue(0) if error is not None else None)
+
+
+if mode == 'reference':
+    os.makedirs(work, exist_ok=True)
+    scene = os.path.join(work, 'scene.vtm')
+    write_scene(scene)
+    rest, moved, field, error = deformed(pvs.OpenDataFile(scene))
+    check(error is None, 'the serial deformation succeeds (%s)' % error)
+    field.pop('Displacement')
+    np.savez(os.path.join(work, 'reference.npz'), rest=rest, moved=moved, **field)
+    check(np.abs(moved - rest).max() > 0.05, 'the handle moves the scene')
+else:
+    ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+    reference = np.load(os.path.join(work, 'reference.npz'))
+    source = pvs.RedistributeDataSet(Input=pvs.OpenDataFile(os.path.join(work, 'scene.vtm')))
+    rest, moved, field, error = deformed(source)
+    check(error is None, 'the deformation on %d ranks succeeds (%s)' % (ranks, error))
+    field.pop('Displacement', None)
+    np.savez(os.path.join(work, 'ranks%d.npz' % ranks), rest=rest, moved=moved, **field)  # for a look after a failure
+    # every point matched to the reference by its rest position (exact: the same doubles)
+    index = {tuple(x): i for i, x in enumerate(reference['rest'])}
+    which = np.array([index.get(tuple(x), -1) for x in rest])
+    check((which >= 0).all(), 'every point of the %d pieces is a point of the scene' % ranks)
+    check(len(set(which)) == len(reference['rest']), 'every point of the scene is in a piece (%d of %d)' % (len(set(which)), len(reference['rest'])))
+    diagonal = np.linalg.norm(reference['rest'].max(axis=0) - reference['rest'].min(axis=0))
+    # the bound of issue 14: the serial position within 1e-10 of the diagonal
+    deviation = np.linalg.norm(moved - reference['moved'][which], axis=1).max() / diagonal
+    check(deviation <= 1e-10, 'every point within 1e-10 of the diagonal of its serial position (%.3g)' % deviation)
+    # a point held by two pieces moves identically in both
+    order = np.lexsort(rest.T)
+    same = (np.diff(rest[order], axis=0) == 0).all(axis=1)
+    shared = np.abs(np.diff(moved[order], axis=0)[same]).max() if same.any() else 0.0
+    check(shared == 0, 'points shared by pieces are identical (%d shared, largest difference %g)' % (same.sum(), shared))
+    # the global figures of the field data: the same as the serial ones
+    for name in ('NumberOfSamples', 'NumberOfIntegrationPoints', 'HandleResidual', 'FixedResidual', 'ConstraintResidual',
+                 'ConstraintPoints', 'ConstraintSets', 'InvertedCells'):
+        ok = name in field and name in reference and np.allclose(field[name], reference[name], rtol=1e-9, atol=1e-14)
+        check(ok, '%s is the serial one (%s, serial %s)' % (name, field.get(name), reference[name] if name in reference else None))
+    print('%d ranks: %d points in the pieces, %d in the scene' % (ranks, len(rest), len(reference['rest'])))
+    # bad input on some ranks only (NaN coordinates where x > 0.95): every rank stops with the
+    # message instead of waiting for the others, and the output is the unchanged input
+    bad = pvs.Calculator(Input=source, CoordinateResults=1, ReplaceInvalidResults=0,
+                         Function='coords+ln(0.95-coordsX)*iHat')  # NaN where x > 0.95
+    rest, moved, field, error = deformed(bad)
+    check(error is not None and 'NaN' in error, 'NaN coordinates in a piece stop every rank with a clear message (%s)' % error)
+    check('Displacement' not in field, 'the output is the unchanged input (no Displacement)')
+
+if failures:
+    print('%d check(s) failed' % len(failures))
+    sys.exit(1)
