@@ -135,8 +135,8 @@ double exactTotal(const std::vector<double>& measures, const Collective& group)
 // measure^(1/dimension) of its element (1 when uniform) and the share measure (1 when uniform);
 // out gets every process's points sorted, total the measure of all elements.
 template <std::size_t N>
-void sampleSimplices(const PointList& x, const std::vector<std::array<int, N>>& elements, int count, bool grading,
-  std::uint64_t seed, const Collective& group, std::vector<double>& out, double& total)
+void sampleSimplices(const PointList& x, const std::vector<std::uint64_t>& keys, const std::vector<std::array<int, N>>& elements,
+  int count, bool grading, std::uint64_t seed, const Collective& group, std::vector<double>& out, double& total)
 {
   const long n = static_cast<long>(elements.size());
   std::vector<double> measures(elements.size());
@@ -167,12 +167,10 @@ void sampleSimplices(const PointList& x, const std::vector<std::array<int, N>>& 
         {
           continue;
         }
-        std::array<Vec3, N> v;
         std::uint64_t key = salt;
         for (std::size_t k = 0; k < N; ++k)
         {
-          v[k] = x[elements[e][k]];
-          key += positionKey(v[k]); // a sum: the same for any vertex order
+          key += keys[elements[e][k]]; // a sum: the same for any vertex order
         }
         KeyedRandom random(key);
         const double lambda = grading ? count / static_cast<double>(positive[0]) : count * measures[e] / total;
@@ -181,6 +179,11 @@ void sampleSimplices(const PointList& x, const std::vector<std::array<int, N>>& 
         if (draws == 0)
         {
           continue;
+        }
+        std::array<Vec3, N> v;
+        for (std::size_t k = 0; k < N; ++k)
+        {
+          v[k] = x[elements[e][k]];
         }
         std::sort(v.begin(), v.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
         for (int d = 0; d < draws; ++d)
@@ -252,9 +255,16 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
   DenseSamples dense;
   const PointList& x = domain.points;
   const bool grading = parameters.followMeshGrading;
+  // the vertices' keys (PositionHash.h), summed per element
+  std::vector<std::uint64_t> keys(x.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < static_cast<long>(x.size()); ++i)
+  {
+    keys[i] = positionKey(x[i]);
+  }
   std::vector<double> flat;
   double area = 0;
-  sampleSimplices(x, domain.triangles, surfaceCount, grading, parameters.randomSeed, group, flat, area);
+  sampleSimplices(x, keys, domain.triangles, surfaceCount, grading, parameters.randomSeed, group, flat, area);
   unpack(flat, dense.surface, dense.surfaceSpacing, nullptr);
   if (dense.surface.empty())
   {
@@ -274,7 +284,7 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
     dense.surface.erase(std::unique(dense.surface.begin(), dense.surface.end()), dense.surface.end());
     dense.surfaceSpacing.assign(dense.surface.size(), 1.0);
   }
-  sampleSimplices(x, domain.tetrahedra, volumeCount, grading, parameters.randomSeed, group, flat, dense.volumeOfDomain);
+  sampleSimplices(x, keys, domain.tetrahedra, volumeCount, grading, parameters.randomSeed, group, flat, dense.volumeOfDomain);
   unpack(flat, dense.volume, dense.volumeSpacing, &dense.volumeShare);
   double shares = 0;
   for (double w : dense.volumeShare)
