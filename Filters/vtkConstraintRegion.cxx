@@ -26,6 +26,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <optional>
 #include <unordered_set>
 
 
@@ -184,23 +185,18 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
     surfaceTree.build(surface);
     // a patch and the mesh share their points up to float round-off (1e-7 relative of the
     // diagonal of all processes' points)
-    std::vector<double> extremes(6, -VTK_DOUBLE_MAX);
+    std::optional<mlsdeform::BoundingBox> local;
     for (vtkPointSet* set : sets)
     {
-      const double* b = set->GetNumberOfPoints() > 0 ? set->GetBounds() : nullptr;
-      for (int c = 0; b && c < 3; ++c)
+      if (set->GetNumberOfPoints() > 0)
       {
-        extremes[c] = std::max(extremes[c], -b[2 * c]);
-        extremes[3 + c] = std::max(extremes[3 + c], b[2 * c + 1]);
+        const double* b = set->GetBounds();
+        const mlsdeform::Vec3 lower(b[0], b[2], b[4]), upper(b[1], b[3], b[5]);
+        local = local ? mlsdeform::BoundingBox{ local->lower.cwiseMin(lower), local->upper.cwiseMax(upper) } : mlsdeform::BoundingBox{ lower, upper };
       }
     }
-    group.maximum(extremes);
-    double diagonal = 0;
-    for (int c = 0; c < 3; ++c)
-    {
-      diagonal += std::max(0.0, extremes[3 + c] + extremes[c]) * std::max(0.0, extremes[3 + c] + extremes[c]);
-    }
-    layerCells = cellLayers(sets, surfaceTree, surface, 1e-6 * std::sqrt(diagonal), layers, group);
+    const double diagonal = mlsdeform::boundingBox(local ? &*local : nullptr, group).size().norm();
+    layerCells = cellLayers(sets, surfaceTree, surface, 1e-6 * diagonal, layers, group);
   }
   vtkNew<vtkIdList> ids;
   double cellSet = 0; // the set number of the next cell (cellSets)

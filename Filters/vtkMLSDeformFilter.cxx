@@ -38,21 +38,17 @@ Samples readSamples(vtkPolyData* centers, vtkPolyData* integration, const Collec
 {
   vtkDataArray* radius = centers && integration ? centers->GetPointData()->GetArray("SupportRadius") : nullptr;
   vtkDataArray* volume = centers && integration ? integration->GetPointData()->GetArray("Volume") : nullptr;
-  std::string problem;
-  if (!integration)
-  {
-    problem = "MLS samples were given without integration points (connect both outputs of MLSSampler)";
-  }
-  else if (!radius || !volume || radius->GetNumberOfTuples() != centers->GetNumberOfPoints() ||
-    volume->GetNumberOfTuples() != integration->GetNumberOfPoints())
-  {
-    problem = "the Samples input needs a SupportRadius array and the IntegrationPoints input a Volume array";
-  }
-  problem = group.firstError(problem);
-  if (!problem.empty())
-  {
-    throw InvalidInputException(problem);
-  }
+  agree(group, [&] {
+    if (!integration)
+    {
+      throw InvalidInputException("MLS samples were given without integration points (connect both outputs of MLSSampler)");
+    }
+    if (!radius || !volume || radius->GetNumberOfTuples() != centers->GetNumberOfPoints() ||
+      volume->GetNumberOfTuples() != integration->GetNumberOfPoints())
+    {
+      throw InvalidInputException("the Samples input needs a SupportRadius array and the IntegrationPoints input a Volume array");
+    }
+  });
   Samples samples;
   gatherWithValues(centers, radius, samples.centers, samples.supportRadius, group);
   gatherWithValues(integration, volume, samples.integrationPoints, samples.volume, group);

@@ -30,10 +30,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <limits>
 #include <map>
-#include <set>
 #include <memory>
 #include <tuple>
 
@@ -61,12 +58,8 @@ struct RegionInput
   bool localChanged = true;   // since the last gathering
   vtkDataArray* displacement = nullptr; // this update's local PrescribedDisplacement
 
-  // gathered from all processes, in canonical order
-  PointList positions;
-  std::vector<int> sets; // the set of each position, or empty: one set
-  int setCount = 1;      // the number of distinct sets
-  long version = -1;
-  mlsgeometry::GatheredPositions order;
+  mlsgeometry::GatheredPositions gathered; // the positions of all processes, in canonical order
+  long version = -1;                         // of the gathered positions and sets
 };
 
 bool isConstraint(int role)
@@ -100,17 +93,17 @@ ConstraintType constraintType(int role)
 void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& shapes)
 {
   const ConstraintType type = constraintType(region.role);
-  if (region.sets.empty())
+  if (region.gathered.sets.empty())
   {
-    shapes.push_back({ type, region.positions, region.weight });
+    shapes.push_back({ type, region.gathered.positions, region.weight });
     return;
   }
   std::map<int, PointList> sets;
-  for (std::size_t i = 0; i < region.positions.size(); ++i)
+  for (std::size_t i = 0; i < region.gathered.positions.size(); ++i)
   {
-    sets[region.sets[i]].push_back(region.positions[i]);
+    sets[region.gathered.sets[i]].push_back(region.gathered.positions[i]);
   }
-  const double share = region.weight / static_cast<double>(region.positions.size());
+  const double share = region.weight / static_cast<double>(region.gathered.positions.size());
   for (auto& [id, positions] : sets)
   {
     const double weight = share * static_cast<double>(positions.size());
@@ -183,21 +176,18 @@ void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const C
     for (RegionInput& region : regions)
     {
       mlsgeometry::GatheredPositions gathered = mlsgeometry::gatherPositions(region.localPositions, region.localSets, group);
-      if (gathered.positions != region.positions || gathered.sets != region.sets || region.version < 0)
+      if (gathered.positions != region.gathered.positions || gathered.sets != region.gathered.sets || region.version < 0)
       {
-        region.positions = gathered.positions;
-        region.sets = gathered.sets;
-        region.setCount = gathered.setCount;
         region.version = nextVersion++;
       }
-      region.order = std::move(gathered);
+      region.gathered = std::move(gathered);
       region.localChanged = false;
     }
   }
   bool handle = false;
   for (std::size_t c = 0; c < regions.size(); ++c)
   {
-    if (regions[c].positions.empty())
+    if (regions[c].gathered.positions.empty())
     {
       throw InvalidInputException("Regions input #" + std::to_string(c) + " (" + vtkConstraintRegion::GetRoleName(regions[c].role) + ") selects no point");
     }
@@ -238,10 +228,10 @@ std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions)
       continue;
     }
     SlipPlane slip;
-    slip.bounds = boundingBox(regions[c].positions);
+    slip.bounds = boundingBox(regions[c].gathered.positions);
     const double diagonal = slip.bounds.size().norm();
-    slip.plane = fitPlane(regions[c].positions);
-    if (regions[c].positions.size() < 3 || slip.plane.farthest > 1e-6 * diagonal)
+    slip.plane = fitPlane(regions[c].gathered.positions);
+    if (regions[c].gathered.positions.size() < 3 || slip.plane.farthest > 1e-6 * diagonal)
     {
       throw InvalidInputException("Regions input #" + std::to_string(c) + " (Slip) is not a plane: its points lie up to " +
         std::to_string(slip.plane.farthest / diagonal) + " of their diagonal from their least-squares plane (at most 1e-6)");
@@ -364,11 +354,11 @@ double reportConstraints(vtkFieldData* field, const std::vector<RegionInput>& re
   for (const RegionInput* r : constraints)
   {
     type->InsertNextValue(constraintName(constraintType(r->role)));
-    count->InsertNextValue(static_cast<int>(r->positions.size()));
-    setCount->InsertNextValue(r->setCount);
+    count->InsertNextValue(static_cast<int>(r->gathered.positions.size()));
+    setCount->InsertNextValue(r->gathered.setCount);
     const auto begin = solution.constraintResidual.begin() + static_cast<long>(set);
-    residual->InsertNextValue(*std::max_element(begin, begin + r->setCount) / diagonal);
-    set += static_cast<std::size_t>(r->setCount);
+    residual->InsertNextValue(*std::max_element(begin, begin + r->gathered.setCount) / diagonal);
+    set += static_cast<std::size_t>(r->gathered.setCount);
     iterations->InsertNextValue(solution.iterations);
     converged->InsertNextValue(solution.converged ? 1 : 0);
   }
@@ -377,28 +367,6 @@ double reportConstraints(vtkFieldData* field, const std::vector<RegionInput>& re
     field->AddArray(array);
   }
   return residual->GetRange()[1];
-}
-
-// Runs a step that reads this process's data; when it fails on any process, every process throws
-// its message (the first process's), so that none waits for the others in a collective step.
-template <typename Step>
-void agree(const Collective& group, Step step)
-{
-  std::string problem;
-  try
-  {
-    step();
-  }
-  catch (const std::exception& e)
-  {
-    problem = e.what();
-    problem = problem.empty() ? "unknown error" : problem;
-  }
-  problem = group.firstError(problem);
-  if (!problem.empty())
-  {
-    throw InvalidInputException(group.size() > 1 ? problem + " (on one of " + std::to_string(group.size()) + " processes)" : problem);
-  }
 }
 
 void addField(vtkFieldData* field, const char* name, double value)
@@ -534,14 +502,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     }
     if (group.any(cache.diagonal < 0))
     {
-      std::vector<double> extremes(6, -std::numeric_limits<double>::infinity());
-      if (!points.empty())
-      {
-        const BoundingBox box = boundingBox(points);
-        extremes = { -box.lower[0], -box.lower[1], -box.lower[2], box.upper[0], box.upper[1], box.upper[2] };
-      }
-      group.maximum(extremes);
-      cache.diagonal = std::sqrt(std::pow(extremes[0] + extremes[3], 2) + std::pow(extremes[1] + extremes[4], 2) + std::pow(extremes[2] + extremes[5], 2));
+      cache.diagonal = boundingBox(points, group).size().norm();
     }
     gatherRegions(cache.regions, cache.nextVersion, group);
     // the slip planes: fitted again only when a region's positions or role change
@@ -610,7 +571,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       {
         if (!isConstraint(r.role))
         {
-          regions.push_back({ r.positions, r.weight });
+          regions.push_back({ r.gathered.positions, r.weight });
         }
       }
       cache.regionsSet = cache.factorized = false;
@@ -679,8 +640,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
         }
         values = local.data();
       }
-      cache.prescribed[r] = mlsgeometry::gatherValues(values, n, 3, cache.regions[r].order, group);
-      prescribed.emplace_back(cache.prescribed[r].data(), static_cast<long>(cache.regions[r].positions.size()), 3);
+      cache.prescribed[r] = mlsgeometry::gatherValues(values, n, 3, cache.regions[r].gathered, group);
+      prescribed.emplace_back(cache.prescribed[r].data(), static_cast<long>(cache.regions[r].gathered.positions.size()), 3);
     }
     IterationSettings settings;
     settings.maxIterations = this->MaxIterations;

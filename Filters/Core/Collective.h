@@ -8,6 +8,8 @@
 // processes.
 #pragma once
 
+#include "CoreTypes.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,6 +47,29 @@ public:
     return value[0] > 0;
   }
 };
+
+/// Runs a step on this process's data (reading, checking it); when it throws on any process,
+/// every process throws InvalidInputException with the first process's message, so that none
+/// waits for the failed one in the next collective operation.
+template <typename Step>
+void agree(const Collective& group, Step step)
+{
+  std::string problem;
+  try
+  {
+    step();
+  }
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+    problem = problem.empty() ? "unknown error" : problem;
+  }
+  problem = group.firstError(problem);
+  if (!problem.empty())
+  {
+    throw InvalidInputException(group.size() > 1 ? problem + " (on one of " + std::to_string(group.size()) + " processes)" : problem);
+  }
+}
 
 /// One process alone.
 inline const Collective& serial()

@@ -225,30 +225,6 @@ void unpack(const std::vector<double>& flat, PointList& points, std::vector<doub
   }
 }
 
-// The bounding box of the points of all processes.
-BoundingBox globalBoundingBox(const PointList& points, const Collective& group)
-{
-  const BoundingBox local = boundingBox(points);
-  const double none = -std::numeric_limits<double>::infinity();
-  std::vector<double> extremes(6, none);
-  if (!points.empty())
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      extremes[c] = -local.lower[c];
-      extremes[3 + c] = local.upper[c];
-    }
-  }
-  group.maximum(extremes);
-  BoundingBox box;
-  for (int c = 0; c < 3; ++c)
-  {
-    box.lower[c] = -extremes[c];
-    box.upper[c] = extremes[3 + c];
-  }
-  return box;
-}
-
 DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int volumeCount, const SamplingParameters& parameters,
   const Collective& group)
 {
@@ -298,7 +274,7 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
   if (dense.volume.empty() && volumeCount > 0)
   {
     // No volume cells: sample the padded bounding box around the input (no grading to follow).
-    BoundingBox box = globalBoundingBox(x, group);
+    BoundingBox box = boundingBox(x, group);
     const double pad = parameters.boundsPadding * box.size().norm();
     box.lower.array() -= pad;
     box.upper.array() += pad;
@@ -354,6 +330,25 @@ BoundingBox boundingBox(const PointList& points)
   {
     box.lower = box.lower.cwiseMin(p);
     box.upper = box.upper.cwiseMax(p);
+  }
+  return box;
+}
+
+BoundingBox boundingBox(const BoundingBox* local, const Collective& group)
+{
+  // maxima of (-lower, upper): exact, the same on every process
+  std::vector<double> extremes(6, -std::numeric_limits<double>::infinity());
+  for (int c = 0; local && c < 3; ++c)
+  {
+    extremes[c] = -local->lower[c];
+    extremes[3 + c] = local->upper[c];
+  }
+  group.maximum(extremes);
+  BoundingBox box;
+  for (int c = 0; c < 3; ++c)
+  {
+    box.lower[c] = -extremes[c];
+    box.upper[c] = extremes[3 + c];
   }
   return box;
 }
@@ -596,25 +591,12 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
 
 Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress, const Collective& group)
 {
-  std::string problem;
-  try
-  {
-    requireFinite(domain.points, "input points");
-  }
-  catch (const InvalidInputException& e)
-  {
-    problem = e.what();
-  }
-  problem = group.firstError(problem); // every process stops, not only the one with the bad point
-  if (!problem.empty())
-  {
-    throw InvalidInputException(problem);
-  }
+  agree(group, [&] { requireFinite(domain.points, "input points"); });
   if (!group.any(!domain.points.empty()))
   {
     throw InvalidInputException("the input has no points");
   }
-  if (!(globalBoundingBox(domain.points, group).size().norm() > 0))
+  if (!(boundingBox(domain.points, group).size().norm() > 0))
   {
     throw InvalidInputException("all input points coincide: the domain has zero extent");
   }

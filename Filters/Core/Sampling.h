@@ -88,6 +88,16 @@ struct BoundingBox
 };
 BoundingBox boundingBox(const PointList& points);
 
+/// The box around the boxes of all processes of group (local: this process's, or none).
+BoundingBox boundingBox(const BoundingBox* local, const Collective& group);
+
+/// The bounding box of the points of all processes of group.
+inline BoundingBox boundingBox(const PointList& points, const Collective& group)
+{
+  const BoundingBox local = boundingBox(points);
+  return boundingBox(points.empty() ? nullptr : &local, group);
+}
+
 /// The largest side of the points' bounding box (0 for none): the model's length l.
 inline double largestSide(const PointList& points)
 {
