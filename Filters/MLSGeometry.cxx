@@ -105,76 +105,109 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
 
 namespace
 {
-// The tetrahedra of a polyhedron, star-shaped about its first point (OpenFOAM's cells are):
-// that point joined to a fan of triangles of every face that does not hold it. VTK's
+// Orders point ids by their positions (lexicographically): a cell's split into simplices chosen
+// in this order depends on its geometry only, not on how the cell or the mesh numbers its points
+// (a mesh decomposed over processes numbers them differently than the whole mesh).
+struct PositionOrder
+{
+  vtkPoints* points;
+  bool operator()(vtkIdType a, vtkIdType b) const
+  {
+    double pa[3], pb[3];
+    points->GetPoint(a, pa);
+    points->GetPoint(b, pb);
+    return std::lexicographical_compare(pa, pa + 3, pb, pb + 3);
+  }
+};
+
+// The triangles of a polygon (a cycle of point ids): a fan from its first point in position
+// order, so that two cells sharing a face split it alike.
+template <typename Add>
+void fan(const vtkIdType* polygon, vtkIdType n, const PositionOrder& before, Add add)
+{
+  const vtkIdType first = std::min_element(polygon, polygon + n, before) - polygon;
+  for (vtkIdType v = 1; v + 1 < n; ++v)
+  {
+    add({ polygon[first], polygon[(first + v) % n], polygon[(first + v + 1) % n] });
+  }
+}
+
+// The tetrahedra of a 3D cell given by its faces (faces(visit) calls visit(ids, n) per face): the
+// cell is star-shaped about its vertices (convex cells and OpenFOAM's are), so its first point
+// in position order joined to the fans of the faces that do not hold it splits it.
 // vtkPolyhedron::Triangulate builds a Delaunay tetrahedralization and a polyhedron object per
 // cell, most of the sampling's time on a snappyHexMesh mesh.
-template <typename Add>
-void polyhedronTetrahedra(vtkUnstructuredGrid* grid, vtkIdType cell, Add add)
+template <typename Faces, typename Add>
+void starTetrahedra(Faces faces, const PositionOrder& before, Add add)
 {
   vtkIdType apex = -1;
-  visitPolyhedronFaces(grid, cell, [&](const vtkIdType* face, vtkIdType n) {
-    apex = apex < 0 && n > 0 ? face[0] : apex;
-    if (std::find(face, face + n, apex) != face + n)
+  faces([&](const vtkIdType* face, vtkIdType n) {
+    for (vtkIdType k = 0; k < n; ++k)
     {
-      return;
+      apex = apex < 0 || before(face[k], apex) ? face[k] : apex;
     }
-    for (vtkIdType v = 1; v + 1 < n; ++v)
+  });
+  faces([&](const vtkIdType* face, vtkIdType n) {
+    if (std::find(face, face + n, apex) == face + n)
     {
-      add({ apex, face[0], face[v], face[v + 1] });
+      fan(face, n, before, [&](const std::array<vtkIdType, 3>& t) { add({ apex, t[0], t[1], t[2] }); });
     }
   });
 }
 
-// The simplices VTK splits a cell of a type with a fixed triangulation into (its Triangulate
-// with index 0), as positions in the cell's point list (setLocalCell); empty for other types (a
-// pyramid's or a quad's split depends on its shape). A vtkGenericCell per cell took most of the
-// sampling domain's time on a 1M-cell mesh.
-const std::vector<vtkIdType>& fixedSimplices(int type)
+// The faces of a linear 3D cell type of fixed topology (hexahedron, voxel, wedge, pyramid,
+// pentagonal and hexagonal prism) as cycles of positions in the cell's point list
+// (setLocalCell), asked of VTK once per type; empty for other types. A vtkGenericCell per cell
+// took most of the sampling domain's time on a 1M-cell mesh.
+const std::vector<std::vector<vtkIdType>>& localFaces(int type)
 {
-  static const std::array<std::vector<vtkIdType>, VTK_NUMBER_OF_CELL_TYPES> simplices = [] {
-    std::array<std::vector<vtkIdType>, VTK_NUMBER_OF_CELL_TYPES> out;
+  static const std::array<std::vector<std::vector<vtkIdType>>, VTK_NUMBER_OF_CELL_TYPES> faces = [] {
+    std::array<std::vector<std::vector<vtkIdType>>, VTK_NUMBER_OF_CELL_TYPES> out;
     vtkNew<vtkGenericCell> cell;
-    vtkNew<vtkIdList> ids;
-    vtkNew<vtkPoints> pts;
-    for (int fixed : { VTK_HEXAHEDRON, VTK_VOXEL, VTK_WEDGE })
+    for (int fixed : { VTK_HEXAHEDRON, VTK_VOXEL, VTK_WEDGE, VTK_PYRAMID, VTK_PENTAGONAL_PRISM, VTK_HEXAGONAL_PRISM })
     {
       setLocalCell(cell, fixed);
-      if (cell->Triangulate(0, ids, pts))
+      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
       {
-        out[fixed].assign(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+        vtkCell* face = cell->GetFace(f);
+        vtkIdList* ids = face->GetPointIds();
+        std::vector<vtkIdType> cycle(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+        if (face->GetCellType() == VTK_PIXEL)
+        {
+          std::swap(cycle[2], cycle[3]); // a pixel's points in raster order, not around it
+        }
+        out[fixed].push_back(cycle);
       }
     }
     return out;
   }();
-  return type >= 0 && type < VTK_NUMBER_OF_CELL_TYPES ? simplices[type] : simplices[VTK_EMPTY_CELL];
+  return type >= 0 && type < VTK_NUMBER_OF_CELL_TYPES ? faces[type] : faces[VTK_EMPTY_CELL];
 }
 
-// Splits every cell of the given dimension into simplices (triangles or tetrahedra): simplices
-// are taken as they are, polygons become fans, polyhedra tetrahedra about a point, other cells
-// of a fixed topology by their type's simplices, others are triangulated by VTK.
+// Splits every cell of the given dimension into simplices (triangles or tetrahedra), whatever
+// the numbering of its points: simplices are taken as they are, polygons (quads, pixels) become
+// fans and 3D cells of fixed topology and polyhedra tetrahedra about a point (chosen by position
+// order); other cells (quadratic ones) are triangulated by VTK.
 template <std::size_t N>
 void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
 {
   const int simplexType = N == 3 ? VTK_TRIANGLE : VTK_TETRA;
+  auto* pointSet = vtkPointSet::SafeDownCast(set);
+  if (!pointSet || !pointSet->GetPoints())
+  {
+    return;
+  }
+  const PositionOrder before{ pointSet->GetPoints() };
   CellsByType cells;
   vtkNew<vtkIdList> ids;
   vtkNew<vtkPoints> pts;
-  auto addIds = [&](const std::array<vtkIdType, N>& simplex) {
+  auto add = [&](const std::array<vtkIdType, N>& simplex) {
     std::array<int, N> mapped;
     for (std::size_t v = 0; v < N; ++v)
     {
       mapped[v] = offset + static_cast<int>(pointMap ? pointMap[simplex[v]] : simplex[v]);
     }
     out.push_back(mapped);
-  };
-  auto add = [&](vtkIdType first) {
-    std::array<vtkIdType, N> simplex;
-    for (std::size_t v = 0; v < N; ++v)
-    {
-      simplex[v] = ids->GetId(first + static_cast<vtkIdType>(v));
-    }
-    addIds(simplex);
   };
   auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
   vtkUnsignedCharArray* ghosts = set->GetCellGhostArray();
@@ -185,25 +218,29 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
       continue; // another process's cell, sampled there
     }
     const int type = set->GetCellType(c);
-    if (type == simplexType)
+    if (type != simplexType && cellDimension(type) != dimension)
     {
-      set->GetCellPoints(c, ids);
-      add(0);
       continue;
     }
-    if (cellDimension(type) != dimension)
+    set->GetCellPoints(c, ids);
+    vtkIdType* cellPoints = ids->GetPointer(0);
+    const vtkIdType n = ids->GetNumberOfIds();
+    if (type == simplexType)
     {
+      std::array<vtkIdType, N> simplex;
+      std::copy_n(cellPoints, N, simplex.begin());
+      add(simplex);
       continue;
     }
     if constexpr (N == 3)
     {
-      if (type == VTK_POLYGON || type == VTK_QUAD)
+      if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_PIXEL)
       {
-        set->GetCellPoints(c, ids);
-        for (vtkIdType v = 1; v + 1 < ids->GetNumberOfIds(); ++v)
+        if (type == VTK_PIXEL)
         {
-          addIds({ ids->GetId(0), ids->GetId(v), ids->GetId(v + 1) });
+          std::swap(cellPoints[2], cellPoints[3]);
         }
+        fan(cellPoints, n, before, add);
         continue;
       }
     }
@@ -211,29 +248,36 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     {
       if (type == VTK_POLYHEDRON && grid)
       {
-        polyhedronTetrahedra(grid, c, addIds);
+        starTetrahedra([&](auto visit) { visitPolyhedronFaces(grid, c, visit); }, before, add);
+        continue;
+      }
+      if (const std::vector<std::vector<vtkIdType>>& local = localFaces(type); !local.empty())
+      {
+        starTetrahedra(
+          [&](auto visit) {
+            for (const std::vector<vtkIdType>& face : local)
+            {
+              std::array<vtkIdType, 6> global; // a hexagonal prism's faces have 6 points at most
+              for (std::size_t k = 0; k < face.size(); ++k)
+              {
+                global[k] = cellPoints[face[k]];
+              }
+              visit(global.data(), static_cast<vtkIdType>(face.size()));
+            }
+          },
+          before, add);
         continue;
       }
     }
-    if (const std::vector<vtkIdType>& local = fixedSimplices(type); !local.empty() && grid)
-    {
-      // a cell of fixed topology: its type's simplices mapped through its point ids
-      vtkIdType n = 0;
-      const vtkIdType* cellPoints = nullptr;
-      grid->GetCellPoints(c, n, cellPoints);
-      ids->SetNumberOfIds(static_cast<vtkIdType>(local.size()));
-      for (std::size_t v = 0; v < local.size(); ++v)
-      {
-        ids->SetId(static_cast<vtkIdType>(v), cellPoints[local[v]]);
-      }
-    }
-    else if (!cells.get(set, c)->Triangulate(0, ids, pts))
+    if (!cells.get(set, c)->Triangulate(0, ids, pts))
     {
       continue;
     }
     for (vtkIdType s = 0; s + static_cast<vtkIdType>(N) <= ids->GetNumberOfIds(); s += N)
     {
-      add(s);
+      std::array<vtkIdType, N> simplex;
+      std::copy_n(ids->GetPointer(s), N, simplex.begin());
+      add(simplex);
     }
   }
 }

@@ -48,6 +48,20 @@ double tetrahedronVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
   return std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
 }
 
+// An element's vertex positions in lexicographic order: what is computed from them (measure,
+// samples) does not depend on the order in which the element was stored.
+template <std::size_t N>
+std::array<Vec3, N> sortedVertices(const PointList& x, const std::array<int, N>& element)
+{
+  std::array<Vec3, N> v;
+  for (std::size_t k = 0; k < N; ++k)
+  {
+    v[k] = x[element[k]];
+  }
+  std::sort(v.begin(), v.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
+  return v;
+}
+
 template <std::size_t N>
 double simplexMeasure(const std::array<Vec3, N>& v)
 {
@@ -143,12 +157,7 @@ void sampleSimplices(const PointList& x, const std::vector<std::uint64_t>& keys,
 #pragma omp parallel for schedule(static)
   for (long e = 0; e < n; ++e)
   {
-    std::array<Vec3, N> v;
-    for (std::size_t k = 0; k < N; ++k)
-    {
-      v[k] = x[elements[e][k]];
-    }
-    measures[e] = simplexMeasure(v);
+    measures[e] = simplexMeasure(sortedVertices(x, elements[e]));
   }
   total = exactTotal(measures, group);
   std::vector<std::int64_t> positive{ static_cast<std::int64_t>(std::count_if(measures.begin(), measures.end(), [](double m) { return m > 0; })) };
@@ -180,12 +189,7 @@ void sampleSimplices(const PointList& x, const std::vector<std::uint64_t>& keys,
         {
           continue;
         }
-        std::array<Vec3, N> v;
-        for (std::size_t k = 0; k < N; ++k)
-        {
-          v[k] = x[elements[e][k]];
-        }
-        std::sort(v.begin(), v.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
+        const std::array<Vec3, N> v = sortedVertices(x, elements[e]);
         for (int d = 0; d < draws; ++d)
         {
           const Vec3 p = uniformPoint(v, random);
