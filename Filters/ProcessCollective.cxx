@@ -64,6 +64,28 @@ std::vector<std::int64_t> ProcessCollective::gather(const std::vector<std::int64
   return std::vector<std::int64_t>(all.begin(), all.end());
 }
 
+std::vector<double> ProcessCollective::gatherOnFirst(const std::vector<double>& local) const
+{
+  if (!this->Controller)
+  {
+    return local;
+  }
+  const int n = this->Controller->GetNumberOfProcesses();
+  vtkIdType length = static_cast<vtkIdType>(local.size());
+  std::vector<vtkIdType> lengths(n), offsets(n);
+  this->Controller->Gather(&length, lengths.data(), 1, 0);
+  vtkIdType total = 0;
+  for (int p = 0; p < n; ++p)
+  {
+    offsets[p] = total;
+    total += lengths[p];
+  }
+  std::vector<double> all(this->rank() == 0 ? static_cast<std::size_t>(total) : 0);
+  double none = 0; // GatherV reads the buffers even for zero length: give them valid addresses
+  this->Controller->GatherV(local.empty() ? &none : local.data(), all.empty() ? &none : all.data(), length, lengths.data(), offsets.data(), 0);
+  return all;
+}
+
 void ProcessCollective::maximum(std::vector<double>& values) const
 {
   if (this->Controller && !values.empty())

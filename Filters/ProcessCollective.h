@@ -3,12 +3,13 @@
 #pragma once
 
 #include "Collective.h"
+#include "MLSDeformFiltersModule.h"
 
 class vtkMultiProcessController;
 
 namespace mlsgeometry
 {
-class ProcessCollective : public mlsdeform::Collective
+class MLSDEFORMFILTERS_EXPORT ProcessCollective : public mlsdeform::Collective
 {
 public:
   /// The global controller's processes (one process when there is none).
@@ -18,6 +19,7 @@ public:
   int rank() const override;
   std::vector<double> gather(const std::vector<double>& local) const override;
   std::vector<std::int64_t> gather(const std::vector<std::int64_t>& local) const override;
+  std::vector<double> gatherOnFirst(const std::vector<double>& local) const override;
   void maximum(std::vector<double>& values) const override;
   void sum(std::vector<std::int64_t>& values) const override;
   std::string firstError(const std::string& local) const override;

@@ -104,70 +104,101 @@ std::string entry(const std::string& dictionary, const std::string& keyword)
   }
   return "";
 }
-} // namespace
 
-FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
+// A FoamFile list file (points, pointProcAddressing) read up to its first element.
+struct FoamList
 {
-  FoamPointsFile file;
-  file.path = polyMeshDirectory + "/points";
-  if (!std::filesystem::exists(file.path))
-  {
-    file.path += ".gz";
-    file.compressed = true;
-    if (!std::filesystem::exists(file.path))
-    {
-      fail(polyMeshDirectory + "/points", "there is no points file (nor points.gz): not an OpenFOAM polyMesh directory");
-    }
-  }
-  const std::string s = readAll(file.path);
+  std::string text;   // the whole file, decompressed
+  std::string header; // everything before the count
+  bool binary = false;
+  std::string arch;   // e.g. LSB;label=32;scalar=64
+  std::size_t count = 0;
+  std::size_t begin = 0; // the position after '('
+};
+
+// Reads path and checks its class; elementBytes: the least bytes of one element in binary and in
+// ascii, so that a count that cannot fit the file is an error before anything is allocated.
+FoamList readList(const std::string& path, const std::string& expectedClass, std::size_t binaryBytes, std::size_t asciiBytes)
+{
+  FoamList list;
+  list.text = readAll(path);
+  const std::string& s = list.text;
   const std::size_t foamFile = s.find("FoamFile");
   const std::size_t open = foamFile == std::string::npos ? foamFile : s.find('{', foamFile);
   const std::size_t close = open == std::string::npos ? open : s.find('}', open);
   if (close == std::string::npos)
   {
-    fail(file.path, "no FoamFile header");
+    fail(path, "no FoamFile header");
   }
   const std::string dictionary = s.substr(open + 1, close - open - 1);
-  if (entry(dictionary, "class") != "vectorField")
+  if (entry(dictionary, "class") != expectedClass)
   {
-    fail(file.path, "its class is '" + entry(dictionary, "class") + "', not vectorField");
+    fail(path, "its class is '" + entry(dictionary, "class") + "', not " + expectedClass);
   }
   const std::string format = entry(dictionary, "format");
   if (format != "ascii" && format != "binary")
   {
-    fail(file.path, "unknown format '" + format + "'");
+    fail(path, "unknown format '" + format + "'");
   }
-  file.binary = format == "binary";
-  const std::string arch = entry(dictionary, "arch");
-  if (arch.find("scalar=32") != std::string::npos)
+  list.binary = format == "binary";
+  list.arch = entry(dictionary, "arch");
+  if (list.binary && list.arch.find("MSB") != std::string::npos)
   {
-    file.scalarBytes = 4;
-  }
-  if (file.binary && arch.find("MSB") != std::string::npos)
-  {
-    fail(file.path, "big-endian binary files are not supported");
+    fail(path, "big-endian binary files are not supported");
   }
   std::size_t i = skipBlank(s, close + 1);
-  file.header = s.substr(0, i);
+  list.header = s.substr(0, i);
   char* end = nullptr;
   const long long count = std::strtoll(s.c_str() + i, &end, 10);
   if (end == s.c_str() + i || count < 0)
   {
-    fail(file.path, "no point count after the header");
+    fail(path, "no element count after the header");
   }
-  // the count must fit the file: at least 3 bytes per binary scalar, 7 characters per ascii point
-  const std::size_t available = s.size() - i;
-  if (static_cast<unsigned long long>(count) > available / (file.binary ? 3 * file.scalarBytes : 7))
+  if (static_cast<unsigned long long>(count) > (s.size() - i) / (list.binary ? binaryBytes : asciiBytes))
   {
-    fail(file.path, "the point count " + std::to_string(count) + " does not fit the file's size");
+    fail(path, "the count " + std::to_string(count) + " does not fit the file's size");
   }
   i = skipBlank(s, static_cast<std::size_t>(end - s.c_str()));
   if (i >= s.size() || s[i] != '(')
   {
-    fail(file.path, "no '(' after the point count (a uniform list is not a mesh)");
+    fail(path, "no '(' after the count (a uniform list is not a mesh)");
   }
-  ++i;
-  const std::size_t n = static_cast<std::size_t>(count);
+  list.count = static_cast<std::size_t>(count);
+  list.begin = i + 1;
+  return list;
+}
+
+// The file directory/name, or directory/name.gz; "" when there is neither.
+std::string existing(const std::string& directory, const std::string& name)
+{
+  for (const std::string& path : { directory + "/" + name, directory + "/" + name + ".gz" })
+  {
+    if (std::filesystem::exists(path))
+    {
+      return path;
+    }
+  }
+  return "";
+}
+} // namespace
+
+FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
+{
+  FoamPointsFile file;
+  file.path = existing(polyMeshDirectory, "points");
+  if (file.path.empty())
+  {
+    fail(polyMeshDirectory + "/points", "there is no points file (nor points.gz): not an OpenFOAM polyMesh directory");
+  }
+  file.compressed = file.path.size() > 3 && file.path.compare(file.path.size() - 3, 3, ".gz") == 0;
+  // a binary scalar has 4 bytes at least, an ascii point "(x y z)" 7 characters
+  const FoamList list = readList(file.path, "vectorField", 3 * 4, 7);
+  file.scalarBytes = list.arch.find("scalar=32") != std::string::npos ? 4 : 8;
+  file.binary = list.binary;
+  file.header = list.header;
+  const std::string& s = list.text;
+  std::size_t i = list.begin;
+  const std::size_t n = list.count;
   file.xyz.resize(3 * n);
   if (file.binary)
   {
@@ -225,6 +256,53 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
     ++p;
   }
   return file;
+}
+
+std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, const std::string& name)
+{
+  const std::string path = existing(polyMeshDirectory, name);
+  if (path.empty())
+  {
+    fail(polyMeshDirectory + "/" + name, "there is no such file (nor " + name + ".gz)");
+  }
+  // a binary label has 4 bytes at least, an ascii one 2 characters with its separator
+  const FoamList list = readList(path, "labelList", 4, 2);
+  const std::size_t labelBytes = list.arch.find("label=64") != std::string::npos ? 8 : 4;
+  const std::string& s = list.text;
+  std::vector<std::int64_t> labels(list.count);
+  if (list.binary)
+  {
+    if (list.begin + labelBytes * list.count >= s.size() || s[list.begin + labelBytes * list.count] != ')')
+    {
+      fail(path, "the binary list of " + std::to_string(list.count) + " labels is truncated");
+    }
+    for (std::size_t k = 0; k < list.count; ++k)
+    {
+      if (labelBytes == 8)
+      {
+        std::memcpy(&labels[k], s.data() + list.begin + 8 * k, 8);
+      }
+      else
+      {
+        std::int32_t label;
+        std::memcpy(&label, s.data() + list.begin + 4 * k, 4);
+        labels[k] = label;
+      }
+    }
+    return labels;
+  }
+  const char* p = s.c_str() + list.begin;
+  for (std::size_t k = 0; k < list.count; ++k)
+  {
+    char* next = nullptr;
+    labels[k] = std::strtoll(p, &next, 10);
+    if (next == p)
+    {
+      fail(path, "label " + std::to_string(k) + " is not a number");
+    }
+    p = next;
+  }
+  return labels;
 }
 
 void writeFoamPoints(const std::string& directory, const FoamPointsFile& original, const std::vector<double>& xyz)

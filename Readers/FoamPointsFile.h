@@ -1,9 +1,10 @@
-// An OpenFOAM points file (constant/polyMesh/points): a FoamFile header and a vectorField of
+// OpenFOAM polyMesh list files. A points file (constant/polyMesh/points): a FoamFile header and a vectorField of
 // double (or, with arch "scalar=32", float) coordinates, in ascii or binary format, plain or
 // gzip-compressed (points.gz). Read so that the same format can be written back with new
 // coordinates.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ struct FoamPointsFile
 /// Reads polyMesh/points or polyMesh/points.gz of the polyMesh directory. Throws
 /// std::runtime_error with the file and the reason when there is none or it cannot be parsed.
 FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory);
+
+/// Reads the labelList file name (or name.gz) of a polyMesh directory, e.g. a processor's
+/// pointProcAddressing (for each of its points, the point of the whole mesh it is). Throws
+/// std::runtime_error with the file and the reason.
+std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, const std::string& name);
 
 /// Writes the points xyz (3 per point) into directory/points (or points.gz when the original
 /// was compressed) with the original's header and format. Ascii coordinates are written in

@@ -1,6 +1,7 @@
 #include "vtkOpenFOAMCaseWriter.h"
 
 #include "FoamPointsFile.h"
+#include "ProcessCollective.h"
 
 #include <vtkCharArray.h>
 #include <vtkCompositeDataIterator.h>
@@ -15,6 +16,8 @@
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -86,11 +89,12 @@ bool isTimeName(const std::string& name)
   return !name.empty() && *end == '\0';
 }
 
-// The source case's folders a new case needs: system, constant, the earliest time and 0.orig.
-std::vector<fs::path> caseFolders(const fs::path& source)
+// The folders a new case needs of a case folder (the case, or one of its processor folders): the
+// required ones (system and constant, or constant), the earliest time and 0.orig.
+std::vector<fs::path> caseFolders(const fs::path& source, const std::vector<std::string>& required)
 {
   std::vector<fs::path> folders;
-  for (const char* name : { "system", "constant" })
+  for (const std::string& name : required)
   {
     if (!fs::is_directory(source / name))
     {
@@ -125,6 +129,38 @@ std::vector<fs::path> caseFolders(const fs::path& source)
   return folders;
 }
 
+// The processor folders of a decomposed case (processor0, processor1, ...) in the order of their
+// numbers, as ParaView's OpenFOAM reader takes them; collated ones (processors4) are refused.
+std::vector<std::string> processorFolders(const fs::path& source)
+{
+  std::vector<std::pair<long, std::string>> numbered;
+  for (const fs::directory_entry& entry : fs::directory_iterator(source))
+  {
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_directory() || name.compare(0, 9, "processor") != 0)
+    {
+      continue;
+    }
+    char* end = nullptr;
+    const long number = std::strtol(name.c_str() + 9, &end, 10);
+    if (name.size() > 9 && std::isdigit(static_cast<unsigned char>(name[9])) && *end == '\0')
+    {
+      numbered.emplace_back(number, name);
+    }
+    else if (name.size() > 10 && name[9] == 's' && std::isdigit(static_cast<unsigned char>(name[10])))
+    {
+      throw std::runtime_error("the case is decomposed in the collated format (" + name + "), which is not supported");
+    }
+  }
+  std::sort(numbered.begin(), numbered.end());
+  std::vector<std::string> names;
+  for (const auto& folder : numbered)
+  {
+    names.push_back(folder.second);
+  }
+  return names;
+}
+
 // Copies folder into target, except the points file of constant/polyMesh.
 void copyFolder(const fs::path& folder, const fs::path& target, const fs::path& skipped)
 {
@@ -142,6 +178,182 @@ void copyFolder(const fs::path& folder, const fs::path& target, const fs::path& 
     }
   }
 }
+
+// Whether the input's point i, before the deformation (out - Displacement), is the double x
+// within float round-off: |fl(x) - x| <= eps_f / 2 |x| on reading and |fl(fl(x) + d) - (fl(x)
+// + d)| <= eps_f / 2 |fl(x) + d| on writing the moved point (a whole eps_f covers the double
+// round-off of the subtraction).
+bool samePoint(const double* x, const double moved[3], const double d[3])
+{
+  const double epsilon = std::numeric_limits<float>::epsilon();
+  for (int c = 0; c < 3; ++c)
+  {
+    if (!(std::abs(moved[c] - d[c] - x[c]) <= epsilon * (std::abs(x[c]) + std::abs(moved[c]))))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The internal mesh as read: its points and their Displacement.
+struct InputMesh
+{
+  vtkPointSet* mesh = nullptr;
+  vtkDataArray* displacement = nullptr;
+  vtkIdType size() const { return mesh ? mesh->GetNumberOfPoints() : 0; }
+  void at(vtkIdType i, double moved[3], double d[3]) const
+  {
+    mesh->GetPoint(i, moved);
+    displacement->GetTuple(i, d);
+  }
+};
+
+// A mesh file of the case (the reconstructed mesh, processor -1, or a processor's) and the
+// displacement of its points.
+struct MeshFile
+{
+  int processor = -1;
+  mlsdeform::FoamPointsFile points; // as in the source case
+  std::vector<double> displacement; // 3 per point
+  std::vector<double> moved() const
+  {
+    std::vector<double> xyz(points.xyz.size());
+    for (std::size_t k = 0; k < xyz.size(); ++k)
+    {
+      xyz[k] = points.xyz[k] + displacement[k];
+    }
+    return xyz;
+  }
+};
+
+// Takes the Displacement of the input's points offset, offset + 1, ... for the points of a mesh
+// file: false when the input's points there are not the file's.
+bool displaceBy(MeshFile& file, const InputMesh& input, vtkIdType offset)
+{
+  const std::size_t n = file.points.size();
+  if (offset < 0 || static_cast<std::size_t>(input.size() - offset) < n)
+  {
+    return false;
+  }
+  file.displacement.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double out[3];
+    input.at(offset + static_cast<vtkIdType>(i), out, &file.displacement[3 * i]);
+    if (!samePoint(&file.points.xyz[3 * i], out, &file.displacement[3 * i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// How the input holds the case's mesh on this process.
+enum class Reading : std::int64_t
+{
+  Nothing = 0,       // no points here
+  Reconstructed = 1, // constant/polyMesh (with cell centres after it for Decompose polyhedra)
+  Decomposed = 2     // the processor folders rank, rank + size, ..., each followed by its cell centres
+};
+
+// This process's part of the input matched to the case's mesh files: their moved points.
+// ParaView's OpenFOAM reader reads a reconstructed case on one process, and hands the processor
+// folders of a decomposed one out in turn (process r: folders r, r + size, ...), appending each
+// folder's points and, with Decompose polyhedra, its cell centres after them.
+Reading matchInput(const fs::path& source, const std::vector<std::string>& processors, const InputMesh& input,
+  const mlsdeform::Collective& group, std::vector<MeshFile>& read)
+{
+  if (input.size() == 0)
+  {
+    return Reading::Nothing;
+  }
+  const fs::path polyMesh = source / "constant" / "polyMesh";
+  std::string tried;
+  if (fs::is_directory(polyMesh))
+  {
+    MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMesh.string()), {} };
+    if (displaceBy(whole, input, 0))
+    {
+      read.push_back(std::move(whole));
+      return Reading::Reconstructed;
+    }
+    tried = whole.points.path + " (" + std::to_string(whole.points.size()) + " points)";
+  }
+  vtkIdType offset = 0;
+  for (std::size_t p = static_cast<std::size_t>(group.rank()); p < processors.size(); p += static_cast<std::size_t>(group.size()))
+  {
+    MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints((source / processors[p] / "constant" / "polyMesh").string()), {} };
+    // the cell centres of the folder before: the points up to the first that is this folder's
+    // first point (a cell centre lies inside its cell, never on a vertex)
+    const bool first = read.empty();
+    while (!first && offset < input.size() && part.points.size() > 0)
+    {
+      double out[3], d[3];
+      input.at(offset, out, d);
+      if (samePoint(part.points.xyz.data(), out, d))
+      {
+        break;
+      }
+      ++offset;
+    }
+    if (!displaceBy(part, input, offset))
+    {
+      tried += (tried.empty() ? "" : " nor ") + part.points.path + " (" + std::to_string(part.points.size()) + " points, from input point " +
+        std::to_string(offset) + ")";
+      throw std::runtime_error("the internal mesh's " + std::to_string(input.size()) + " points are not those of " + tried +
+        ": the input did not come from this case (or its points were reordered)");
+    }
+    offset += static_cast<vtkIdType>(part.points.size());
+    read.push_back(std::move(part));
+  }
+  if (read.empty())
+  {
+    throw std::runtime_error("the internal mesh's " + std::to_string(input.size()) + " points are not those of " +
+      (tried.empty() ? "any mesh of the case" : tried) + ": the input did not come from this case (or its points were reordered)");
+  }
+  return Reading::Decomposed;
+}
+
+// Moves the points of mesh file `to` as those of `from` move, through a processor's
+// pointProcAddressing (its point i is point addressing[i] of the whole mesh): from the whole
+// mesh to a processor's (toWhole false) or from a processor's to the whole mesh. The two files'
+// points must agree within float round-off (a processor folder decomposed from this mesh).
+void displaceThrough(const std::vector<std::int64_t>& addressing, const MeshFile& from, bool toWhole, MeshFile& to, std::vector<char>& reached)
+{
+  const std::size_t n = to.points.size();
+  to.displacement.resize(3 * n);
+  reached.resize(n);
+  const std::size_t processorSize = toWhole ? from.points.size() : n;
+  if (addressing.size() != processorSize)
+  {
+    throw std::runtime_error("the pointProcAddressing of " + (toWhole ? from : to).points.path + " has " + std::to_string(addressing.size()) +
+      " labels for " + std::to_string(processorSize) + " points");
+  }
+  for (std::size_t i = 0; i < addressing.size(); ++i)
+  {
+    const std::size_t a = static_cast<std::size_t>(addressing[i]);
+    const std::size_t target = toWhole ? a : i, source = toWhole ? i : a;
+    if (addressing[i] < 0 || a >= (toWhole ? n : from.points.size()))
+    {
+      throw std::runtime_error("the pointProcAddressing of " + (toWhole ? from : to).points.path + " refers to point " + std::to_string(addressing[i]) + " outside the mesh");
+    }
+    const double zero[3] = { 0, 0, 0 };
+    if (!samePoint(&to.points.xyz[3 * target], &from.points.xyz[3 * source], zero))
+    {
+      throw std::runtime_error((toWhole ? from : to).points.path + " does not hold the points of the whole mesh (point " + std::to_string(i) +
+        " is not point " + std::to_string(a) + "): the processor folders were not decomposed from this mesh");
+    }
+    std::copy_n(&from.displacement[3 * source], 3, &to.displacement[3 * target]);
+    reached[target] = 1;
+  }
+}
+
+// The pointProcAddressing of processor folder `processor` of the case.
+std::vector<std::int64_t> pointAddressing(const fs::path& source, const std::string& processor)
+{
+  return mlsdeform::readFoamLabels((source / processor / "constant" / "polyMesh").string(), "pointProcAddressing");
+}
 }
 
 int vtkOpenFOAMCaseWriter::FillInputPortInformation(int, vtkInformation* info)
@@ -150,109 +362,207 @@ int vtkOpenFOAMCaseWriter::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+// Under MPI (pvbatch, pvserver) every process calls WriteData with its piece: the processes
+// agree on each step (a failure on one stops all with its message), process 0 assembles the
+// case folder and renames it into place, each process writes the processor folders it read.
 void vtkOpenFOAMCaseWriter::WriteData()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
+  const mlsgeometry::ProcessCollective group;
+  const bool first = group.rank() == 0;
   fs::path partial;
   try
   {
-    if (this->FileName.empty())
-    {
-      throw std::runtime_error("no FileName: give the new case's .foam file, e.g. variant/case.foam");
-    }
-    vtkDataObject* input = this->GetInput();
-    vtkPointSet* mesh = internalMesh(input);
-    const fs::path source = fs::absolute(this->SourceCase.empty() ? casePath(input, mesh) : this->SourceCase).lexically_normal();
-    const fs::path foam = fs::absolute(this->FileName).lexically_normal();
-    const fs::path target = foam.parent_path();
-    if (fs::exists(target) && fs::exists(source) && fs::equivalent(target, source))
-    {
-      throw std::runtime_error("the target " + target.string() + " is the source case itself; write the variant to a new folder");
-    }
-    if (fs::exists(target) && !this->Overwrite)
-    {
-      throw std::runtime_error(target.string() + " exists; choose a new folder or set Overwrite");
-    }
-    const std::vector<fs::path> folders = caseFolders(source);
-    const fs::path polyMesh = source / "constant" / "polyMesh";
-    mlsdeform::FoamPointsFile points = mlsdeform::readFoamPoints(polyMesh.string());
+    // 1. the source case, the target and this process's part of the mesh
+    InputMesh input;
+    std::string localSource = this->SourceCase;
+    fs::path source, foam, target;
+    std::vector<std::string> processors;
+    std::vector<MeshFile> read;
+    Reading reading = Reading::Nothing;
+    mlsdeform::agree(group, [&] {
+      if (this->FileName.empty())
+      {
+        throw std::runtime_error("no FileName: give the new case's .foam file, e.g. variant/case.foam");
+      }
+      vtkDataObject* data = this->GetInput();
+      if (auto* failure = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("DeformationError")))
+      {
+        throw std::runtime_error("the deformation failed (" + failure->GetValue(0) + ")");
+      }
+      input.mesh = internalMesh(data);
+      input.displacement = input.mesh->GetPointData()->GetArray("Displacement");
+      if (input.size() > 0 && (!input.displacement || input.displacement->GetNumberOfComponents() != 3))
+      {
+        throw std::runtime_error("the internal mesh has no point array Displacement: write MLS Deform's output");
+      }
+      if (localSource.empty() && input.size() > 0)
+      {
+        localSource = casePath(data, input.mesh);
+      }
+    });
+    // a process that read nothing may not have CasePath: the first process's that has one
+    const std::string sourceName = group.firstError(localSource);
+    mlsdeform::agree(group, [&] {
+      if (sourceName.empty())
+      {
+        throw std::runtime_error("the internal mesh is empty");
+      }
+      source = fs::absolute(sourceName).lexically_normal();
+      foam = fs::absolute(this->FileName).lexically_normal();
+      target = foam.parent_path();
+      if (fs::exists(target) && fs::exists(source) && fs::equivalent(target, source))
+      {
+        throw std::runtime_error("the target " + target.string() + " is the source case itself; write the variant to a new folder");
+      }
+      if (first && fs::exists(target) && !this->Overwrite)
+      {
+        throw std::runtime_error(target.string() + " exists; choose a new folder or set Overwrite");
+      }
+      if (!fs::is_directory(source))
+      {
+        throw std::runtime_error("the source case " + source.string() + " does not exist");
+      }
+      processors = processorFolders(source);
+      reading = matchInput(source, processors, input, group, read);
+    });
     this->UpdateProgress(0.2);
 
-    // The input must be this case's mesh: as many points at least (Decompose polyhedra appends
-    // cell centres), each point of the input before deformation, out - Displacement, within
-    // float round-off of the source's double: |fl(x) - x| <= eps_f / 2 |x| on reading and
-    // |fl(fl(x) + d) - (fl(x) + d)| <= eps_f / 2 |fl(x) + d| on writing the moved point (a
-    // whole eps_f covers the double round-off of the subtraction).
-    const std::size_t n = points.size();
-    vtkDataArray* displacement = mesh ? mesh->GetPointData()->GetArray("Displacement") : nullptr;
-    if (auto* failure = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("DeformationError")))
+    // 2. the same reading on all processes: a reconstructed mesh on one, or every processor
+    // folder on the process the reader gave it to
+    const std::vector<std::int64_t> readings = group.gather(std::vector<std::int64_t>{ static_cast<std::int64_t>(reading) });
+    const auto count = [&](Reading r) { return std::count(readings.begin(), readings.end(), static_cast<std::int64_t>(r)); };
+    if (count(Reading::Reconstructed) > 1 || (count(Reading::Reconstructed) == 1 && count(Reading::Decomposed) > 0))
     {
-      throw std::runtime_error("the deformation failed (" + failure->GetValue(0) + ")");
+      throw std::runtime_error("the processes hold the case's mesh in different ways (read it reconstructed on one process, or "
+                               "decomposed with Case Type 'Decomposed Case')");
     }
-    if (!mesh || !displacement || displacement->GetNumberOfComponents() != 3)
+    const bool decomposed = count(Reading::Decomposed) > 0;
+    for (int r = 0; decomposed && r < group.size() && static_cast<std::size_t>(r) < processors.size(); ++r)
     {
-      throw std::runtime_error("the internal mesh has no point array Displacement: write MLS Deform's output");
-    }
-    if (static_cast<std::size_t>(mesh->GetNumberOfPoints()) < n)
-    {
-      throw std::runtime_error("the internal mesh has " + std::to_string(mesh->GetNumberOfPoints()) + " points but " +
-        points.path + " has " + std::to_string(n) + ": the input did not come from this case");
-    }
-    const double epsilon = std::numeric_limits<float>::epsilon();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      double moved[3], d[3];
-      mesh->GetPoint(static_cast<vtkIdType>(i), moved);
-      displacement->GetTuple(static_cast<vtkIdType>(i), d);
-      for (int c = 0; c < 3; ++c)
+      if (readings[static_cast<std::size_t>(r)] != static_cast<std::int64_t>(Reading::Decomposed))
       {
-        const double x = points.xyz[3 * i + c];
-        if (!(std::abs(moved[c] - d[c] - x) <= epsilon * (std::abs(x) + std::abs(moved[c]))))
-        {
-          throw std::runtime_error("point " + std::to_string(i) + " of the input is not point " + std::to_string(i) + " of " +
-            points.path + ": the input did not come from this case (or its points were reordered)");
-        }
-        points.xyz[3 * i + c] = x + d[c];
+        throw std::runtime_error("process " + std::to_string(r) + " holds no points of " + processors[static_cast<std::size_t>(r)] +
+          ": the input is not the whole decomposed case");
       }
     }
-    points.xyz.resize(3 * n);
-    this->UpdateProgress(0.4);
+    this->UpdateProgress(0.3);
 
-    // Assemble the case next to the target, then rename it into place.
-    const fs::path parent = target.parent_path();
-    if (!fs::is_directory(parent))
+    // 3. the case folder, assembled beside the target by the first process
+    std::string partialName;
+    mlsdeform::agree(group, [&] {
+      if (!first)
+      {
+        return;
+      }
+      const fs::path parent = target.parent_path();
+      if (!fs::is_directory(parent))
+      {
+        throw std::runtime_error("the folder " + parent.string() + " does not exist");
+      }
+      partial = parent / (target.filename().string() + ".writing-" + std::to_string(::getpid()));
+      fs::remove_all(partial);
+      if (!fs::create_directory(partial))
+      {
+        throw std::runtime_error("cannot create " + partial.string());
+      }
+      partialName = partial.string();
+      const fs::path polyMesh = source / "constant" / "polyMesh";
+      for (const fs::path& folder : caseFolders(source, { "system", "constant" }))
+      {
+        copyFolder(folder, partial / folder.filename(), polyMesh);
+      }
+      for (const std::string& processor : processors)
+      {
+        fs::create_directory(partial / processor);
+        for (const fs::path& folder : caseFolders(source / processor, { "constant" }))
+        {
+          copyFolder(folder, partial / processor / folder.filename(), source / processor / "constant" / "polyMesh");
+        }
+      }
+      if (!std::ofstream(partial / foam.filename()))
+      {
+        throw std::runtime_error("cannot create " + (partial / foam.filename()).string());
+      }
+    });
+    const fs::path assembled = group.firstError(partialName);
+    this->UpdateProgress(0.5);
+
+    // 4. the mesh files: each process writes those it read, and moves the others through the
+    // processors' pointProcAddressing: a reconstructed reading moves every processor folder, a
+    // decomposed one the reconstructed mesh (the processes' displacements gathered on the first)
+    const auto polyMeshOf = [&](const fs::path& root, int processor) {
+      return (processor < 0 ? root : root / processors[static_cast<std::size_t>(processor)]) / "constant" / "polyMesh";
+    };
+    const auto writeMoved = [&](const MeshFile& file) {
+      mlsdeform::writeFoamPoints(polyMeshOf(assembled, file.processor).string(), file.points, file.moved());
+    };
+    const bool wholeMesh = fs::is_directory(polyMeshOf(source, -1));
+    std::vector<double> displacements; // of this process's processor folders, in their order
+    mlsdeform::agree(group, [&] {
+      for (const MeshFile& file : read)
+      {
+        writeMoved(file);
+        displacements.insert(displacements.end(), file.displacement.begin(), file.displacement.end());
+      }
+      for (std::size_t p = 0; reading == Reading::Reconstructed && p < processors.size(); ++p)
+      {
+        MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints(polyMeshOf(source, static_cast<int>(p)).string()), {} };
+        std::vector<char> reached;
+        displaceThrough(pointAddressing(source, processors[p]), read.front(), false, part, reached);
+        writeMoved(part);
+      }
+    });
+    if (decomposed && wholeMesh)
     {
-      throw std::runtime_error("the folder " + parent.string() + " does not exist");
-    }
-    partial = parent / (target.filename().string() + ".writing-" + std::to_string(::getpid()));
-    fs::remove_all(partial);
-    if (!fs::create_directory(partial))
-    {
-      throw std::runtime_error("cannot create " + partial.string());
-    }
-    for (const fs::path& folder : folders)
-    {
-      copyFolder(folder, partial / folder.filename(), polyMesh);
-    }
-    this->UpdateProgress(0.6);
-    mlsdeform::writeFoamPoints((partial / "constant" / "polyMesh").string(), points, points.xyz);
-    if (!std::ofstream(partial / foam.filename()))
-    {
-      throw std::runtime_error("cannot create " + (partial / foam.filename()).string());
+      const std::vector<double> all = group.gatherOnFirst(displacements);
+      mlsdeform::agree(group, [&] {
+        if (!first)
+        {
+          return;
+        }
+        MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMeshOf(source, -1).string()), {} };
+        std::vector<char> reached;
+        std::size_t at = 0;
+        // the processes' folders in the order gathered: process r's are r, r + size, ...
+        for (int r = 0; r < group.size(); ++r)
+        {
+          for (std::size_t p = static_cast<std::size_t>(r); p < processors.size(); p += static_cast<std::size_t>(group.size()))
+          {
+            MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints(polyMeshOf(source, static_cast<int>(p)).string()), {} };
+            part.displacement.assign(all.begin() + static_cast<long>(at), all.begin() + static_cast<long>(at + part.points.xyz.size()));
+            at += part.points.xyz.size();
+            displaceThrough(pointAddressing(source, processors[p]), part, true, whole, reached);
+          }
+        }
+        if (std::count(reached.begin(), reached.end(), 0) > 0)
+        {
+          throw std::runtime_error("the processor folders do not hold every point of " + whole.points.path);
+        }
+        writeMoved(whole);
+      });
     }
     this->UpdateProgress(0.9);
-    if (fs::exists(target))
-    {
-      const fs::path replaced = parent / (target.filename().string() + ".replaced-" + std::to_string(::getpid()));
-      fs::rename(target, replaced);
-      fs::rename(partial, target);
-      fs::remove_all(replaced);
-    }
-    else
-    {
-      fs::rename(partial, target);
-    }
-    partial.clear();
+
+    // 5. the assembled case renamed into place
+    mlsdeform::agree(group, [&] {
+      if (!first)
+      {
+        return;
+      }
+      if (fs::exists(target))
+      {
+        const fs::path replaced = target.parent_path() / (target.filename().string() + ".replaced-" + std::to_string(::getpid()));
+        fs::rename(target, replaced);
+        fs::rename(partial, target);
+        fs::remove_all(replaced);
+      }
+      else
+      {
+        fs::rename(partial, target);
+      }
+      partial.clear();
+    });
     this->UpdateProgress(1.0);
   }
   catch (const std::exception& e)

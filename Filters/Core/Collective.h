@@ -28,6 +28,10 @@ public:
   virtual std::vector<double> gather(const std::vector<double>& local) const { return local; }
   virtual std::vector<std::int64_t> gather(const std::vector<std::int64_t>& local) const { return local; }
 
+  /// Every process's values concatenated in process order on the first process; the others get
+  /// nothing (data that only the first process needs, e.g. to write one file of the whole).
+  virtual std::vector<double> gatherOnFirst(const std::vector<double>& local) const { return local; }
+
   /// Element-wise maximum over the processes, in place.
   virtual void maximum(std::vector<double>& values) const { (void)values; }
 

@@ -65,8 +65,10 @@ void writeText(const fs::path& path, const std::string& text)
   std::ofstream(path, std::ios::binary) << text;
 }
 
-// A case: system, constant/polyMesh (points in the format, faces), 0/U, a result time 5/U and
-// processor0, which a variant must not get.
+std::string pointsText(Format format, const std::vector<double>& xyz);
+
+// A case: system, constant/polyMesh (points in the format, faces), 0/U and a result time 5/U,
+// which a variant must not get.
 fs::path makeCase(const std::string& name, Format format, const std::vector<double>& xyz)
 {
   const fs::path dir = Root / name;
@@ -76,7 +78,25 @@ fs::path makeCase(const std::string& name, Format format, const std::vector<doub
   writeText(dir / "constant" / "transportProperties", "nu 1e-5;\n");
   writeText(dir / "0" / "U", "initial\n");
   writeText(dir / "5" / "U", "result\n");
-  writeText(dir / "processor0" / "constant" / "polyMesh" / "points", "pieces\n");
+  const std::string text = pointsText(format, xyz);
+  const fs::path points = dir / "constant" / "polyMesh" / "points";
+  if (format == Format::Compressed)
+  {
+    fs::create_directories(points.parent_path());
+    gzFile file = gzopen((points.string() + ".gz").c_str(), "wb");
+    gzwrite(file, text.data(), static_cast<unsigned>(text.size()));
+    gzclose(file);
+  }
+  else
+  {
+    writeText(points, text);
+  }
+  return dir;
+}
+
+// A points file's text in the format.
+std::string pointsText(Format format, const std::vector<double>& xyz)
+{
   std::string text = header(format) + std::to_string(xyz.size() / 3) + "\n(";
   if (format == Format::Binary || format == Format::Single)
   {
@@ -97,18 +117,30 @@ fs::path makeCase(const std::string& name, Format format, const std::vector<doub
     text += ascii.str();
   }
   text += ")\n\n// ***** //\n";
-  const fs::path points = dir / "constant" / "polyMesh" / "points";
-  if (format == Format::Compressed)
+  return text;
+}
+
+// The case decomposed as decomposePar does (ascii): processor folders with their points (the
+// whole mesh's points addressing[p][i]), pointProcAddressing and 0/U.
+void decompose(const fs::path& dir, const std::vector<double>& xyz, const std::vector<std::vector<int>>& addressing)
+{
+  for (std::size_t p = 0; p < addressing.size(); ++p)
   {
-    gzFile file = gzopen((points.string() + ".gz").c_str(), "wb");
-    gzwrite(file, text.data(), static_cast<unsigned>(text.size()));
-    gzclose(file);
+    const fs::path processor = dir / ("processor" + std::to_string(p));
+    std::vector<double> part;
+    std::string labels = "FoamFile\n{\n    format      ascii;\n    class       labelList;\n    object      pointProcAddressing;\n}\n\n" +
+      std::to_string(addressing[p].size()) + "\n(\n";
+    for (int a : addressing[p])
+    {
+      part.insert(part.end(), { xyz[3 * a], xyz[3 * a + 1], xyz[3 * a + 2] });
+      labels += std::to_string(a) + "\n";
+    }
+    writeText(processor / "constant" / "polyMesh" / "points", pointsText(Format::Ascii, part));
+    writeText(processor / "constant" / "polyMesh" / "pointProcAddressing", labels + ")\n");
+    writeText(processor / "constant" / "polyMesh" / "faces", "faces\n");
+    writeText(processor / "0" / "U", "initial\n");
+    writeText(processor / "5" / "U", "result\n");
   }
-  else
-  {
-    writeText(points, text);
-  }
-  return dir;
 }
 
 // The source's double coordinates as its file holds them (ascii: 12 digits).
@@ -195,12 +227,12 @@ std::string write(vtkDataObject* input, const fs::path& target, bool overwrite =
   return errors->Messages;
 }
 
-// Nothing partial next to the target.
+// Nothing partial of the target's next to it (the tests run concurrently in one folder).
 bool noLeftovers(const fs::path& target)
 {
+  const std::string name = target.filename().string();
   for (const fs::directory_entry& e : fs::directory_iterator(target.parent_path()))
-    if (e.path().filename().string().find(".writing-") != std::string::npos ||
-      e.path().filename().string().find(".replaced-") != std::string::npos)
+    if (e.path().filename().string().rfind(name + ".writing-", 0) == 0 || e.path().filename().string().rfind(name + ".replaced-", 0) == 0)
       return false;
   return true;
 }
@@ -290,12 +322,93 @@ TEST(EveryPointsFormatRoundTrips)
     // a complete case without results
     CHECK(fs::exists(target / "case.foam") && fs::exists(target / "system" / "controlDict") && fs::exists(polyMesh / "faces") &&
       fs::exists(target / "constant" / "transportProperties") && fs::exists(target / "0" / "U"));
-    CHECK(!fs::exists(target / "5") && !fs::exists(target / "processor0"));
+    CHECK(!fs::exists(target / "5"));
     CHECK(noLeftovers(target));
     // the source is untouched
     CHECK(content(source / "constant" / "polyMesh" / (format == Format::Compressed ? "points.gz" : "points")).find(")\n\n// ***** //") !=
       std::string::npos);
   }
+}
+
+// The decomposed reading (ParaView's OpenFOAM reader, Case Type Decomposed, on one process): each
+// processor folder's points moved by the whole mesh's displacement at their point, then `centres`
+// cell centres, the folders one after the other.
+vtkSmartPointer<vtkMultiBlockDataSet> decomposedInput(const fs::path& casePath, const std::vector<double>& stored, const std::vector<double>& d,
+  const std::vector<std::vector<int>>& addressing, int centres)
+{
+  std::vector<double> pieces, displacement;
+  for (const std::vector<int>& part : addressing)
+  {
+    for (int a : part)
+    {
+      pieces.insert(pieces.end(), { stored[3 * a], stored[3 * a + 1], stored[3 * a + 2] });
+      displacement.insert(displacement.end(), { d[3 * a], d[3 * a + 1], d[3 * a + 2] });
+    }
+    for (int c = 0; c < centres; ++c)
+    {
+      pieces.insert(pieces.end(), { 0.5 + c, 0.25, 0.125 }); // never a vertex
+      displacement.insert(displacement.end(), { 0.0, 0.0, 0.0 });
+    }
+  }
+  return deformedInput(casePath, pieces, displacement);
+}
+
+// The whole mesh's points moved by d, read back: exact?
+bool movedExactly(const std::vector<double>& written, const std::vector<double>& stored, const std::vector<double>& d, const std::vector<int>& points)
+{
+  bool exact = written.size() == 3 * points.size();
+  for (std::size_t i = 0; exact && i < points.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      exact = exact && written[3 * i + c] == stored[3 * points[i] + c] + d[3 * points[i] + c];
+  return exact;
+}
+
+// Issue 14: a decomposed case gets every mesh moved, its processor folders and its reconstructed
+// mesh, however the input was read.
+TEST(DecomposedCaseMovesEveryMesh)
+{
+  const int n = 150;
+  const std::vector<double> xyz = sourcePoints(n), d = smallDisplacement(3 * n);
+  const std::vector<double> stored = asStored(xyz, Format::Ascii);
+  // processor0: points 0 .. 89; processor1: points 149 down to 60 (60 .. 89 shared)
+  std::vector<std::vector<int>> addressing(2);
+  for (int i = 0; i < 90; ++i)
+    addressing[0].push_back(i);
+  for (int i = n - 1; i >= 60; --i)
+    addressing[1].push_back(i);
+  std::vector<int> all(n);
+  for (int i = 0; i < n; ++i)
+    all[i] = i;
+  const fs::path source = makeCase("processors", Format::Ascii, xyz);
+  decompose(source, xyz, addressing);
+  const fs::path target = Root / "processors-variant";
+  auto check = [&](const char* reading) {
+    std::printf("%s reading\n", reading);
+    CHECK(movedExactly(writtenPoints(target / "constant" / "polyMesh", Format::Ascii), stored, d, all));
+    for (int p = 0; p < 2; ++p)
+    {
+      const fs::path processor = target / ("processor" + std::to_string(p));
+      CHECK(movedExactly(writtenPoints(processor / "constant" / "polyMesh", Format::Ascii), stored, d, addressing[p]));
+      CHECK(fs::exists(processor / "constant" / "polyMesh" / "pointProcAddressing") && fs::exists(processor / "constant" / "polyMesh" / "faces") &&
+        fs::exists(processor / "0" / "U") && !fs::exists(processor / "5"));
+    }
+    CHECK(noLeftovers(target));
+  };
+  // read reconstructed (Decompose polyhedra: 40 cell centres after the points)
+  fs::remove_all(target);
+  CHECK(write(deformedInput(source, stored, d, 40), target).empty());
+  check("reconstructed");
+  // read decomposed on one process: both folders, each with its cell centres after it
+  fs::remove_all(target);
+  CHECK(write(decomposedInput(source, stored, d, addressing, 7), target).empty());
+  check("decomposed");
+  // without a reconstructed mesh (decomposePar, then constant/polyMesh removed)
+  fs::remove_all(source / "constant" / "polyMesh");
+  fs::remove_all(target);
+  CHECK(write(decomposedInput(source, stored, d, addressing, 0), target).empty());
+  CHECK(!fs::exists(target / "constant" / "polyMesh"));
+  for (int p = 0; p < 2; ++p)
+    CHECK(movedExactly(writtenPoints(target / ("processor" + std::to_string(p)) / "constant" / "polyMesh", Format::Ascii), stored, d, addressing[p]));
 }
 
 TEST(DecomposedPolyhedraPointsAreIgnored)
@@ -364,6 +477,21 @@ TEST(BadInputWritesNothing)
   expect(deformedInput(source, stored, d), target, "exists");
   expect(deformedInput(source, stored, d), "/proc/mlsdeform-variant", "cannot create");
   expect(deformedInput(source, stored, d), Root / "missing" / "variant", "does not exist");
+  // a decomposed case whose processor folders hold another mesh, read reconstructed; a
+  // decomposed reading that misses a folder; collated processor folders
+  std::vector<double> elsewhere = stored;
+  for (double& x : elsewhere)
+    x += 0.01;
+  decompose(source, elsewhere, { { 0, 1, 2 }, { 3, 4, 5 } });
+  expect(deformedInput(source, stored, d), target, "not decomposed from this mesh", true);
+  decompose(source, stored, { { 0, 1, 2 }, { 3, 4, 5 } });
+  std::vector<double> firstFolder(stored.begin(), stored.begin() + 9);
+  expect(deformedInput(source, firstFolder, d), target, "did not come from this case", true);
+  fs::remove_all(source / "processor0");
+  fs::remove_all(source / "processor1");
+  fs::create_directories(source / "processors2");
+  expect(deformedInput(source, stored, d), target, "collated", true);
+  fs::remove_all(source / "processors2");
   // with Overwrite the existing target is replaced
   CHECK(write(deformedInput(source, stored, d), target, true).empty());
   CHECK(!fs::exists(target / "marker") && fs::exists(target / "constant" / "polyMesh" / "points") && noLeftovers(target));
