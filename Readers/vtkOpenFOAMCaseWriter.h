@@ -6,12 +6,18 @@
  * an "internalMesh" block, or that block alone), with the reader's field data CasePath naming
  * the source case. FileName is the new case's .foam file: its folder becomes the new case, with
  * the source's system/ and constant/ and its initial-condition folder (the earliest time, and
- * 0.orig if there is one) copied; later time folders, processor* and postProcessing are left
- * out. constant/polyMesh/points is replaced by the source's own double points plus the
+ * 0.orig if there is one) copied, and of each processor* folder its constant/ and earliest time;
+ * later time folders and postProcessing are left out. constant/polyMesh/points is replaced by the source's own double points plus the
  * internal mesh's point array Displacement, in the source file's format (ascii or binary,
  * compressed or not). The reader's float32 points are never written: they only check that the
  * input came from this case (each point within float round-off of the source's). Points the
  * reader appends for *Decompose polyhedra* (cell centres, after the polyMesh points) are ignored.
+ *
+ * Every mesh of a decomposed case is moved: the input is matched to the reconstructed mesh, or
+ * (Case Type Decomposed) to the processor folders the reader gives each MPI rank (rank r:
+ * processor r, r + N, ..., one after the other); the meshes not read are moved through the
+ * processors' pointProcAddressing. Under MPI every rank writes the folders it read and rank 0
+ * assembles the case; the ranks agree on every step, so an error on one stops all.
  *
  * Nothing partial is written: the case is assembled in a sibling folder and renamed into place.
  * Errors (no CasePath, a point count or positions that do not match the case, an existing target

@@ -171,6 +171,12 @@ def compare():
         expected = source + np.array([by_position.get(tuple(k), np.full(3, np.nan)) for k in keys])
         check(written.shape == source.shape and np.array_equal(written, expected),
               '%s/polyMesh/points: the source\'s points plus the displacement (%d points)' % (folder, len(written)))
+    # saved again without Overwrite: rank 0 finds the target, every rank stops (none waits for
+    # the others), and the variant is as it was
+    stamps = [os.stat(os.path.join(variant, folder, 'polyMesh', 'points')).st_mtime_ns for folder in folders]
+    pvs.SaveData(os.path.join(variant, 'case.foam'), proxy=deform, Overwrite=0)
+    check(stamps == [os.stat(os.path.join(variant, folder, 'polyMesh', 'points')).st_mtime_ns for folder in folders] and
+          not [f for f in os.listdir(work) if '.writing-' in f], 'an existing target stops every rank and writes nothing')
 
 
 if mode == 'reference':
