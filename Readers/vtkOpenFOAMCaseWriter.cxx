@@ -209,6 +209,12 @@ struct InputMesh
   }
 };
 
+// Whether a polyMesh folder holds a mesh (a decomposed case may keep an empty constant/polyMesh).
+bool hasPoints(const fs::path& polyMesh)
+{
+  return fs::exists(polyMesh / "points") || fs::exists(polyMesh / "points.gz");
+}
+
 // A mesh file of the case (the reconstructed mesh, processor -1, or a processor's) and the
 // displacement of its points.
 struct MeshFile
@@ -270,7 +276,7 @@ Reading matchInput(const fs::path& source, const std::vector<std::string>& proce
   }
   const fs::path polyMesh = source / "constant" / "polyMesh";
   std::string tried;
-  if (fs::is_directory(polyMesh))
+  if (hasPoints(polyMesh))
   {
     MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMesh.string()), {} };
     if (displaceBy(whole, input, 0))
@@ -497,7 +503,7 @@ void vtkOpenFOAMCaseWriter::WriteData()
     const auto writeMoved = [&](const MeshFile& file) {
       mlsdeform::writeFoamPoints(polyMeshOf(assembled, file.processor).string(), file.points, file.moved());
     };
-    const bool wholeMesh = fs::is_directory(polyMeshOf(source, -1));
+    const bool wholeMesh = hasPoints(polyMeshOf(source, -1));
     std::vector<double> displacements; // of this process's processor folders, in their order
     mlsdeform::agree(group, [&] {
       for (const MeshFile& file : read)
