@@ -263,37 +263,24 @@ enum class Reading : std::int64_t
   Decomposed = 2     // the processor folders rank, rank + size, ..., each followed by its cell centres
 };
 
-// This process's part of the input matched to the case's mesh files: their moved points.
 // ParaView's OpenFOAM reader reads a reconstructed case on one process, and hands the processor
 // folders of a decomposed one out in turn (process r: folders r, r + size, ...), appending each
 // folder's points and, with Decompose polyhedra, its cell centres after them.
-Reading matchInput(const fs::path& source, const std::vector<std::string>& processors, const InputMesh& input,
-  const mlsdeform::Collective& group, std::vector<MeshFile>& read)
+
+// The processor folders the reader gave this process (rank, rank + size, ...), matched one after
+// the other, each followed by its cell centres: false, with what was tried, when they are not
+// the input's points.
+bool matchProcessors(const fs::path& source, const std::vector<std::string>& processors, const InputMesh& input,
+  const mlsdeform::Collective& group, std::vector<MeshFile>& read, std::string& tried)
 {
-  if (input.size() == 0)
-  {
-    return Reading::Nothing;
-  }
-  const fs::path polyMesh = source / "constant" / "polyMesh";
-  std::string tried;
-  if (hasPoints(polyMesh))
-  {
-    MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMesh.string()), {} };
-    if (displaceBy(whole, input, 0))
-    {
-      read.push_back(std::move(whole));
-      return Reading::Reconstructed;
-    }
-    tried = whole.points.path + " (" + std::to_string(whole.points.size()) + " points)";
-  }
+  std::vector<MeshFile> parts;
   vtkIdType offset = 0;
   for (std::size_t p = static_cast<std::size_t>(group.rank()); p < processors.size(); p += static_cast<std::size_t>(group.size()))
   {
     MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints((source / processors[p] / "constant" / "polyMesh").string()), {} };
     // the cell centres of the folder before: the points up to the first that is this folder's
     // first point (a cell centre lies inside its cell, never on a vertex)
-    const bool first = read.empty();
-    while (!first && offset < input.size() && part.points.size() > 0)
+    while (!parts.empty() && offset < input.size() && part.points.size() > 0)
     {
       double out[3], d[3];
       input.at(offset, out, d);
@@ -305,20 +292,44 @@ Reading matchInput(const fs::path& source, const std::vector<std::string>& proce
     }
     if (!displaceBy(part, input, offset))
     {
-      tried += (tried.empty() ? "" : " nor ") + part.points.path + " (" + std::to_string(part.points.size()) + " points, from input point " +
-        std::to_string(offset) + ")";
-      throw std::runtime_error("the internal mesh's " + std::to_string(input.size()) + " points are not those of " + tried +
-        ": the input did not come from this case (or its points were reordered)");
+      tried = part.points.path + " (" + std::to_string(part.points.size()) + " points, from input point " + std::to_string(offset) + ")";
+      return false;
     }
     offset += static_cast<vtkIdType>(part.points.size());
-    read.push_back(std::move(part));
+    parts.push_back(std::move(part));
   }
-  if (read.empty())
+  read = std::move(parts);
+  return !read.empty();
+}
+
+// This process's part of the input matched to the case's mesh files: their displacements.
+// The processor folders are tried first, so that a process of a decomposed reading reads only
+// its own folders, not the whole mesh.
+Reading matchInput(const fs::path& source, const std::vector<std::string>& processors, const InputMesh& input,
+  const mlsdeform::Collective& group, std::vector<MeshFile>& read)
+{
+  if (input.size() == 0)
   {
-    throw std::runtime_error("the internal mesh's " + std::to_string(input.size()) + " points are not those of " +
-      (tried.empty() ? "any mesh of the case" : tried) + ": the input did not come from this case (or its points were reordered)");
+    return Reading::Nothing;
   }
-  return Reading::Decomposed;
+  std::string tried;
+  if (matchProcessors(source, processors, input, group, read, tried))
+  {
+    return Reading::Decomposed;
+  }
+  const fs::path polyMesh = source / "constant" / "polyMesh";
+  if (hasPoints(polyMesh))
+  {
+    MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMesh.string()), {} };
+    if (displaceBy(whole, input, 0))
+    {
+      read.push_back(std::move(whole));
+      return Reading::Reconstructed;
+    }
+    tried += (tried.empty() ? "" : " nor ") + whole.points.path + " (" + std::to_string(whole.points.size()) + " points)";
+  }
+  throw std::runtime_error("the internal mesh's " + std::to_string(input.size()) + " points are not those of " +
+    (tried.empty() ? "any mesh of the case" : tried) + ": the input did not come from this case (or its points were reordered)");
 }
 
 // Moves the points of mesh file `to` as those of `from` move, through a processor's
