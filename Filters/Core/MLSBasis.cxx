@@ -14,27 +14,14 @@ namespace
 using Vec4 = Eigen::Vector4d;
 using Mat4 = Eigen::Matrix4d;
 
-// a if take, else b, by a bit mask rather than a branch.
-double select(bool take, double a, double b)
-{
-  std::uint64_t x, y;
-  std::memcpy(&x, &a, sizeof x);
-  std::memcpy(&y, &b, sizeof y);
-  const std::uint64_t mask = ~static_cast<std::uint64_t>(0) * take;
-  const std::uint64_t chosen = (x & mask) | (y & ~mask);
-  double out;
-  std::memcpy(&out, &chosen, sizeof out);
-  return out;
-}
-
-// a[0] + a[1] y + ... + a[8] y^8 by Estrin's scheme: a third of Horner's chain of dependent
+// a[0] + a[1] y + ... + a[10] y^10 by Estrin's scheme: a third of Horner's chain of dependent
 // operations, which bounded the weight loops.
-double degree8(const double (&a)[9], double y)
+double degree10(const double (&a)[11], double y)
 {
-  const double y2 = y * y, y4 = y2 * y2;
+  const double y2 = y * y, y4 = y2 * y2, y8 = y4 * y4;
   const double low = (a[0] + a[1] * y) + (a[2] + a[3] * y) * y2;
   const double high = (a[4] + a[5] * y) + (a[6] + a[7] * y) * y2;
-  return low + (high + a[8] * y4) * y4;
+  return low + high * y4 + ((a[8] + a[9] * y) + a[10] * y2) * y8;
 }
 
 // Singular values below this fraction of the largest are treated as zero in M^+.
@@ -66,49 +53,27 @@ Mat4 pseudoInverse(double W, const Eigen::Matrix3d& S)
 
 namespace
 {
-// Taylor coefficients in t^2 of sin t / t and of cos t (indexed by "is the cosine").
-constexpr double Taylor[2][9] = { { 1, -1.0 / 6, 1.0 / 120, -1.0 / 5040, 1.0 / 362880, -1.0 / 39916800, 1.0 / 6227020800,
-                                    -1.0 / 1307674368000, 1.0 / 355687428096000 },
-  { 1, -1.0 / 2, 1.0 / 24, -1.0 / 720, 1.0 / 40320, -1.0 / 3628800, 1.0 / 479001600, -1.0 / 87178291200,
-    1.0 / 20922789888000 } };
+// Taylor coefficients in u of cos(pi/2 sqrt(u)) and of sin(pi/2 sqrt(u)) / (pi/2 sqrt(u)),
+// (-pi^2/4)^k / (2k)! and (-pi^2/4)^k / (2k + 1)!, k = 0 .. 10.
+constexpr double Q = -M_PI * M_PI / 4;
+constexpr double HalfCosine[11] = { 1, Q / 2, Q * Q / 24, Q * Q * Q / 720, Q * Q * Q * Q / 40320, Q * Q * Q * Q * Q / 3628800,
+  Q * Q * Q * Q * Q * Q / 479001600, Q * Q * Q * Q * Q * Q * Q / 87178291200.0, Q * Q * Q * Q * Q * Q * Q * Q / 20922789888000.0,
+  Q * Q * Q * Q * Q * Q * Q * Q * Q / 6402373705728000.0, Q * Q * Q * Q * Q * Q * Q * Q * Q * Q / 2432902008176640000.0 };
+constexpr double HalfSinc[11] = { 1, Q / 6, Q * Q / 120, Q * Q * Q / 5040, Q * Q * Q * Q / 362880, Q * Q * Q * Q * Q / 39916800,
+  Q * Q * Q * Q * Q * Q / 6227020800.0, Q * Q * Q * Q * Q * Q * Q / 1307674368000.0, Q * Q * Q * Q * Q * Q * Q * Q / 355687428096000.0,
+  Q * Q * Q * Q * Q * Q * Q * Q * Q / 121645100408832000.0, Q * Q * Q * Q * Q * Q * Q * Q * Q * Q / 51090942171709440000.0 };
 
-// s in [0, 1] reduced to t = pi u, u in [0, 1/4]: u = s, 1/2 - s, s - 1/2 or 1 - s, each
-// difference exact (Sterbenz), and cos(pi s), sin(pi s) = (C, S), (S, C), (-S, C), (-C, S) of t.
-// Chosen without branches: the cases come in no predictable order in the weight loops.
-struct ReducedArgument
+// Local to this file (so that it is inlined into the weight loops; the exported halfAngle cannot
+// be, as a shared library's symbol may be interposed).
+double halfCosine(double u)
 {
-  bool upper; // s > 1/2: cos(pi s) = -sin(pi (s - 1/2))
-  bool swap;  // the half-period argument above 1/4: C and S trade places
-  double t;
-};
-
-ReducedArgument reduce(double s)
-{
-  const bool upper = s > 0.5;
-  const double half = select(upper, s - 0.5, s); // in [0, 1/2]
-  const bool swap = half > 0.25;
-  return { upper, swap, M_PI * select(swap, 0.5 - half, half) };
+  return degree10(HalfCosine, u);
 }
 }
 
-void cosSinPi(double s, double& cosine, double& sine)
+HalfAngle halfAngle(double u)
 {
-  const ReducedArgument r = reduce(s);
-  const double t2 = r.t * r.t;
-  const double C = degree8(Taylor[1], t2), S = r.t * degree8(Taylor[0], t2);
-  const double c = select(r.swap, S, C), sn = select(r.swap, C, S); // of pi half
-  cosine = select(r.upper, -sn, c);
-  sine = select(r.upper, c, sn);
-}
-
-double cosPi(double s)
-{
-  // cos(pi s) = C, S, -S, -C: one of the two polynomials, the same bits as cosSinPi's cosine
-  const ReducedArgument r = reduce(s);
-  const double t2 = r.t * r.t;
-  const bool cosinePolynomial = r.swap == r.upper;
-  const double value = select(cosinePolynomial, 1.0, r.t) * degree8(Taylor[cosinePolynomial], t2);
-  return select(r.upper, -value, value);
+  return { halfCosine(u), degree10(HalfSinc, u) };
 }
 
 MLSBasis::MLSBasis(const PointList& centers, const std::vector<double>& supportRadii)
@@ -126,7 +91,8 @@ double MLSBasis::weight(double r, double sigma)
   {
     return 0.0;
   }
-  return 0.5 * cosPi(r / sigma) + 0.5;
+  const double c = halfCosine((r / sigma) * (r / sigma));
+  return c * c;
 }
 
 void MLSBasis::evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const
@@ -183,32 +149,28 @@ void MLSBasis::evaluateSupports(const Vec3& x, ShapeFunctionValues& out, bool wi
   {
     const int j = out.index[a];
     const double sigma = Radii[j];
-    const double r = std::sqrt(out.value[a]);
-    const double ratio = std::min(r / sigma, 1.0);
-    double cosine, sine = 0; // of t = pi r / sigma; the sine only for derivatives
-    if (withDerivatives)
-    {
-      cosSinPi(ratio, cosine, sine);
-    }
-    else
-    {
-      cosine = cosPi(ratio);
-    }
-    w[a] = 0.5 * cosine + 0.5;
+    const double r2 = out.value[a]; // replaced by w_j below
+    const double u = std::min(r2 / (sigma * sigma), 1.0); // (r / sigma)^2
+    // w = 1/2 cos t + 1/2 = c^2 with c = cos(t/2), t = pi r / sigma: a polynomial in u, no square
+    // root and no argument reduction
+    const double c = halfCosine(u);
+    w[a] = c * c;
     W += w[a];
     centroid += w[a] * Centers[j];
     scale = std::max(scale, sigma);
     if (withDerivatives)
     {
-      // w'(r) = -pi/(2 sigma) sin(t), w''(r) = -pi^2/(2 sigma^2) cos(t); w'(r)/r -> w''(0) at r = 0
+      // w'(r) = -pi/(2 sigma) sin t = -pi^2/(2 sigma^2) c sinc(t/2) r, w''(r) = -pi^2/(2 sigma^2) cos t
+      // with sin t = 2 sin(t/2) c, cos t = 1 - 2 sin^2(t/2); so w'(r)/r needs no division by r
+      const double sinc = degree10(HalfSinc, u);
       const double d2 = -M_PI * M_PI / (2 * sigma * sigma);
-      const double dr = r > 1e-12 * sigma ? -M_PI / (2 * sigma) * sine / r : d2;
-      const double ddr = d2 * cosine;
-      const Vec3 u = x - Centers[j];
-      dw[a] = dr * u;
+      const double dr = d2 * c * sinc; // w'(r) / r
+      const double ddr = d2 * (1 + Q * 2 * u * sinc * sinc);
+      const Vec3 u3 = x - Centers[j];
+      dw[a] = dr * u3;
       for (int d = 0; d < 3; ++d)
       {
-        const double c2 = r > 1e-12 * sigma ? u[d] * u[d] / (r * r) : 0.0;
+        const double c2 = r2 > 1e-24 * sigma * sigma ? u3[d] * u3[d] / r2 : 0.0;
         ddw[a][d] = ddr * c2 + dr * (1 - c2);
       }
     }

@@ -9,13 +9,17 @@
 
 namespace mlsdeform
 {
-/// cos(pi s) and sin(pi s) for 0 <= s <= 1: s reduced exactly to u in [0, 1/4] by the symmetries
-/// of cos and sin about 1/4, 1/2 and 1, then Taylor polynomials in pi u to degree 16 and 17
-/// (truncation below 1e-17). About twice as fast as libm's sincos, whose CPU-specific variants
-/// (with FMA or without) need not round alike; these are the same bits on any x86-64 CPU.
-void cosSinPi(double s, double& cosine, double& sine);
-/// cos(pi s) alone, the same bits as cosSinPi's cosine at half the cost.
-double cosPi(double s);
+/// The weight's half angle t/2 = pi/2 sqrt(u) for u = (r / sigma)^2 in [0, 1]: cos(t/2) and
+/// sin(t/2) / (t/2), Taylor polynomials in u to degree 10 (truncation below 2e-17, terms below
+/// 1.3 in size). Pure arithmetic: the same bits on any x86-64 CPU (libm's cos and sin have
+/// CPU-specific variants, with FMA or without, that need not round alike), no square root and no
+/// argument reduction in the weight loops.
+struct HalfAngle
+{
+  double cosine;
+  double sinc;
+};
+HalfAngle halfAngle(double u);
 
 class MLSBasis : public ShapeFunctions
 {
@@ -28,7 +32,7 @@ public:
   bool candidatesInBox(const Vec3& lower, const Vec3& upper, std::vector<int>& candidates) const override;
   void evaluateAmong(const Vec3& x, const std::vector<int>& candidates, ShapeFunctionValues& out, bool withDerivatives) const override;
 
-  /// w(r) = 1/2 cos(pi r / sigma) + 1/2 for r < sigma, else 0.
+  /// w(r) = 1/2 cos(pi r / sigma) + 1/2 = cos^2(pi r / (2 sigma)) for r < sigma, else 0.
   static double weight(double r, double sigma);
 
   std::size_t size() const override { return Centers.size(); }

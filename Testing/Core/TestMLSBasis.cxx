@@ -48,42 +48,37 @@ const double Epsilon = std::numeric_limits<double>::epsilon(); // 2.2e-16
 
 TEST(WeightFunction)
 {
-  // 1/2 cos(pi r / sigma) + 1/2: one cosine (correctly rounded to ~1 ulp) and two roundings on
-  // values <= 1, so a few ulps of 1; 1e-15 = 4.5 eps. Outside the support it is 0 by definition.
+  // cos^2(pi r / (2 sigma)): the cosine to a few ulps (HalfAngleIsLibmsCosineAndSine) and one
+  // rounding of its square, values <= 1, so 1e-15 = 4.5 eps. Outside the support it is 0 by definition.
   CHECK_NEAR(MLSBasis::weight(0.0, 2.0), 1.0, 1e-15);
   CHECK_NEAR(MLSBasis::weight(1.0, 2.0), 0.5, 1e-15);
   CHECK_NEAR(MLSBasis::weight(2.0, 2.0), 0.0, 1e-15);
   CHECK_NEAR(MLSBasis::weight(3.0, 2.0), 0.0, 0.0);
 }
 
-TEST(CosSinPiIsLibmsCosineAndSine)
+TEST(HalfAngleIsLibmsCosineAndSine)
 {
-  // cosSinPi against libm on pi s: both evaluate at pi s rounded to double (libm's argument
-  // M_PI * s is off by up to ~5e-16 for s <= 1, cos and sin change by at most as much) and round
-  // to within an ulp or two of values <= 1, so they agree to 1e-15 = 4.5 eps. Every branch of
-  // the reduction (quarters of [0, 1] and their ends) is covered.
-  double worst = 0;
-  for (int i = 0; i <= 100000; ++i)
+  // halfAngle against libm at x = pi/2 sqrt(u): libm's argument is x rounded (off by up to
+  // ~4e-16 for x <= pi/2; cos and sin/x change by at most as much), both results round to within
+  // an ulp or two of values <= 1, and the polynomials' terms (below 1.3) add a few roundings of
+  // that size, so they agree to 1e-15 = 4.5 eps. The weight 1/2 cos(2x) + 1/2 likewise.
+  double worst = 0, worstWeight = 0;
+  for (int i = 1; i <= 100000; ++i)
   {
-    for (double s : { i / 100000.0, std::nextafter(i / 100000.0, 0.0), std::nextafter(i / 100000.0, 1.0) })
+    for (double u : { i / 100000.0, std::nextafter(i / 100000.0, 0.0) })
     {
-      if (s < 0 || s > 1)
-      {
-        continue;
-      }
-      double cosine, sine;
-      cosSinPi(s, cosine, sine);
-      CHECK(cosPi(s) == cosine);
-      worst = std::max({ worst, std::abs(cosine - std::cos(M_PI * s)), std::abs(sine - std::sin(M_PI * s)) });
+      const double x = M_PI / 2 * std::sqrt(u);
+      const HalfAngle h = halfAngle(u);
+      worst = std::max({ worst, std::abs(h.cosine - std::cos(x)), std::abs(h.sinc - std::sin(x) / x) });
+      worstWeight = std::max(worstWeight, std::abs(MLSBasis::weight(std::sqrt(u), 1.0) - (0.5 * std::cos(M_PI * std::sqrt(u)) + 0.5)));
     }
   }
-  std::printf("largest difference to libm over [0, 1]: %.3g\n", worst);
+  std::printf("largest difference to libm over [0, 1]: %.3g, of the weight %.3g\n", worst, worstWeight);
   CHECK(worst <= 1e-15);
-  double cosine, sine;
-  cosSinPi(0.5, cosine, sine);
-  CHECK(cosine == 0 && sine == 1); // exact at the reduction's ends
-  cosSinPi(1.0, cosine, sine);
-  CHECK(cosine == -1 && sine == 0);
+  CHECK(worstWeight <= 1e-15);
+  const HalfAngle zero = halfAngle(0.0);
+  CHECK(zero.cosine == 1 && zero.sinc == 1); // exact at the centre: the weight is 1 there
+  CHECK_NEAR(halfAngle(1.0).cosine, 0.0, 1e-16); // cos(pi/2): the weight meets 0 at the support's edge
 }
 
 TEST(PartitionOfUnityAndLinearReproduction)
