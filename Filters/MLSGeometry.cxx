@@ -209,7 +209,8 @@ const std::vector<std::vector<vtkIdType>>& localFaces(int type)
 // Splits every cell of the given dimension into simplices (triangles or tetrahedra), whatever
 // the numbering of its points: simplices are taken as they are, polygons (quads, pixels) become
 // fans and 3D cells of fixed topology and polyhedra tetrahedra about a point (chosen by position
-// order); other cells (quadratic ones) are triangulated by VTK.
+// order); other cells (quadratic ones) are triangulated by VTK. Chunks of cells are split in
+// parallel and appended in cell order, so the list does not depend on the thread count.
 template <std::size_t N>
 void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
 {
@@ -219,88 +220,114 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
   {
     return;
   }
+  if (auto* polyData = vtkPolyData::SafeDownCast(set); polyData && polyData->NeedToBuildCells())
+  {
+    polyData->BuildCells(); // before the threads: GetCellPoints would build it on first use
+  }
   const PositionOrder before(pointSet->GetPoints());
-  CellsByType cells;
-  vtkNew<vtkIdList> ids;
-  vtkNew<vtkPoints> pts;
-  auto add = [&](const std::array<vtkIdType, N>& simplex) {
-    std::array<int, N> mapped;
-    for (std::size_t v = 0; v < N; ++v)
-    {
-      mapped[v] = offset + static_cast<int>(pointMap ? pointMap[simplex[v]] : simplex[v]);
-    }
-    out.push_back(mapped);
-  };
   auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
   vtkUnsignedCharArray* ghosts = set->GetCellGhostArray();
-  for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
+  const vtkIdType cellCount = set->GetNumberOfCells();
+  constexpr vtkIdType Chunk = 16384;
+  std::vector<std::vector<std::array<int, N>>> parts(static_cast<std::size_t>((cellCount + Chunk - 1) / Chunk));
+#pragma omp parallel
   {
-    if (ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL))
+    CellsByType cells;
+    vtkNew<vtkIdList> ids;
+    vtkNew<vtkPoints> pts;
+#pragma omp for schedule(dynamic)
+    for (long part = 0; part < static_cast<long>(parts.size()); ++part)
     {
-      continue; // another process's cell, sampled there
-    }
-    const int type = set->GetCellType(c);
-    if (type != simplexType && cellDimension(type) != dimension)
-    {
-      continue;
-    }
-    set->GetCellPoints(c, ids);
-    vtkIdType* cellPoints = ids->GetPointer(0);
-    const vtkIdType n = ids->GetNumberOfIds();
-    if (type == simplexType)
-    {
-      std::array<vtkIdType, N> simplex;
-      std::copy_n(cellPoints, N, simplex.begin());
-      add(simplex);
-      continue;
-    }
-    if constexpr (N == 3)
-    {
-      if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_PIXEL)
-      {
-        if (type == VTK_PIXEL)
+      std::vector<std::array<int, N>>& simplexList = parts[part];
+      auto add = [&](const std::array<vtkIdType, N>& simplex) {
+        std::array<int, N> mapped;
+        for (std::size_t v = 0; v < N; ++v)
         {
-          std::swap(cellPoints[2], cellPoints[3]);
+          mapped[v] = offset + static_cast<int>(pointMap ? pointMap[simplex[v]] : simplex[v]);
         }
-        fan(cellPoints, n, before, add);
-        continue;
-      }
-    }
-    else
-    {
-      if (type == VTK_POLYHEDRON && grid)
+        simplexList.push_back(mapped);
+      };
+      for (vtkIdType c = part * Chunk; c < std::min(cellCount, (part + 1) * Chunk); ++c)
       {
-        starTetrahedra([&](auto visit) { visitPolyhedronFaces(grid, c, visit); }, before, add);
-        continue;
-      }
-      if (const std::vector<std::vector<vtkIdType>>& local = localFaces(type); !local.empty())
-      {
-        starTetrahedra(
-          [&](auto visit) {
-            for (const std::vector<vtkIdType>& face : local)
+        if (ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL))
+        {
+          continue; // another process's cell, sampled there
+        }
+        const int type = set->GetCellType(c);
+        if (type != simplexType && cellDimension(type) != dimension)
+        {
+          continue;
+        }
+        set->GetCellPoints(c, ids);
+        vtkIdType* cellPoints = ids->GetPointer(0);
+        const vtkIdType n = ids->GetNumberOfIds();
+        if (type == simplexType)
+        {
+          std::array<vtkIdType, N> simplex;
+          std::copy_n(cellPoints, N, simplex.begin());
+          add(simplex);
+          continue;
+        }
+        if constexpr (N == 3)
+        {
+          if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_PIXEL)
+          {
+            if (type == VTK_PIXEL)
             {
-              std::array<vtkIdType, 6> global; // a hexagonal prism's faces have 6 points at most
-              for (std::size_t k = 0; k < face.size(); ++k)
-              {
-                global[k] = cellPoints[face[k]];
-              }
-              visit(global.data(), static_cast<vtkIdType>(face.size()));
+              std::swap(cellPoints[2], cellPoints[3]);
             }
-          },
-          before, add);
-        continue;
+            fan(cellPoints, n, before, add);
+            continue;
+          }
+        }
+        else
+        {
+          if (type == VTK_POLYHEDRON && grid)
+          {
+            starTetrahedra([&](auto visit) { visitPolyhedronFaces(grid, c, visit); }, before, add);
+            continue;
+          }
+          if (const std::vector<std::vector<vtkIdType>>& local = localFaces(type); !local.empty())
+          {
+            starTetrahedra(
+              [&](auto visit) {
+                for (const std::vector<vtkIdType>& face : local)
+                {
+                  std::array<vtkIdType, 6> global; // a hexagonal prism's faces have 6 points at most
+                  for (std::size_t k = 0; k < face.size(); ++k)
+                  {
+                    global[k] = cellPoints[face[k]];
+                  }
+                  visit(global.data(), static_cast<vtkIdType>(face.size()));
+                }
+              },
+              before, add);
+            continue;
+          }
+        }
+        if (!cells.get(set, c)->Triangulate(0, ids, pts))
+        {
+          continue;
+        }
+        for (vtkIdType s = 0; s + static_cast<vtkIdType>(N) <= ids->GetNumberOfIds(); s += N)
+        {
+          std::array<vtkIdType, N> simplex;
+          std::copy_n(ids->GetPointer(s), N, simplex.begin());
+          add(simplex);
+        }
       }
     }
-    if (!cells.get(set, c)->Triangulate(0, ids, pts))
-    {
-      continue;
-    }
-    for (vtkIdType s = 0; s + static_cast<vtkIdType>(N) <= ids->GetNumberOfIds(); s += N)
-    {
-      std::array<vtkIdType, N> simplex;
-      std::copy_n(ids->GetPointer(s), N, simplex.begin());
-      add(simplex);
-    }
+  }
+  std::size_t total = out.size();
+  for (const auto& part : parts)
+  {
+    total += part.size();
+  }
+  out.reserve(total);
+  for (auto& part : parts)
+  {
+    out.insert(out.end(), part.begin(), part.end());
+    std::vector<std::array<int, N>>().swap(part);
   }
 }
 }
