@@ -20,7 +20,9 @@ namespace
   throw std::runtime_error(path + ": " + reason);
 }
 
-// The whole file, decompressed if it is gzip (zlib reads plain files unchanged).
+// The whole file, decompressed if it is gzip (zlib reads plain files unchanged), read into a
+// string sized by the file (a plain file's exact size, at least that for gzip) rather than grown
+// by appending: the mesh's points are tens of MB.
 std::string readAll(const std::string& path)
 {
   gzFile file = gzopen(path.c_str(), "rb");
@@ -28,20 +30,51 @@ std::string readAll(const std::string& path)
   {
     fail(path, "cannot be opened");
   }
-  std::string content;
-  char buffer[1 << 16];
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  std::string content(error ? std::size_t(1) << 16 : static_cast<std::size_t>(size) + 1, '\0');
+  std::size_t length = 0;
   int read = 0;
-  while ((read = gzread(file, buffer, sizeof(buffer))) > 0)
+  do
   {
-    content.append(buffer, static_cast<std::size_t>(read));
-  }
+    if (length == content.size())
+    {
+      content.resize(2 * content.size());
+    }
+    const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(content.size() - length, 1 << 30));
+    read = gzread(file, &content[length], chunk);
+    length += read > 0 ? static_cast<std::size_t>(read) : 0;
+  } while (read > 0);
   const bool failed = read < 0;
   gzclose(file);
   if (failed)
   {
     fail(path, "cannot be read (a damaged gzip file?)");
   }
+  content.resize(length);
   return content;
+}
+
+// Reads the number after white space at p (before last) into value and moves p past it; false
+// when there is none. std::from_chars: a few times faster than strtod on a mesh's millions.
+template <typename Number>
+bool readNumber(const char*& p, const char* last, Number& value)
+{
+  while (p < last && std::isspace(static_cast<unsigned char>(*p)))
+  {
+    ++p;
+  }
+  if (p + 1 < last && *p == '+' && *(p + 1) != '-') // strtod's optional plus sign
+  {
+    ++p;
+  }
+  const auto [next, error] = std::from_chars(p, last, value);
+  if (error != std::errc() || next == p)
+  {
+    return false;
+  }
+  p = next;
+  return true;
 }
 
 // Skips white space and C/C++ comments from position i.
@@ -237,13 +270,10 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
     ++p;
     for (int c = 0; c < 3; ++c)
     {
-      char* next = nullptr;
-      file.xyz[3 * k + c] = std::strtod(p, &next);
-      if (next == p)
+      if (!readNumber(p, last, file.xyz[3 * k + c]))
       {
         fail(file.path, "point " + std::to_string(k) + " has no coordinate " + std::to_string(c));
       }
-      p = next;
     }
     while (p < last && std::isspace(static_cast<unsigned char>(*p)))
     {
@@ -292,15 +322,13 @@ std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, c
     return labels;
   }
   const char* p = s.c_str() + list.begin;
+  const char* last = s.c_str() + s.size();
   for (std::size_t k = 0; k < list.count; ++k)
   {
-    char* next = nullptr;
-    labels[k] = std::strtoll(p, &next, 10);
-    if (next == p)
+    if (!readNumber(p, last, labels[k]))
     {
       fail(path, "label " + std::to_string(k) + " is not a number");
     }
-    p = next;
   }
   return labels;
 }
@@ -311,37 +339,57 @@ void writeFoamPoints(const std::string& directory, const FoamPointsFile& origina
   std::string out = original.header + std::to_string(n) + "\n(";
   if (original.binary)
   {
-    for (double value : xyz)
+    const std::size_t at = out.size();
+    out.resize(at + xyz.size() * static_cast<std::size_t>(original.scalarBytes));
+    if (original.scalarBytes == 8)
     {
-      char bytes[8];
-      if (original.scalarBytes == 8)
+      std::memcpy(&out[at], xyz.data(), 8 * xyz.size());
+    }
+    else
+    {
+      for (std::size_t k = 0; k < xyz.size(); ++k)
       {
-        std::memcpy(bytes, &value, 8);
+        const float single = static_cast<float>(xyz[k]);
+        std::memcpy(&out[at + 4 * k], &single, 4);
       }
-      else
-      {
-        const float single = static_cast<float>(value);
-        std::memcpy(bytes, &single, 4);
-      }
-      out.append(bytes, static_cast<std::size_t>(original.scalarBytes));
     }
   }
   else
   {
+    // chunks of points formatted in parallel, joined in order
     out += '\n';
-    char number[32];
-    for (std::size_t k = 0; k < n; ++k)
+    constexpr std::size_t Chunk = 16384;
+    std::vector<std::string> parts((n + Chunk - 1) / Chunk);
+#pragma omp parallel for schedule(dynamic)
+    for (long part = 0; part < static_cast<long>(parts.size()); ++part)
     {
-      out += '(';
-      for (int c = 0; c < 3; ++c)
+      std::string& text = parts[part];
+      text.reserve(Chunk * 3 * 25);
+      char number[32];
+      for (std::size_t k = part * Chunk; k < std::min(n, (part + 1) * Chunk); ++k)
       {
-        // shortest text that reads back as the same double (float for scalar=32)
-        const auto written = original.scalarBytes == 8 ? std::to_chars(number, number + sizeof(number), xyz[3 * k + c])
-                                                       : std::to_chars(number, number + sizeof(number), static_cast<float>(xyz[3 * k + c]));
-        out.append(number, written.ptr);
-        out += c < 2 ? ' ' : ')';
+        text += '(';
+        for (int c = 0; c < 3; ++c)
+        {
+          // shortest text that reads back as the same double (float for scalar=32)
+          const auto written = original.scalarBytes == 8 ? std::to_chars(number, number + sizeof(number), xyz[3 * k + c])
+                                                         : std::to_chars(number, number + sizeof(number), static_cast<float>(xyz[3 * k + c]));
+          text.append(number, written.ptr);
+          text += c < 2 ? ' ' : ')';
+        }
+        text += '\n';
       }
-      out += '\n';
+    }
+    std::size_t length = out.size();
+    for (const std::string& text : parts)
+    {
+      length += text.size();
+    }
+    out.reserve(length + 128);
+    for (std::string& text : parts)
+    {
+      out += text;
+      std::string().swap(text);
     }
   }
   out += ")\n\n\n// ************************************************************************* //\n";
