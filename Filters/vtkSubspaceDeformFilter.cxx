@@ -567,15 +567,19 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     if (!cache.regionsSet || dirichlet != cache.dirichlet)
     {
       std::vector<DirichletRegion> regions;
+      PointList positions;
       for (const RegionInput& r : cache.regions)
       {
         if (!isConstraint(r.role))
         {
           regions.push_back({ r.gathered.positions, r.weight });
+          positions.insert(positions.end(), r.gathered.positions.begin(), r.gathered.positions.end());
         }
       }
       cache.regionsSet = cache.factorized = false;
-      model.setRegions(regions);
+      // a region's points are usually input points too (a patch of the mesh): their rows of Phi
+      // are copied from step 2's rather than evaluated again
+      model.setRegions(regions, { &cache.geometrySubspace, positionsAmong(points, positions) });
       cache.dirichlet = std::move(dirichlet);
       cache.regionsSet = true;
     }

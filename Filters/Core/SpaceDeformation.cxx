@@ -93,7 +93,7 @@ SpaceDeformation::SpaceDeformation(const Samples& samples, BasisKind kind, const
   }
 }
 
-void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
+void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions, const KnownRows& reuse)
 {
   PointList positions;
   RegionScale.clear();
@@ -111,7 +111,7 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions)
     RegionBegin.push_back(static_cast<long>(positions.size()));
   }
   std::vector<int> outside;
-  RegionSubspace = subspaceMatrix(*Basis, positions, &outside);
+  RegionSubspace = subspaceMatrix(*Basis, positions, &outside, {}, reuse);
   if (!outside.empty())
   {
     throw InvalidInputException(std::to_string(outside.size()) + " region position(s) lie outside every MLS support, e.g. (" +

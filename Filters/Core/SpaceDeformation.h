@@ -83,8 +83,9 @@ public:
   SpaceDeformation(std::shared_ptr<const ShapeFunctions> basis, DeformationEnergy energy, double length);
 
   /// Phi at the region positions and F. Throws InvalidInputException for an empty region or a
-  /// position outside every support.
-  void setRegions(const std::vector<DirichletRegion>& regions);
+  /// position outside every support. Rows of Phi known at region positions (numbered over all
+  /// regions' positions in order) are copied from `reuse` rather than evaluated again.
+  void setRegions(const std::vector<DirichletRegion>& regions, const KnownRows& reuse = {});
 
   /// Geometric constraints (section 6); none by default. Throws InvalidInputException for a set
   /// with too few points or outside every support.

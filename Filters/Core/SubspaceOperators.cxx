@@ -1,6 +1,9 @@
 #include "SubspaceOperators.h"
 
+#include "PositionHash.h"
 #include "ZOrder.h"
+
+#include <algorithm>
 
 #include <omp.h>
 
@@ -330,9 +333,97 @@ RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions
     outside, progress);
 }
 
-SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+std::vector<long> positionsAmong(const PointList& points, const PointList& positions)
 {
-  return concatenate(subspaceBlocks(basis, positions, outside, progress));
+  // the positions' keys sorted; each point looks its key up (in parallel), then the first point
+  // of each key is taken in point order
+  std::vector<std::pair<std::uint64_t, long>> keys(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    keys[i] = { positionKey(positions[i]), static_cast<long>(i) };
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<long> slotOf(points.size(), -1); // per point: its key's first entry in keys, or -1
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < static_cast<long>(points.size()); ++p)
+  {
+    const std::uint64_t key = positionKey(points[p]);
+    const auto at = std::lower_bound(keys.begin(), keys.end(), std::make_pair(key, -1L));
+    if (at != keys.end() && at->first == key)
+    {
+      slotOf[p] = at - keys.begin();
+    }
+  }
+  std::vector<long> found(positions.size(), -1);
+  for (long p = 0; p < static_cast<long>(points.size()); ++p)
+  {
+    for (long k = slotOf[p]; k >= 0 && k < static_cast<long>(keys.size()) && keys[k].first == keys[slotOf[p]].first; ++k)
+    {
+      long& first = found[keys[k].second];
+      if (first < 0 && positions[keys[k].second].cwiseEqual(points[p]).all()) // the key's bits, compared exactly
+      {
+        first = p;
+      }
+    }
+  }
+  return found;
+}
+
+SparseRowMatrix subspaceMatrix(
+  const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress, const KnownRows& reuse)
+{
+  if (!reuse.known)
+  {
+    return concatenate(subspaceBlocks(basis, positions, outside, progress));
+  }
+  // Phi evaluated at the positions without a known row, then every row in the positions' order
+  PointList missing;
+  std::vector<long> missingIndex;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    if (reuse.row[i] < 0)
+    {
+      missing.push_back(positions[i]);
+      missingIndex.push_back(static_cast<long>(i));
+    }
+  }
+  std::vector<int> outsideMissing;
+  const SparseRowMatrix evaluated = concatenate(subspaceBlocks(basis, missing, &outsideMissing, progress));
+  if (outside)
+  {
+    for (int m : outsideMissing)
+    {
+      outside->push_back(static_cast<int>(missingIndex[m]));
+    }
+  }
+  const RowBlocks& known = *reuse.known;
+  const auto rowOf = [&](std::size_t i, long& next) -> std::pair<const SparseRowMatrix*, long> {
+    if (reuse.row[i] < 0)
+    {
+      return { &evaluated, next++ };
+    }
+    return { &known.blocks[reuse.row[i] / known.rowsPerBlock], reuse.row[i] % known.rowsPerBlock };
+  };
+  SparseRowMatrix A(static_cast<long>(positions.size()), static_cast<long>(basis.size()));
+  long nonZeros = 0, next = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    const auto [matrix, r] = rowOf(i, next);
+    nonZeros += matrix->outerIndexPtr()[r + 1] - matrix->outerIndexPtr()[r];
+  }
+  A.resizeNonZeros(nonZeros);
+  auto* outer = A.outerIndexPtr();
+  outer[0] = 0;
+  next = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    const auto [matrix, r] = rowOf(i, next);
+    const int from = matrix->outerIndexPtr()[r], to = matrix->outerIndexPtr()[r + 1];
+    std::copy(matrix->innerIndexPtr() + from, matrix->innerIndexPtr() + to, A.innerIndexPtr() + outer[i]);
+    std::copy(matrix->valuePtr() + from, matrix->valuePtr() + to, A.valuePtr() + outer[i]);
+    outer[i + 1] = outer[i] + (to - from);
+  }
+  return A;
 }
 
 EnergyNormals normalMatrices(const DeformationEnergy& energy)

@@ -23,8 +23,21 @@ struct RowBlocks
 /// are empty; their indices are appended to outside when given.
 RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
-/// Phi at the positions as one matrix (subspaceBlocks, concatenated).
-SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+/// Phi rows evaluated before at some positions, to be copied rather than evaluated again:
+/// row[i] is the row of `known` that holds Phi at the i-th position, or -1.
+struct KnownRows
+{
+  const RowBlocks* known = nullptr;
+  std::vector<long> row;
+};
+
+/// For each position, the first index of points at exactly that position (+0 = -0), or -1.
+std::vector<long> positionsAmong(const PointList& points, const PointList& positions);
+
+/// Phi at the positions as one matrix (subspaceBlocks, concatenated). Rows given in `reuse` are
+/// copied from it (evaluating Phi at a position gives the same bits wherever it is done).
+SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr,
+  const Progress& progress = {}, const KnownRows& reuse = {});
 
 /// Row i of A X (d(x_i) = sum_j Phi_ij w_j) written as an (x, y, z) triple to out, summed in the
 /// order of the row.

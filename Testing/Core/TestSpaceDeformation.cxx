@@ -172,6 +172,35 @@ TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
   CHECK((fromMatrix - PointDisplacements((Phi * w).middleRows(begin, end - begin))).cwiseAbs().maxCoeff() <= roundOff);
 }
 
+TEST(KnownRowsAreCopiedAsTheyWouldBeEvaluated)
+{
+  // Phi at region positions copied from the rows of the points they coincide with (a patch of
+  // the mesh) is the matrix evaluated at them, bit for bit; positions at no point (or outside
+  // every support) are evaluated. A position matches the first point at exactly its coordinates,
+  // -0 as +0.
+  const Scene scene;
+  const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
+  PointList x = testgeometry::randomPoints(10000, Vec3(0, 0, 0), Vec3(3, 1, 1), 4);
+  x[100] = Vec3(0, 0.5, 0.5);
+  x[7000] = x[5]; // a point stored twice (a patch's point and the volume's)
+  const RowBlocks blocks = subspaceBlocks(basis, x);
+  PointList positions = { x[9000], x[5], Vec3(-0.0, 0.5, 0.5), Vec3(1.5, 0.5, 0.5), Vec3(100, 100, 100), x[4096] };
+  positions.back().x() = std::nextafter(positions.back().x(), 10.0); // one ulp from a point: not it
+  const std::vector<long> among = positionsAmong(x, positions);
+  CHECK(among == std::vector<long>({ 9000, 5, 100, -1, -1, -1 }));
+  std::vector<int> outside, outsideCopied;
+  const SparseRowMatrix evaluated = subspaceMatrix(basis, positions, &outside);
+  const SparseRowMatrix copied = subspaceMatrix(basis, positions, &outsideCopied, {}, { &blocks, among });
+  CHECK(outside == std::vector<int>({ 4 }) && outsideCopied == outside);
+  CHECK(copied.rows() == evaluated.rows() && copied.nonZeros() == evaluated.nonZeros());
+  bool same = copied.nonZeros() == evaluated.nonZeros();
+  for (long k = 0; same && k < evaluated.nonZeros(); ++k)
+    same = copied.valuePtr()[k] == evaluated.valuePtr()[k] && copied.innerIndexPtr()[k] == evaluated.innerIndexPtr()[k];
+  for (long i = 0; same && i <= evaluated.rows(); ++i)
+    same = copied.outerIndexPtr()[i] == evaluated.outerIndexPtr()[i];
+  CHECK(same);
+}
+
 TEST(CommonTranslationMovesEveryPointByIt)
 {
   Scene scene;
