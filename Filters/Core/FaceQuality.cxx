@@ -21,18 +21,19 @@ FaceGeometry faceGeometry(const PointList& points, const int* face, std::size_t 
   {
     return g;
   }
-  Vec3 average = Vec3::Zero();
+  Vec3 average = Vec3::Zero(); // OpenFOAM's estimate: the sum of the points over their number
   for (std::size_t i = 0; i < n; ++i)
   {
-    average += points[face[i]] / static_cast<double>(n);
+    average += points[face[i]];
   }
+  average /= static_cast<double>(n);
   // triangles (p_i, p_i+1, average): centre (p_i + p_i+1 + average) / 3 weighted by area
   Vec3 sumN = Vec3::Zero(), sumAc = Vec3::Zero();
   double sumA = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     const Vec3& p = points[face[i]];
-    const Vec3& q = points[face[(i + 1) % n]];
+    const Vec3& q = points[face[i + 1 < n ? i + 1 : 0]];
     const Vec3 normal = (q - p).cross(average - p);
     const double a = normal.norm();
     sumN += normal;
@@ -58,11 +59,12 @@ CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector
 CellGeometry cellGeometry(const std::vector<FaceGeometry>& faces)
 {
   CellGeometry c;
-  Vec3 estimate = Vec3::Zero();
+  Vec3 estimate = Vec3::Zero(); // OpenFOAM's: the sum of the face centres over their number
   for (const FaceGeometry& face : faces)
   {
-    estimate += face.centre / static_cast<double>(faces.size());
+    estimate += face.centre;
   }
+  estimate /= static_cast<double>(std::max<std::size_t>(1, faces.size()));
   // pyramids on the faces with apex at the estimate: volume |S . (C_f - apex)| / 3, centroid
   // 3/4 C_f + 1/4 apex
   double sum = 0;
@@ -246,21 +248,9 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 namespace
 {
 // Every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid), its faces'
-// geometry computed once per cell; the geometry of each interior face's owner copy is kept in
-// work.shared, so that the face measures do not compute it again.
-void cellCentres(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
-  std::vector<unsigned char>& inverted, FaceWorkspace& work)
+// geometry computed once per cell.
+void cellCentres(const PointList& points, const CellFaceList& cells, std::vector<unsigned char>& inverted, FaceWorkspace& work)
 {
-  if (work.interior.size() != static_cast<std::size_t>(cells.faces()))
-  {
-    work.interior.assign(static_cast<std::size_t>(cells.faces()), -1);
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < static_cast<long>(faces.size()); ++i)
-    {
-      work.interior[faces[i].face] = i;
-    }
-  }
-  work.shared.resize(faces.size());
   work.centres.resize(cells.cells());
   inverted.resize(cells.cells());
 #pragma omp parallel
@@ -273,10 +263,6 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const std::
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
         g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
-        if (work.interior[f] >= 0)
-        {
-          work.shared[work.interior[f]] = g.back();
-        }
       }
       work.centres[c] = cellGeometry(g).centre;
       inverted[c] = !g.empty() && hasNegativePyramid(g, work.centres[c]);
@@ -284,22 +270,28 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const std::
   }
 }
 
-// The face measures from the cells' geometry in work (cellCentres on these points).
+// The face measures from the cells' centres in work (cellCentres on these points), each interior
+// face's geometry computed again from its owner's copy (cheaper than keeping it: a 1M-cell mesh's
+// 3M interior faces took 150 MB). Each face is oriented by `orientation`, or, without it, as
+// faceOrientation decides on these points, written to `decided`.
 void measureFaces(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, FaceMeasures& m)
+  const std::vector<int>* orientation, std::vector<int>* decided, const FaceWorkspace& work, FaceMeasures& m)
 {
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(faces.size());
   m.skewness.resize(faces.size());
-#pragma omp parallel for
+#pragma omp parallel for schedule(static)
   for (long i = 0; i < static_cast<long>(faces.size()); ++i)
   {
-    FaceGeometry g = work.shared[i];
-    g.area *= orientation[i];
+    const int* face = cells.face(faces[i].face);
+    const std::size_t n = cells.faceSize(faces[i].face);
+    FaceGeometry g = faceGeometry(points, face, n);
     const Vec3& P = work.centres[faces[i].owner];
     const Vec3& N = work.centres[faces[i].neighbour];
+    const int sign = orientation ? (*orientation)[i] : ((*decided)[i] = g.area.dot(g.centre - P) < 0 ? -1 : 1);
+    g.area *= sign;
     m.nonOrthogonality[i] = nonOrthogonality(P, N, g.area);
-    m.skewness[i] = skewness(P, N, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
+    m.skewness[i] = skewness(P, N, g, points, face, n);
   }
 }
 }
@@ -307,15 +299,9 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const std:
 std::vector<int> faceOrientation(
   const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, FaceWorkspace& work, FaceMeasures& out)
 {
-  cellCentres(points, cells, faces, out.inverted, work);
+  cellCentres(points, cells, out.inverted, work);
   std::vector<int> orientation(faces.size(), 1);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < static_cast<long>(faces.size()); ++i)
-  {
-    const FaceGeometry& g = work.shared[i];
-    orientation[i] = g.area.dot(g.centre - work.centres[faces[i].owner]) < 0 ? -1 : 1;
-  }
-  measureFaces(points, cells, faces, orientation, work, out);
+  measureFaces(points, cells, faces, nullptr, &orientation, work, out);
   return orientation;
 }
 
@@ -329,8 +315,8 @@ std::vector<int> faceOrientation(const PointList& points, const CellFaceList& ce
 void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
   const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
 {
-  cellCentres(points, cells, faces, m.inverted, work);
-  measureFaces(points, cells, faces, orientation, work, m);
+  cellCentres(points, cells, m.inverted, work);
+  measureFaces(points, cells, faces, &orientation, nullptr, work, m);
 }
 
 FaceMeasures faceMeasures(

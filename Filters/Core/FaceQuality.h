@@ -159,9 +159,7 @@ FaceMeasures faceMeasures(
 /// another deformation allocates nothing.
 struct FaceWorkspace
 {
-  std::vector<long> interior; // per face of the cells: the interior face it is the owner's copy of, or -1
-  std::vector<FaceGeometry> shared; // per interior face: its geometry from the owner's copy
-  std::vector<Vec3> centres;        // per cell
+  std::vector<Vec3> centres; // per cell
 };
 
 /// faceMeasures into out, with the buffers of work.
