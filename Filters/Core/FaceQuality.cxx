@@ -143,11 +143,15 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       points = std::max(points, *std::max_element(face, face + n) + 1);
     }
   }
+  // a counting sort by the smallest point, in parallel: the faces land in their group in any
+  // order, and each group is put in face order before it is matched
   std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
+#pragma omp parallel for schedule(static)
   for (long f = 0; f < faceCount; ++f)
   {
     if (smallest[f] >= 0)
     {
+#pragma omp atomic
       ++start[smallest[f] + 1];
     }
   }
@@ -155,11 +159,15 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   std::vector<long> grouped(static_cast<std::size_t>(start.back()));
   {
     std::vector<long> next(start.begin(), start.end() - 1);
+#pragma omp parallel for schedule(static)
     for (long f = 0; f < faceCount; ++f)
     {
       if (smallest[f] >= 0)
       {
-        grouped[next[smallest[f]]++] = f;
+        long at;
+#pragma omp atomic capture
+        at = next[smallest[f]]++;
+        grouped[at] = f;
       }
     }
   }
@@ -174,8 +182,9 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 #pragma omp for schedule(dynamic, 4096) reduction(min : shared)
     for (int p = 0; p < points; ++p)
     {
-      const long* begin = grouped.data() + start[p];
+      long* begin = grouped.data() + start[p];
       const long count = start[p + 1] - start[p];
+      std::sort(begin, begin + count);
       signature.resize(count);
       for (long g = 0; g < count; ++g)
       {
