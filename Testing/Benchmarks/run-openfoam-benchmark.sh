@@ -17,7 +17,8 @@
 #       variants' (timed inside it); its peak RSS is the whole process's.
 # Prints a side-by-side table (wall time, peak RSS, checkMesh figures) and the ratios against the
 # issue's targets, and a JSON line (OPENFOAMBENCH ...) with every figure. Median of --runs runs
-# (default 3 for small, 1 for 1M).
+# (default 3 for small, 1 for 1M), the two tools' runs alternating; the first variant's ratio is
+# also printed run by run (each pair ran back to back).
 #
 # Usage: Testing/Benchmarks/run-openfoam-benchmark.sh [--cells small|1M] [--runs N] [--set NAME=VALUE ...]
 # (--set: an MLS Deform property other than its default, e.g. --set MeshQuality=0.)
@@ -85,16 +86,14 @@ copy_case() { # a copy of the case without its logs
   touch "$1/case.foam"
 }
 
+# The runs alternate (moveMesh, MLS Deform, moveMesh, ...) so that a change in the machine's speed
+# during the benchmark (other load, a neighbour on a shared host) weighs on both alike.
 for ((i = 1; i <= runs; i++)); do
   echo "moveMesh run $i/$runs (load $(load))"
   copy_case "$run/moveMesh"
   foamDictionary -entry boundaryField/hull/value -set "uniform (${motion[*]})" "$run/moveMesh/0/pointDisplacement" > /dev/null
   (cd "$run/moveMesh" && /usr/bin/time -v -o "$run/moveMesh-$i.time" moveMesh > "$run/moveMesh-$i.log" 2>&1) ||
     { tail -30 "$run/moveMesh-$i.log"; exit 1; }
-done
-(cd "$run/moveMesh" && checkMesh -latestTime > "$run/checkMesh.moveMesh" 2>&1) || true
-
-for ((i = 1; i <= runs; i++)); do
   echo "MLS Deform run $i/$runs (load $(load))"
   rm -rf "$run/mls"
   LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/mls-$i.time" pvpython --no-mpi "$here/mls_benchmark.py" "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" \
@@ -102,6 +101,7 @@ for ((i = 1; i <= runs; i++)); do
     > "$run/mls-$i.log" 2>&1 ||
     { tail -30 "$run/mls-$i.log"; exit 1; }
 done
+(cd "$run/moveMesh" && checkMesh -latestTime > "$run/checkMesh.moveMesh" 2>&1) || true
 (cd "$run/mls/variant-0" && checkMesh > "$run/checkMesh.mls" 2>&1) || true
 for ((v = 1; v <= ${#further[@]}; v++)); do
   (cd "$run/mls/variant-$v" && checkMesh > "$run/checkMesh.mls-$v" 2>&1) || true
