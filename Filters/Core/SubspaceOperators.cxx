@@ -372,7 +372,7 @@ std::vector<long> positionsAmong(const PointList& points, const PointList& posit
 SparseRowMatrix subspaceMatrix(
   const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress, const KnownRows& reuse)
 {
-  if (!reuse.known)
+  if (!reuse.known || reuse.row.size() != positions.size())
   {
     return concatenate(subspaceBlocks(basis, positions, outside, progress));
   }

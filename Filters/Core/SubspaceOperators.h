@@ -23,8 +23,9 @@ struct RowBlocks
 /// are empty; their indices are appended to outside when given.
 RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
-/// Phi rows evaluated before at some positions, to be copied rather than evaluated again:
-/// row[i] is the row of `known` that holds Phi at the i-th position, or -1.
+/// Phi rows evaluated before at some positions (with the same shape functions), to be copied
+/// rather than evaluated again: row[i] is the row of `known` that holds Phi at the i-th
+/// position, or -1 (a list of another length is not used).
 struct KnownRows
 {
   const RowBlocks* known = nullptr;
