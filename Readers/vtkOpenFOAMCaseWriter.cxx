@@ -233,6 +233,19 @@ struct MeshFile
   }
 };
 
+// The polyMesh folder of a case folder root (the source, or the variant being assembled): the
+// reconstructed mesh's (processor -1) or processor folder `processor`'s.
+fs::path polyMeshOf(const fs::path& root, const std::vector<std::string>& processors, int processor)
+{
+  return (processor < 0 ? root : root / processors[static_cast<std::size_t>(processor)]) / "constant" / "polyMesh";
+}
+
+// A mesh file of the source case, its points read, no displacement yet.
+MeshFile readMeshFile(const fs::path& source, const std::vector<std::string>& processors, int processor)
+{
+  return { processor, mlsdeform::readFoamPoints(polyMeshOf(source, processors, processor).string()), {} };
+}
+
 // Takes the Displacement of the input's points offset, offset + 1, ... for the points of a mesh
 // file: false when the input's points there are not the file's.
 bool displaceBy(MeshFile& file, const InputMesh& input, vtkIdType offset)
@@ -277,7 +290,7 @@ bool matchProcessors(const fs::path& source, const std::vector<std::string>& pro
   vtkIdType offset = 0;
   for (std::size_t p = static_cast<std::size_t>(group.rank()); p < processors.size(); p += static_cast<std::size_t>(group.size()))
   {
-    MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints((source / processors[p] / "constant" / "polyMesh").string()), {} };
+    MeshFile part = readMeshFile(source, processors, static_cast<int>(p));
     // the cell centres of the folder before: the points up to the first that is this folder's
     // first point (a cell centre lies inside its cell, never on a vertex)
     while (!parts.empty() && offset < input.size() && part.points.size() > 0)
@@ -317,10 +330,9 @@ Reading matchInput(const fs::path& source, const std::vector<std::string>& proce
   {
     return Reading::Decomposed;
   }
-  const fs::path polyMesh = source / "constant" / "polyMesh";
-  if (hasPoints(polyMesh))
+  if (hasPoints(polyMeshOf(source, processors, -1)))
   {
-    MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMesh.string()), {} };
+    MeshFile whole = readMeshFile(source, processors, -1);
     if (displaceBy(whole, input, 0))
     {
       read.push_back(std::move(whole));
@@ -367,9 +379,9 @@ void displaceThrough(const std::vector<std::int64_t>& addressing, const MeshFile
 }
 
 // The pointProcAddressing of processor folder `processor` of the case.
-std::vector<std::int64_t> pointAddressing(const fs::path& source, const std::string& processor)
+std::vector<std::int64_t> pointAddressing(const fs::path& source, const std::vector<std::string>& processors, int processor)
 {
-  return mlsdeform::readFoamLabels((source / processor / "constant" / "polyMesh").string(), "pointProcAddressing");
+  return mlsdeform::readFoamLabels(polyMeshOf(source, processors, processor).string(), "pointProcAddressing");
 }
 }
 
@@ -484,17 +496,16 @@ void vtkOpenFOAMCaseWriter::WriteData()
         throw std::runtime_error("cannot create " + partial.string());
       }
       partialName = partial.string();
-      const fs::path polyMesh = source / "constant" / "polyMesh";
       for (const fs::path& folder : caseFolders(source, { "system", "constant" }))
       {
-        copyFolder(folder, partial / folder.filename(), polyMesh);
+        copyFolder(folder, partial / folder.filename(), polyMeshOf(source, processors, -1));
       }
-      for (const std::string& processor : processors)
+      for (std::size_t p = 0; p < processors.size(); ++p)
       {
-        fs::create_directory(partial / processor);
-        for (const fs::path& folder : caseFolders(source / processor, { "constant" }))
+        fs::create_directory(partial / processors[p]);
+        for (const fs::path& folder : caseFolders(source / processors[p], { "constant" }))
         {
-          copyFolder(folder, partial / processor / folder.filename(), source / processor / "constant" / "polyMesh");
+          copyFolder(folder, partial / processors[p] / folder.filename(), polyMeshOf(source, processors, static_cast<int>(p)));
         }
       }
       if (!std::ofstream(partial / foam.filename()))
@@ -508,13 +519,10 @@ void vtkOpenFOAMCaseWriter::WriteData()
     // 4. the mesh files: each process writes those it read, and moves the others through the
     // processors' pointProcAddressing: a reconstructed reading moves every processor folder, a
     // decomposed one the reconstructed mesh (the processes' displacements gathered on the first)
-    const auto polyMeshOf = [&](const fs::path& root, int processor) {
-      return (processor < 0 ? root : root / processors[static_cast<std::size_t>(processor)]) / "constant" / "polyMesh";
-    };
     const auto writeMoved = [&](const MeshFile& file) {
-      mlsdeform::writeFoamPoints(polyMeshOf(assembled, file.processor).string(), file.points, file.moved());
+      mlsdeform::writeFoamPoints(polyMeshOf(assembled, processors, file.processor).string(), file.points, file.moved());
     };
-    const bool wholeMesh = hasPoints(polyMeshOf(source, -1));
+    const bool wholeMesh = hasPoints(polyMeshOf(source, processors, -1));
     std::vector<double> displacements; // of this process's processor folders, in their order
     mlsdeform::agree(group, [&] {
       for (const MeshFile& file : read)
@@ -524,9 +532,9 @@ void vtkOpenFOAMCaseWriter::WriteData()
       }
       for (std::size_t p = 0; reading == Reading::Reconstructed && p < processors.size(); ++p)
       {
-        MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints(polyMeshOf(source, static_cast<int>(p)).string()), {} };
+        MeshFile part = readMeshFile(source, processors, static_cast<int>(p));
         std::vector<char> reached;
-        displaceThrough(pointAddressing(source, processors[p]), read.front(), false, part, reached);
+        displaceThrough(pointAddressing(source, processors, static_cast<int>(p)), read.front(), false, part, reached);
         writeMoved(part);
       }
     });
@@ -538,7 +546,7 @@ void vtkOpenFOAMCaseWriter::WriteData()
         {
           return;
         }
-        MeshFile whole{ -1, mlsdeform::readFoamPoints(polyMeshOf(source, -1).string()), {} };
+        MeshFile whole = readMeshFile(source, processors, -1);
         std::vector<char> reached;
         std::size_t at = 0;
         // the processes' folders in the order gathered: process r's are r, r + size, ...
@@ -546,10 +554,10 @@ void vtkOpenFOAMCaseWriter::WriteData()
         {
           for (std::size_t p = static_cast<std::size_t>(r); p < processors.size(); p += static_cast<std::size_t>(group.size()))
           {
-            MeshFile part{ static_cast<int>(p), mlsdeform::readFoamPoints(polyMeshOf(source, static_cast<int>(p)).string()), {} };
+            MeshFile part = readMeshFile(source, processors, static_cast<int>(p));
             part.displacement.assign(all.begin() + static_cast<long>(at), all.begin() + static_cast<long>(at + part.points.xyz.size()));
             at += part.points.xyz.size();
-            displaceThrough(pointAddressing(source, processors[p]), part, true, whole, reached);
+            displaceThrough(pointAddressing(source, processors, static_cast<int>(p)), part, true, whole, reached);
           }
         }
         if (std::count(reached.begin(), reached.end(), 0) > 0)
