@@ -1,11 +1,14 @@
 #include "vtkConstraintRegion.h"
 
-#include "HandleMotion.h"
-#include "KdTree.h"
-#include "GatheredPositions.h"
-#include "MLSGeometry.h"
-#include "PositionHash.h"
-#include "ProcessCollective.h"
+#include "Common/BoundingBox.h"
+#include "Adapters/HandleMotion.h"
+#include "Common/KdTree.h"
+#include "Common/GatheredPositions.h"
+#include "Adapters/PointSets.h"
+#include "Adapters/MeshCells.h"
+#include "Adapters/Stamp.h"
+#include "Common/PositionHash.h"
+#include "Adapters/ProcessCollective.h"
 
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
@@ -237,7 +240,7 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
       {
         take = chosen[ids->GetId(k)];
       }
-      if (!take || (cellSets && mlsgeometry::cellDimension(set->GetCellType(c)) < 2))
+      if (!take || (cellSets && mlsvtk::cellDimension(set->GetCellType(c)) < 2))
       {
         continue;
       }
@@ -297,7 +300,7 @@ struct SelectionInputs
   int primitive = -1;
   int layers = 0;
   bool cellSets = false;
-  mlsgeometry::Stamp stamp;
+  mlsvtk::Stamp stamp;
   bool operator==(const SelectionInputs& o) const
   {
     return mode == o.mode && insideOut == o.insideOut && range[0] == o.range[0] && range[1] == o.range[1] &&
@@ -370,10 +373,10 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  const std::vector<vtkPointSet*> sets = mlsgeometry::pointSets(input);
+  const std::vector<vtkPointSet*> sets = mlsvtk::pointSets(input);
   // Split over processes, each selects from its own piece; what depends on the whole selection
   // (the pivot, the layers around a surface) is computed over all of them.
-  const mlsgeometry::ProcessCollective group;
+  const mlsvtk::ProcessCollective group;
   if (this->SelectionMode == ImplicitFunction && !this->Region)
   {
     vtkErrorMacro(<< "SelectionMode is ImplicitFunction but no Region function is set.");
@@ -386,7 +389,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     return 0;
   }
   vtkDataObject* surfaceInput = this->GetNumberOfInputConnections(1) > 0 ? vtkDataObject::GetData(inputVector[1], 0) : nullptr;
-  const std::vector<vtkPointSet*> surfaceSets = surfaceInput ? mlsgeometry::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
+  const std::vector<vtkPointSet*> surfaceSets = surfaceInput ? mlsvtk::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
   std::vector<std::int64_t> surfacePoints{ 0 };
   for (vtkPointSet* set : surfaceSets)
   {
@@ -456,10 +459,10 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   const bool byCells = this->CellSets || this->SelectionMode == CellLayers;
   inputs.layers = this->SelectionMode == CellLayers ? this->NumberOfLayers : 0;
   inputs.cellSets = this->CellSets;
-  inputs.stamp = mlsgeometry::pointsStamp(sets);
+  inputs.stamp = mlsvtk::pointsStamp(sets);
   if (byCells)
   {
-    for (const mlsgeometry::Stamp& more : { mlsgeometry::cellsStamp(sets), mlsgeometry::pointsStamp(surfaceSets) })
+    for (const mlsvtk::Stamp& more : { mlsvtk::cellsStamp(sets), mlsvtk::pointsStamp(surfaceSets) })
     {
       inputs.stamp.objects.insert(inputs.stamp.objects.end(), more.objects.begin(), more.objects.end());
     }
@@ -476,15 +479,15 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     const PointRule rule{ this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId };
     // the surface's points of all processes
     const mlsdeform::PointList surface = this->SelectionMode == CellLayers
-      ? mlsgeometry::gatherPositions(mlsgeometry::points(surfaceSets), {}, group).positions
+      ? mlsdeform::gatherPositions(mlsvtk::points(surfaceSets), {}, group).positions
       : mlsdeform::PointList();
     SelectedPositions chosen = selectPositions(sets, values, rule, this->CellSets, surface, this->NumberOfLayers, group);
     selection.positions = std::move(chosen.positions);
     selection.sets = std::move(chosen.sets);
-    selection.cloud = this->CellSets ? mlsgeometry::pointCloud(selection.positions, { { "ConstraintSet", &selection.sets } })
-                                     : mlsgeometry::pointCloud(selection.positions, {});
+    selection.cloud = this->CellSets ? mlsvtk::pointCloud(selection.positions, { { "ConstraintSet", &selection.sets } })
+                                     : mlsvtk::pointCloud(selection.positions, {});
     // the centroid of the selected positions of all processes, each position once
-    const mlsdeform::PointList all = mlsgeometry::gatherPositions(selection.positions, {}, group).positions;
+    const mlsdeform::PointList all = mlsdeform::gatherPositions(selection.positions, {}, group).positions;
     selection.selectedAnywhere = !all.empty();
     selection.centroid.setZero();
     for (const auto& x : all)
@@ -504,12 +507,12 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
   const mlsdeform::Vec3 pivot = this->UseCentroid && selection.selectedAnywhere ? selection.centroid : mlsdeform::Vec3(this->Center);
   std::copy(pivot.data(), pivot.data() + 3, this->Pivot);
-  mlsgeometry::HandleMotion motion;
+  mlsvtk::HandleMotion motion;
   std::copy(this->Translation, this->Translation + 3, motion.translation);
   std::copy(this->Rotation, this->Rotation + 3, motion.rotation);
   std::copy(this->Scale, this->Scale + 3, motion.scale);
   double matrix[16];
-  mlsgeometry::handleMotionMatrix(motion, this->Pivot, matrix);
+  mlsvtk::handleMotionMatrix(motion, this->Pivot, matrix);
 
   output->ShallowCopy(selection.cloud);
   if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)

@@ -1,8 +1,8 @@
 #include "vtkDeformationQuality.h"
 
-#include "FaceQuality.h"
-#include "VolumeMeshQuality.h"
-#include "Sampling.h"
+#include "Quality/FaceQuality.h"
+#include "Adapters/VolumeMeshQuality.h"
+#include "Sampling/Sampling.h"
 
 #include <vtkCell.h>
 #include <vtkCellArray.h>
@@ -79,7 +79,7 @@ Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellF
   const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
 {
   Measures m;
-  m.scaledJacobian = mlsgeometry::scaledJacobians(grid);
+  m.scaledJacobian = mlsvtk::scaledJacobians(grid);
   m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
   m.inverted = m.faces.invertedCells;
   m.maxNonOrthogonality.assign(cells.cells(), 0);
@@ -197,16 +197,16 @@ int vtkDeformationQuality::RequestData(
     {
       throw std::invalid_argument("the input has no cells");
     }
-    const PointList points = mlsgeometry::gridPoints(input, "the input mesh's points");
+    const PointList points = mlsvtk::gridPoints(input, "the input mesh's points");
     PointList originalPoints;
     if (original)
     {
       requireSameCells(input, original);
-      originalPoints = mlsgeometry::gridPoints(original, "the original mesh's points");
+      originalPoints = mlsvtk::gridPoints(original, "the original mesh's points");
     }
     this->UpdateProgress(0.1);
     // OpenFOAM's face order: out of the owner in the undeformed mesh
-    const mlsgeometry::VolumeMeshQuality topology(original ? original : input);
+    const mlsvtk::VolumeMeshQuality topology(original ? original : input);
     const CellFaceList& cells = topology.cells();
     const std::vector<InteriorFace>& faces = topology.faces();
     const std::vector<int>& orientation = topology.orientation();

@@ -1,10 +1,14 @@
 #include "vtkMLSDeformFilter.h"
 
-#include "GatheredPositions.h"
-#include "MLSGeometry.h"
-#include "ProcessCollective.h"
-#include "ShellOperators.h"
-#include "SpaceDeformation.h"
+#include "Common/BoundingBox.h"
+#include "Common/GatheredPositions.h"
+#include "Session/SubspaceDependencies.h"
+#include "Adapters/PointSets.h"
+#include "Adapters/MeshCells.h"
+#include "Adapters/AlgorithmProgress.h"
+#include "Adapters/ProcessCollective.h"
+#include "Basis/ShellOperators.h"
+#include "Solver/SpaceDeformation.h"
 
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
@@ -29,9 +33,9 @@ void gatherWithValues(vtkPolyData* data, vtkDataArray* array, PointList& positio
   {
     local[i] = array->GetTuple1(i);
   }
-  const mlsgeometry::GatheredPositions gathered = mlsgeometry::gatherPositions(mlsgeometry::points({ data }), {}, group);
+  const mlsdeform::GatheredPositions gathered = mlsdeform::gatherPositions(mlsvtk::points({ data }), {}, group);
   positions = gathered.positions;
-  values = mlsgeometry::gatherValues(local.data(), static_cast<long>(local.size()), 1, gathered, group);
+  values = mlsdeform::gatherValues(local.data(), static_cast<long>(local.size()), 1, gathered, group);
 }
 
 Samples readSamples(vtkPolyData* centers, vtkPolyData* integration, const Collective& group)
@@ -63,11 +67,11 @@ vtkMLSDeformFilter::vtkMLSDeformFilter()
   this->SetProgressText("MLS Deform");
 }
 
-mlsgeometry::SubspaceDependencies vtkMLSDeformFilter::GetSubspaceDependencies(vtkInformationVector** inputVector)
+mlsvtk::SubspaceDependencies vtkMLSDeformFilter::GetSubspaceDependencies(vtkInformationVector** inputVector)
 {
   vtkPolyData* externalCenters = vtkPolyData::GetData(inputVector[2], 0);
   vtkPolyData* externalIntegration = vtkPolyData::GetData(inputVector[3], 0);
-  mlsgeometry::SubspaceDependencies dependencies;
+  mlsvtk::SubspaceDependencies dependencies;
   dependencies.settings = { static_cast<double>(this->Basis), static_cast<double>(this->EnergyDiscretization) };
   if (externalCenters)
   {
@@ -93,7 +97,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
 {
   vtkPolyData* externalCenters = vtkPolyData::GetData(inputVector[2], 0);
   vtkPolyData* externalIntegration = vtkPolyData::GetData(inputVector[3], 0);
-  const mlsgeometry::ProcessCollective group;
+  const mlsvtk::ProcessCollective group;
   Samples samples;
   if (externalCenters)
   {
@@ -109,7 +113,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     parameters.cover = this->Cover;
     parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
     parameters.followMeshGrading = this->FollowMeshGrading != 0;
-    samples = sampleDomain(mlsgeometry::samplingDomain(inSets, group), parameters, { &mlsgeometry::reportProgress, this, 0.0, 0.4 }, group);
+    samples = sampleDomain(mlsvtk::samplingDomain(inSets, group), parameters, { &mlsvtk::reportProgress, this, 0.0, 0.4 }, group);
   }
   const BasisKind kind = static_cast<BasisKind>(this->Basis);
   if (this->EnergyDiscretization == SurfaceVertices)
@@ -119,7 +123,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     {
       throw InvalidInputException("EnergyDiscretization SurfaceVertices integrates on the whole surface mesh and runs on one process only (use Volumetric)");
     }
-    const SamplingDomain mesh = mlsgeometry::samplingDomain(inSets);
+    const SamplingDomain mesh = mlsvtk::samplingDomain(inSets);
     if (!mesh.tetrahedra.empty())
     {
       throw InvalidInputException("EnergyDiscretization SurfaceVertices integrates on triangle surfaces; this input has volume cells (use Volumetric)");
@@ -128,7 +132,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     DeformationEnergy energy = surfaceVertexEnergy(*basis, mesh);
     return std::make_unique<SpaceDeformation>(std::move(basis), std::move(energy), largestSide(mesh.points));
   }
-  return std::make_unique<SpaceDeformation>(samples, kind, mlsdeform::Progress{ &mlsgeometry::reportProgress, this, 0.4, 0.6 });
+  return std::make_unique<SpaceDeformation>(samples, kind, mlsdeform::Progress{ &mlsvtk::reportProgress, this, 0.4, 0.6 });
 }
 
 void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)

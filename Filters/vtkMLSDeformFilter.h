@@ -118,7 +118,7 @@ protected:
   vtkMLSDeformFilter();
   ~vtkMLSDeformFilter() override = default;
 
-  mlsgeometry::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) override;
+  mlsvtk::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) override;
   std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
     const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) override;
 

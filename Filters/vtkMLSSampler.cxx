@@ -1,7 +1,10 @@
 #include "vtkMLSSampler.h"
 
-#include "MLSGeometry.h"
-#include "ProcessCollective.h"
+#include "Sampling/Sampling.h"
+#include "Adapters/PointSets.h"
+#include "Adapters/MeshCells.h"
+#include "Adapters/AlgorithmProgress.h"
+#include "Adapters/ProcessCollective.h"
 
 #include <vtkDataObject.h>
 #include <vtkInformation.h>
@@ -44,9 +47,9 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
   {
     // Split over processes, the samples of the whole input are computed by all of them together
     // and given out once, by the first (MLS Deform gathers its Samples input from every process).
-    const mlsgeometry::ProcessCollective group;
-    const mlsdeform::SamplingDomain domain = mlsgeometry::samplingDomain(mlsgeometry::pointSets(input), group);
-    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsgeometry::reportProgress, this }, group);
+    const mlsvtk::ProcessCollective group;
+    const mlsdeform::SamplingDomain domain = mlsvtk::samplingDomain(mlsvtk::pointSets(input), group);
+    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsvtk::reportProgress, this }, group);
     if (group.rank() > 0)
     {
       return 1;
@@ -57,8 +60,8 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
     }
     std::vector<double> onSurface(samples.centers.size(), 0.0);
     std::fill(onSurface.begin(), onSurface.begin() + samples.numberOfSurfaceCenters, 1.0);
-    centersOut->ShallowCopy(mlsgeometry::pointCloud(samples.centers, { { "SupportRadius", &samples.supportRadius }, { "OnSurface", &onSurface } }));
-    integrationOut->ShallowCopy(mlsgeometry::pointCloud(samples.integrationPoints, { { "Volume", &samples.volume } }));
+    centersOut->ShallowCopy(mlsvtk::pointCloud(samples.centers, { { "SupportRadius", &samples.supportRadius }, { "OnSurface", &onSurface } }));
+    integrationOut->ShallowCopy(mlsvtk::pointCloud(samples.integrationPoints, { { "Volume", &samples.volume } }));
   }
   catch (const std::exception& e)
   {

@@ -1,9 +1,9 @@
 #include "vtkPrimitiveDetector.h"
 
-#include "EfficientRansac.h"
-#include "FaceSamples.h"
-#include "MLSGeometry.h"
-#include "Sampling.h"
+#include "Primitives/EfficientRansac.h"
+#include "Primitives/FaceSamples.h"
+#include "Adapters/AlgorithmProgress.h"
+#include "Sampling/Sampling.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -193,7 +193,7 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
     p.minimumSupport = this->MinimumSupport;
     p.probability = this->Probability;
     p.seed = static_cast<std::uint64_t>(this->RandomSeed);
-    found = mlsdeform::detectPrimitives(samples.barycenters, samples.normals, p, &faces, { &mlsgeometry::reportProgress, this });
+    found = mlsdeform::detectPrimitives(samples.barycenters, samples.normals, p, &faces, { &mlsvtk::reportProgress, this });
   }
   catch (const mlsdeform::InvalidInputException& e)
   {

@@ -1,8 +1,11 @@
 #include "vtkShellDeformFilter.h"
 
-#include "MLSGeometry.h"
-#include "ProcessCollective.h"
-#include "ShellOperators.h"
+#include "Common/BoundingBox.h"
+#include "Session/SubspaceDependencies.h"
+#include "Adapters/MeshCells.h"
+#include "Adapters/ProcessCollective.h"
+#include "Basis/ShellOperators.h"
+#include "Solver/SpaceDeformation.h"
 
 #include <vtkObjectFactory.h>
 
@@ -16,18 +19,18 @@ vtkShellDeformFilter::vtkShellDeformFilter()
   this->SetProgressText("Shell Deform");
 }
 
-mlsgeometry::SubspaceDependencies vtkShellDeformFilter::GetSubspaceDependencies(vtkInformationVector**)
+mlsvtk::SubspaceDependencies vtkShellDeformFilter::GetSubspaceDependencies(vtkInformationVector**)
 {
   return {}; // the mesh's points and cells only
 }
 
 std::unique_ptr<SpaceDeformation> vtkShellDeformFilter::BuildSubspace(const std::vector<vtkPointSet*>& inSets, vtkInformationVector**)
 {
-  if (mlsgeometry::ProcessCollective().size() > 1)
+  if (mlsvtk::ProcessCollective().size() > 1)
   {
     throw InvalidInputException("Shell Deform's shape functions are the whole mesh's vertices: it runs on one process only");
   }
-  const SamplingDomain mesh = mlsgeometry::samplingDomain(inSets);
+  const SamplingDomain mesh = mlsvtk::samplingDomain(inSets);
   this->UpdateProgress(0.1);
   DeformationEnergy energy = shellEnergy(mesh);
   this->UpdateProgress(0.5);

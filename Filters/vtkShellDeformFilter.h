@@ -25,7 +25,7 @@ protected:
   vtkShellDeformFilter();
   ~vtkShellDeformFilter() override = default;
 
-  mlsgeometry::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) override;
+  mlsvtk::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) override;
   std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
     const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) override;
 

@@ -1,13 +1,17 @@
 #include "vtkSubspaceDeformFilter.h"
 
-#include "SpaceDeformation.h"
+#include "Common/BoundingBox.h"
+#include "Solver/SpaceDeformation.h"
 
-#include "ArrayRanges.h"
-#include "GatheredPositions.h"
-#include "MLSGeometry.h"
-#include "ProcessCollective.h"
-#include "VolumeMeshQuality.h"
-#include "SubspaceOperators.h"
+#include "Session/SubspaceDependencies.h"
+#include "Adapters/ArrayRanges.h"
+#include "Common/GatheredPositions.h"
+#include "Adapters/PointSets.h"
+#include "Adapters/Stamp.h"
+#include "Adapters/AlgorithmProgress.h"
+#include "Adapters/ProcessCollective.h"
+#include "Adapters/VolumeMeshQuality.h"
+#include "Basis/SubspaceOperators.h"
 #include "vtkConstraintRegion.h"
 
 #include <vtkCompositeDataIterator.h>
@@ -35,6 +39,7 @@
 #include <tuple>
 
 using namespace mlsdeform;
+using namespace mlsvtk;
 
 namespace
 {
@@ -52,13 +57,13 @@ struct RegionInput
 {
   int role = 0;
   double weight = 1;
-  mlsgeometry::Stamp stamp;
+  mlsvtk::Stamp stamp;
   PointList localPositions;
   std::vector<int> localSets; // a ConstraintSet per local position (a ConstraintRegion with CellSets), or empty
   bool localChanged = true;   // since the last gathering
   vtkDataArray* displacement = nullptr; // this update's local PrescribedDisplacement
 
-  mlsgeometry::GatheredPositions gathered; // the positions of all processes, in canonical order
+  mlsdeform::GatheredPositions gathered; // the positions of all processes, in canonical order
   long version = -1;                         // of the gathered positions and sets
 };
 
@@ -130,10 +135,10 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     region.displacement = displacement;
     vtkDataArray* weight = data->GetFieldData()->GetArray("Weight");
     region.weight = weight ? weight->GetTuple1(0) : 1.0;
-    mlsgeometry::Stamp stamp = mlsgeometry::pointsStamp({ data });
+    mlsvtk::Stamp stamp = mlsvtk::pointsStamp({ data });
     if (stamp != region.stamp)
     {
-      PointList positions = mlsgeometry::points({ data });
+      PointList positions = mlsvtk::points({ data });
       requireFinite(positions, (which + " positions").c_str());
       std::vector<int> sets;
       if (vtkDataArray* setArray = data->GetPointData()->GetArray("ConstraintSet"))
@@ -175,7 +180,7 @@ void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const C
   {
     for (RegionInput& region : regions)
     {
-      mlsgeometry::GatheredPositions gathered = mlsgeometry::gatherPositions(region.localPositions, region.localSets, group);
+      mlsdeform::GatheredPositions gathered = mlsdeform::gatherPositions(region.localPositions, region.localSets, group);
       if (gathered.positions != region.gathered.positions || gathered.sets != region.gathered.sets || region.version < 0)
       {
         region.version = nextVersion++;
@@ -384,7 +389,7 @@ void addField(vtkFieldData* field, const char* name, double value)
 struct vtkSubspaceDeformFilter::Cache
 {
   long nextVersion = 0;
-  mlsgeometry::Stamp pointsStamp; // of the input points below
+  mlsvtk::Stamp pointsStamp; // of the input points below
   PointList points;               // the input points, concatenated
   long pointsVersion = -1;
   std::vector<RegionInput> regions;
@@ -393,8 +398,8 @@ struct vtkSubspaceDeformFilter::Cache
 
   // 1. the subspace
   std::unique_ptr<SpaceDeformation> model;
-  mlsgeometry::SubspaceDependencies dependencies;
-  mlsgeometry::Stamp cellsStamp;
+  mlsvtk::SubspaceDependencies dependencies;
+  mlsvtk::Stamp cellsStamp;
   long modelPoints = -1;
   // 2. Phi at the input points
   RowBlocks geometrySubspace;
@@ -416,9 +421,9 @@ struct vtkSubspaceDeformFilter::Cache
   double diagonal = -1;                         // of the bounding box of all processes' points (-1: not known)
 
   // the volume mesh's faces and its quality before deformation, per point set (MeshQuality)
-  mlsgeometry::Stamp qualityStamp; // of the cells and points they were measured on
-  std::vector<std::unique_ptr<mlsgeometry::VolumeMeshQuality>> quality;
-  mlsgeometry::QualitySummary originalQuality;
+  mlsvtk::Stamp qualityStamp; // of the cells and points they were measured on
+  std::vector<std::unique_ptr<mlsvtk::VolumeMeshQuality>> quality;
+  mlsvtk::QualitySummary originalQuality;
 
   /// Forgets everything built on the subspace.
   void resetModel()
@@ -464,15 +469,15 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   copyInput(input, output);
   this->SetErrorCode(vtkErrorCode::NoError);
   int skipped = 0;
-  const std::vector<vtkPointSet*> inSets = mlsgeometry::pointSets(input, &skipped);
-  const std::vector<vtkPointSet*> outSets = mlsgeometry::pointSets(output);
+  const std::vector<vtkPointSet*> inSets = mlsvtk::pointSets(input, &skipped);
+  const std::vector<vtkPointSet*> outSets = mlsvtk::pointSets(output);
   if (skipped > 0)
   {
     vtkWarningMacro(<< skipped << " block(s) are not point sets and are passed through unchanged.");
   }
   // Split over processes, every process holds the same samples, regions and factorization and
   // deforms its own points; what one process finds wrong stops all of them at the same step.
-  const mlsgeometry::ProcessCollective group;
+  const mlsvtk::ProcessCollective group;
   Cache& cache = *this->Cached;
   bool resampled = false, refactorized = false;
   try
@@ -480,10 +485,10 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     const auto setupStart = Clock::now();
     agree(group, [&] {
       // The input points: read again when their stamp changes, a new version when their values do.
-      mlsgeometry::Stamp pointsStamp = mlsgeometry::pointsStamp(inSets);
+      mlsvtk::Stamp pointsStamp = mlsvtk::pointsStamp(inSets);
       if (pointsStamp != cache.pointsStamp)
       {
-        PointList points = mlsgeometry::points(inSets);
+        PointList points = mlsvtk::points(inSets);
         requireFinite(points, "input points");
         if (points != cache.points || cache.pointsVersion < 0)
         {
@@ -520,8 +525,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     const std::vector<SlipPlane>& slips = cache.slips;
 
     // 1. The subspace: shape functions and energies.
-    mlsgeometry::SubspaceDependencies dependencies = this->GetSubspaceDependencies(inputVector);
-    mlsgeometry::Stamp cellsStamp = dependencies.geometry ? mlsgeometry::cellsStamp(inSets) : mlsgeometry::Stamp();
+    mlsvtk::SubspaceDependencies dependencies = this->GetSubspaceDependencies(inputVector);
+    mlsvtk::Stamp cellsStamp = dependencies.geometry ? mlsvtk::cellsStamp(inSets) : mlsvtk::Stamp();
     const long modelPoints = dependencies.geometry ? cache.pointsVersion : 0;
     if (group.any(!cache.model || !(dependencies == cache.dependencies) || cellsStamp != cache.cellsStamp || modelPoints != cache.modelPoints))
     {
@@ -540,7 +545,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       if (cache.phiPoints != cache.pointsVersion)
       {
         std::vector<int> outside;
-        cache.geometrySubspace = subspaceBlocks(model.basis(), points, &outside, { &mlsgeometry::reportProgress, this, 0.6, 0.9 });
+        cache.geometrySubspace = subspaceBlocks(model.basis(), points, &outside, { &mlsvtk::reportProgress, this, 0.6, 0.9 });
         if (!outside.empty())
         {
           throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
@@ -644,7 +649,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
         }
         values = local.data();
       }
-      cache.prescribed[r] = mlsgeometry::gatherValues(values, n, 3, cache.regions[r].gathered, group);
+      cache.prescribed[r] = mlsdeform::gatherValues(values, n, 3, cache.regions[r].gathered, group);
       prescribed.emplace_back(cache.prescribed[r].data(), static_cast<long>(cache.regions[r].gathered.positions.size()), 3);
     }
     IterationSettings settings;
@@ -751,20 +756,20 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
   // over processes, each measures its own piece (the faces between pieces are not measured) and
   // the summaries are combined exactly: counts added, largest values kept.
   Cache& cache = *this->Cached;
-  mlsgeometry::Stamp stamp = mlsgeometry::cellsStamp(inSets);
-  const mlsgeometry::Stamp points = mlsgeometry::pointsStamp(inSets);
+  mlsvtk::Stamp stamp = mlsvtk::cellsStamp(inSets);
+  const mlsvtk::Stamp points = mlsvtk::pointsStamp(inSets);
   stamp.objects.insert(stamp.objects.end(), points.objects.begin(), points.objects.end());
   if (group.any(stamp != cache.qualityStamp))
   {
     cache.quality.clear();
-    cache.originalQuality = mlsgeometry::QualitySummary();
+    cache.originalQuality = mlsvtk::QualitySummary();
     std::string problem;
     try
     {
       for (vtkPointSet* set : inSets)
       {
         auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
-        cache.quality.push_back(grid ? std::make_unique<mlsgeometry::VolumeMeshQuality>(grid) : nullptr);
+        cache.quality.push_back(grid ? std::make_unique<mlsvtk::VolumeMeshQuality>(grid) : nullptr);
         if (cache.quality.back() && cache.quality.back()->hasCells())
         {
           cache.originalQuality.add(cache.quality.back()->original());
@@ -787,7 +792,7 @@ void vtkSubspaceDeformFilter::ReportMeshQuality(
     cache.quality.resize(inSets.size());
     cache.qualityStamp = std::move(stamp);
   }
-  mlsgeometry::QualitySummary deformed;
+  mlsvtk::QualitySummary deformed;
   bool measured = false;
   for (std::size_t s = 0; s < outSets.size(); ++s)
   {

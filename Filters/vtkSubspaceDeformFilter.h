@@ -62,7 +62,7 @@ namespace mlsdeform
 class Collective;
 class SpaceDeformation;
 }
-namespace mlsgeometry
+namespace mlsvtk
 {
 struct SubspaceDependencies;
 }
@@ -161,7 +161,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// What the subspace depends on (MLSGeometry.h): it is rebuilt when that changes.
-  virtual mlsgeometry::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) = 0;
+  virtual mlsvtk::SubspaceDependencies GetSubspaceDependencies(vtkInformationVector** inputVector) = 0;
   /// The shape functions and energies for the input (throws mlsdeform exceptions on bad input);
   /// progress from 0 to 0.6.
   virtual std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(

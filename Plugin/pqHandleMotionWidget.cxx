@@ -1,6 +1,6 @@
 #include "pqHandleMotionWidget.h"
 
-#include "HandleMotion.h"
+#include "Adapters/HandleMotion.h"
 
 #include <pqActiveObjects.h>
 #include <pqCoreUtilities.h>
@@ -117,11 +117,11 @@ void pqHandleMotionWidget::motionEdited()
   {
     return;
   }
-  mlsgeometry::HandleMotion motion;
+  mlsvtk::HandleMotion motion;
   vtkSMUncheckedPropertyHelper(this->Motion[0]).Get(motion.translation, 3);
   vtkSMUncheckedPropertyHelper(this->Motion[1]).Get(motion.rotation, 3);
   vtkSMUncheckedPropertyHelper(this->Motion[2]).Get(motion.scale, 3);
-  const mlsgeometry::BoxTransform transform = mlsgeometry::boxTransform(motion, this->Pivot);
+  const mlsvtk::BoxTransform transform = mlsvtk::boxTransform(motion, this->Pivot);
   vtkSMNewWidgetRepresentationProxy* box = this->widgetProxy();
   this->Updating = true;
   vtkSMPropertyHelper(box, "Position").Set(transform.position, 3);
@@ -143,7 +143,7 @@ void pqHandleMotionWidget::boxMoved()
   representation->GetTransform(transform);
   double matrix[16];
   vtkMatrix4x4::DeepCopy(matrix, transform->GetMatrix());
-  mlsgeometry::HandleMotion motion = mlsgeometry::handleMotion(matrix, this->Pivot);
+  mlsvtk::HandleMotion motion = mlsvtk::handleMotion(matrix, this->Pivot);
   // the round-off of the box's transform (~1e-16 of its size) shown as the exact value it stands
   // for: a box moved straight up reads Translation (0, 0, dz), not (1e-16, -7e-18, dz)
   const double size = std::max(1.0, vtkBoundingBox(representation->GetBounds()).GetMaxLength());

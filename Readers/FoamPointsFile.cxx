@@ -11,7 +11,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace mlsdeform
+namespace mlsfoam
 {
 namespace
 {
@@ -421,4 +421,4 @@ void writeFoamPoints(const std::string& directory, const FoamPointsFile& origina
     fail(path, "cannot be written");
   }
 }
-} // namespace mlsdeform
+} // namespace mlsfoam

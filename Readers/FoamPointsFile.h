@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace mlsdeform
+namespace mlsfoam
 {
 struct FoamPointsFile
 {
@@ -34,4 +34,4 @@ std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, c
 /// was compressed) with the original's header and format. Ascii coordinates are written in
 /// the shortest form that reads back as the same double. Throws std::runtime_error.
 void writeFoamPoints(const std::string& directory, const FoamPointsFile& original, const std::vector<double>& xyz);
-} // namespace mlsdeform
+} // namespace mlsfoam

@@ -1,7 +1,7 @@
 #include "vtkOpenFOAMCaseWriter.h"
 
 #include "FoamPointsFile.h"
-#include "ProcessCollective.h"
+#include "Adapters/ProcessCollective.h"
 
 #include <vtkCharArray.h>
 #include <vtkCompositeDataIterator.h>
@@ -220,7 +220,7 @@ bool hasPoints(const fs::path& polyMesh)
 struct MeshFile
 {
   int processor = -1;
-  mlsdeform::FoamPointsFile points; // as in the source case
+  mlsfoam::FoamPointsFile points; // as in the source case
   std::vector<double> displacement; // 3 per point
   std::vector<double> moved() const
   {
@@ -243,7 +243,7 @@ fs::path polyMeshOf(const fs::path& root, const std::vector<std::string>& proces
 // A mesh file of the source case, its points read, no displacement yet.
 MeshFile readMeshFile(const fs::path& source, const std::vector<std::string>& processors, int processor)
 {
-  return { processor, mlsdeform::readFoamPoints(polyMeshOf(source, processors, processor).string()), {} };
+  return { processor, mlsfoam::readFoamPoints(polyMeshOf(source, processors, processor).string()), {} };
 }
 
 // Takes the Displacement of the input's points offset, offset + 1, ... for the points of a mesh
@@ -381,7 +381,7 @@ void displaceThrough(const std::vector<std::int64_t>& addressing, const MeshFile
 // The pointProcAddressing of processor folder `processor` of the case.
 std::vector<std::int64_t> pointAddressing(const fs::path& source, const std::vector<std::string>& processors, int processor)
 {
-  return mlsdeform::readFoamLabels(polyMeshOf(source, processors, processor).string(), "pointProcAddressing");
+  return mlsfoam::readFoamLabels(polyMeshOf(source, processors, processor).string(), "pointProcAddressing");
 }
 }
 
@@ -397,7 +397,7 @@ int vtkOpenFOAMCaseWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkOpenFOAMCaseWriter::WriteData()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
-  const mlsgeometry::ProcessCollective group;
+  const mlsvtk::ProcessCollective group;
   const bool first = group.rank() == 0;
   fs::path partial;
   try
@@ -520,7 +520,7 @@ void vtkOpenFOAMCaseWriter::WriteData()
     // processors' pointProcAddressing: a reconstructed reading moves every processor folder, a
     // decomposed one the reconstructed mesh (the processes' displacements gathered on the first)
     const auto writeMoved = [&](const MeshFile& file) {
-      mlsdeform::writeFoamPoints(polyMeshOf(assembled, processors, file.processor).string(), file.points, file.moved());
+      mlsfoam::writeFoamPoints(polyMeshOf(assembled, processors, file.processor).string(), file.points, file.moved());
     };
     const bool wholeMesh = hasPoints(polyMeshOf(source, processors, -1));
     std::vector<double> displacements; // of this process's processor folders, in their order

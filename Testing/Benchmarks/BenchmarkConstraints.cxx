@@ -2,7 +2,7 @@
 // plane of 160k points bent between a fixed and a lifted strip, a planarity constraint on n
 // points of the bent middle. Prints one JSON line per n and iteration kind.
 // Usage: BenchmarkConstraints [K] [N1 N2 ...]
-#include "SpaceDeformation.h"
+#include "Solver/SpaceDeformation.h"
 #include "../Core/TestGeometry.h"
 
 #include <chrono>

@@ -9,9 +9,9 @@
 //
 // CGAL's Shape_detection is GPL: this program is a benchmark only, built when CMake is given
 // -DMLSDEFORM_BENCHMARK_CGAL=ON, and never linked into the plugin.
-#include "EfficientRansac.h"
-#include "FaceSamples.h"
-#include "Sampling.h"
+#include "Primitives/EfficientRansac.h"
+#include "Primitives/FaceSamples.h"
+#include "Sampling/Sampling.h"
 #include "SyntheticParts.h"
 #include "vtkOFFReader.h"
 

@@ -2,7 +2,7 @@
 // against central finite differences.
 #pragma once
 
-#include "ShapeFunctions.h"
+#include "Basis/ShapeFunctions.h"
 
 #include <Eigen/Dense>
 

@@ -5,7 +5,7 @@
 // noise never moves a vertex off its own primitive's neighbourhood.
 #pragma once
 
-#include "Primitives.h"
+#include "Primitives/Primitives.h"
 
 #include <array>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Section 6.2: every projection leaves data that satisfies its constraint unchanged and maps
 // perturbed data onto the constraint set.
 #include "../TestHarness.h"
-#include "ConstraintProjections.h"
+#include "Solver/ConstraintProjections.h"
 #include "TestGeometry.h"
 
 #include <Eigen/Geometry>

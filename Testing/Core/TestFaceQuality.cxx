@@ -1,6 +1,6 @@
 // OpenFOAM's checkMesh face measures (section 7.3) against values computed by hand.
 #include "../TestHarness.h"
-#include "FaceQuality.h"
+#include "Quality/FaceQuality.h"
 
 #include <algorithm>
 #include <cmath>

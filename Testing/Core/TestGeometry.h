@@ -1,7 +1,7 @@
 // Generated test geometry: structured tetrahedral boxes and triangulated planes.
 #pragma once
 
-#include "Sampling.h"
+#include "Sampling/Sampling.h"
 
 #include <random>
 

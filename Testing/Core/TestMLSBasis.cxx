@@ -1,7 +1,7 @@
 // Section 4: MLS shape functions reproduce linear fields, derivatives are analytic and right,
 // coplanar samples are handled by the pseudo-inverse.
-#include "MLSBasis.h"
-#include "Sampling.h"
+#include "Basis/MLSBasis.h"
+#include "Sampling/Sampling.h"
 #include "ShapeFunctionChecks.h"
 #include "TestGeometry.h"
 #include "../TestHarness.h"

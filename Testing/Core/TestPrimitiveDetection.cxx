@@ -1,8 +1,8 @@
 // Section 6.3: primitives from minimal sets and least squares, the forward search, and the
 // efficient RANSAC on generated CAD-like parts, clean and noisy.
 #include "../TestHarness.h"
-#include "EfficientRansac.h"
-#include "FaceSamples.h"
+#include "Primitives/EfficientRansac.h"
+#include "Primitives/FaceSamples.h"
 #include "SyntheticParts.h"
 
 #include <omp.h>

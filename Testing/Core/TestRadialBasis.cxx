@@ -1,8 +1,8 @@
 // Section 4: the radial basis functions compared with MLS (Wendland, Gaussian, biharmonic,
 // triharmonic): kernel values, analytic derivatives, and the linear polynomials of the global ones.
 #include "../TestHarness.h"
-#include "RadialBasis.h"
-#include "Sampling.h"
+#include "Basis/RadialBasis.h"
+#include "Sampling/Sampling.h"
 #include "ShapeFunctionChecks.h"
 #include "TestGeometry.h"
 

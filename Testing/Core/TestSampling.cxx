@@ -1,7 +1,7 @@
 // Fig. 2 / section 5: farthest points, Lloyd relaxation, cover radii, Voronoi volumes.
-#include "KdTree.h"
-#include "MLSBasis.h"
-#include "Sampling.h"
+#include "Common/KdTree.h"
+#include "Basis/MLSBasis.h"
+#include "Sampling/Sampling.h"
 #include "TestGeometry.h"
 #include "../TestHarness.h"
 

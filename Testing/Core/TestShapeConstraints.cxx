@@ -1,9 +1,9 @@
 // Section 6: the local/global iteration keeps geometric constraints during the deformation.
 #include "../TestHarness.h"
-#include "ConstraintProjections.h"
-#include "MLSBasis.h"
-#include "SpaceDeformation.h"
-#include "SubspaceOperators.h"
+#include "Solver/ConstraintProjections.h"
+#include "Basis/MLSBasis.h"
+#include "Solver/SpaceDeformation.h"
+#include "Basis/SubspaceOperators.h"
 #include "TestGeometry.h"
 
 #include <chrono>

@@ -1,7 +1,8 @@
 // Section 3: the mesh-based shell deformation (the ground truth) with Meyer et al.'s operators.
 #include "../TestHarness.h"
-#include "ShellOperators.h"
-#include "SpaceDeformation.h"
+#include "Common/BoundingBox.h"
+#include "Basis/ShellOperators.h"
+#include "Solver/SpaceDeformation.h"
 #include "TestGeometry.h"
 
 #include <cmath>

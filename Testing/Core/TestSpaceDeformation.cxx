@@ -1,8 +1,8 @@
 // Section 5, eq. 12-14: the normal matrices and invariants of the solve.
-#include "MLSBasis.h"
-#include "RadialBasis.h"
-#include "SpaceDeformation.h"
-#include "SubspaceOperators.h"
+#include "Basis/MLSBasis.h"
+#include "Basis/RadialBasis.h"
+#include "Solver/SpaceDeformation.h"
+#include "Basis/SubspaceOperators.h"
 #include "TestGeometry.h"
 #include "../TestHarness.h"
 

@@ -2,7 +2,7 @@
 // widget produces it, the box widget's description of it, and the Constraint Region's
 // prescribed displacement.
 #include "../TestHarness.h"
-#include "HandleMotion.h"
+#include "Adapters/HandleMotion.h"
 #include "vtkConstraintRegion.h"
 
 #include <vtkDataArray.h>
@@ -15,7 +15,7 @@
 
 #include <random>
 
-using mlsgeometry::HandleMotion;
+using mlsvtk::HandleMotion;
 
 namespace
 {
@@ -58,7 +58,7 @@ TEST(MatrixScalesRotatesAndTranslatesAboutThePivot)
   m.translation[2] = 1;
   const double pivot[3] = { 1, 0, 0 };
   double M[16];
-  mlsgeometry::handleMotionMatrix(m, pivot, M);
+  mlsvtk::handleMotionMatrix(m, pivot, M);
   const double x[3] = { 2, 0, 0 };
   const double expected[3] = { 1, 2, 1 };
   for (int i = 0; i < 3; ++i)
@@ -70,7 +70,7 @@ TEST(MatrixScalesRotatesAndTranslatesAboutThePivot)
   r.rotation[0] = 90;
   r.rotation[1] = 90;
   const double origin[3] = { 0, 0, 0 };
-  mlsgeometry::handleMotionMatrix(r, origin, M);
+  mlsvtk::handleMotionMatrix(r, origin, M);
   CHECK_NEAR(M[1], 1, MatrixTolerance);
 }
 
@@ -82,8 +82,8 @@ TEST(MotionIsRecoveredFromItsMatrix)
     const HandleMotion m = randomMotion(random);
     const double pivot[3] = { 0.3 * trial, -1, 2 };
     double M[16];
-    mlsgeometry::handleMotionMatrix(m, pivot, M);
-    const HandleMotion back = mlsgeometry::handleMotion(M, pivot);
+    mlsvtk::handleMotionMatrix(m, pivot, M);
+    const HandleMotion back = mlsvtk::handleMotion(M, pivot);
     for (int i = 0; i < 3; ++i)
     {
       // angles from atan2/asin of entries exact to ~1e-16: ~1e-14 degrees; asin near b = 89
@@ -101,8 +101,8 @@ TEST(MotionIsRecoveredFromItsMatrix)
   lock.rotation[2] = 10;
   const double pivot[3] = { 1, 2, 3 };
   double M[16], again[16];
-  mlsgeometry::handleMotionMatrix(lock, pivot, M);
-  mlsgeometry::handleMotionMatrix(mlsgeometry::handleMotion(M, pivot), pivot, again);
+  mlsvtk::handleMotionMatrix(lock, pivot, M);
+  mlsvtk::handleMotionMatrix(mlsvtk::handleMotion(M, pivot), pivot, again);
   CHECK(largestDifference(M, again) < MatrixTolerance);
 }
 
@@ -114,7 +114,7 @@ TEST(BoxWidgetTransformGivesTheSameMap)
   {
     const HandleMotion m = randomMotion(random);
     const double pivot[3] = { 1, -0.5 * trial, 0.25 };
-    const mlsgeometry::BoxTransform box = mlsgeometry::boxTransform(m, pivot);
+    const mlsvtk::BoxTransform box = mlsvtk::boxTransform(m, pivot);
     vtkNew<vtkTransform> widget;
     widget->Translate(box.position);
     widget->RotateZ(box.rotation[2]);
@@ -123,7 +123,7 @@ TEST(BoxWidgetTransformGivesTheSameMap)
     widget->Scale(box.scale);
     double W[16], M[16];
     vtkMatrix4x4::DeepCopy(W, widget->GetMatrix());
-    mlsgeometry::handleMotionMatrix(m, pivot, M);
+    mlsvtk::handleMotionMatrix(m, pivot, M);
     // GetOrientation's angles come from atan2 of the rotation's entries: ~1e-15 relative; the
     // translation column holds |pivot| up to 50
     CHECK(largestDifference(W, M) < 1e-12);

@@ -25,7 +25,7 @@
 #include <vtkTrivialProducer.h>
 #include <vtkUnstructuredGrid.h>
 
-#include "ConstraintProjections.h"
+#include "Solver/ConstraintProjections.h"
 
 #include <algorithm>
 #include <cmath>

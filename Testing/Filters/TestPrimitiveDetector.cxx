@@ -2,7 +2,7 @@
 // table, fandisk and joint from CGAL's data, the joint scene of Fig. 10, and bad input.
 #include "../TestHarness.h"
 #include "FilterTestUtilities.h"
-#include "Primitives.h"
+#include "Primitives/Primitives.h"
 #include "vtkOFFReader.h"
 #include "vtkPrimitiveDetector.h"
 

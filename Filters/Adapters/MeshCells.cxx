@@ -1,0 +1,380 @@
+#include "Adapters/MeshCells.h"
+
+#include "Adapters/PointSets.h"
+#include "Common/PositionHash.h"
+#include <vtkCell.h>
+#include <vtkCellArray.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkGenericCell.h>
+#include <vtkGeometryFilter.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
+#include <algorithm>
+#include <array>
+#include <atomic>
+
+namespace mlsvtk
+{
+namespace
+{
+// Orders point ids by their positions (lexicographically): a cell's split into simplices chosen
+// in this order depends on its geometry only, not on how the cell or the mesh numbers its points
+// (a mesh decomposed over processes numbers them differently than the whole mesh).
+// Compares the coordinates in place when they are floats or doubles (a cell asks about 40 times).
+class PositionOrder
+{
+public:
+  explicit PositionOrder(vtkPoints* points)
+    : Points(points)
+  {
+    auto* floats = vtkFloatArray::SafeDownCast(points->GetData());
+    auto* doubles = vtkDoubleArray::SafeDownCast(points->GetData());
+    Floats = floats ? floats->GetPointer(0) : nullptr;
+    Doubles = doubles ? doubles->GetPointer(0) : nullptr;
+  }
+  bool operator()(vtkIdType a, vtkIdType b) const
+  {
+    if (Floats)
+    {
+      return std::lexicographical_compare(Floats + 3 * a, Floats + 3 * a + 3, Floats + 3 * b, Floats + 3 * b + 3);
+    }
+    if (Doubles)
+    {
+      return std::lexicographical_compare(Doubles + 3 * a, Doubles + 3 * a + 3, Doubles + 3 * b, Doubles + 3 * b + 3);
+    }
+    double pa[3], pb[3];
+    Points->GetPoint(a, pa);
+    Points->GetPoint(b, pb);
+    return std::lexicographical_compare(pa, pa + 3, pb, pb + 3);
+  }
+
+private:
+  vtkPoints* Points;
+  const float* Floats;
+  const double* Doubles;
+};
+
+// The triangles of a polygon (a cycle of point ids): a fan from its first point in position
+// order, so that two cells sharing a face split it alike.
+template <typename Add>
+void fan(const vtkIdType* polygon, vtkIdType n, const PositionOrder& before, Add add)
+{
+  const vtkIdType first = std::min_element(polygon, polygon + n, before) - polygon;
+  for (vtkIdType v = 1; v + 1 < n; ++v)
+  {
+    add({ polygon[first], polygon[(first + v) % n], polygon[(first + v + 1) % n] });
+  }
+}
+
+// The tetrahedra of a 3D cell given by its faces (faces(visit) calls visit(ids, n) per face): the
+// cell is star-shaped about its vertices (convex cells and OpenFOAM's are), so its first point
+// in position order joined to the fans of the faces that do not hold it splits it.
+// vtkPolyhedron::Triangulate builds a Delaunay tetrahedralization and a polyhedron object per
+// cell, most of the sampling's time on a snappyHexMesh mesh.
+template <typename Faces, typename Add>
+void starTetrahedra(Faces faces, const PositionOrder& before, Add add)
+{
+  vtkIdType apex = -1;
+  faces([&](const vtkIdType* face, vtkIdType n) {
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      apex = apex < 0 || before(face[k], apex) ? face[k] : apex;
+    }
+  });
+  faces([&](const vtkIdType* face, vtkIdType n) {
+    if (std::find(face, face + n, apex) == face + n)
+    {
+      fan(face, n, before, [&](const std::array<vtkIdType, 3>& t) { add({ apex, t[0], t[1], t[2] }); });
+    }
+  });
+}
+
+// The faces of a linear 3D cell type of fixed topology (hexahedron, voxel, wedge, pyramid,
+// pentagonal and hexagonal prism) as cycles of positions in the cell's point list
+// (setLocalCell), asked of VTK once per type; empty for other types. A vtkGenericCell per cell
+// took most of the sampling domain's time on a 1M-cell mesh.
+const std::vector<std::vector<vtkIdType>>& localFaces(int type)
+{
+  static const std::array<std::vector<std::vector<vtkIdType>>, VTK_NUMBER_OF_CELL_TYPES> faces = [] {
+    std::array<std::vector<std::vector<vtkIdType>>, VTK_NUMBER_OF_CELL_TYPES> out;
+    vtkNew<vtkGenericCell> cell;
+    for (int fixed : { VTK_HEXAHEDRON, VTK_VOXEL, VTK_WEDGE, VTK_PYRAMID, VTK_PENTAGONAL_PRISM, VTK_HEXAGONAL_PRISM })
+    {
+      setLocalCell(cell, fixed);
+      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+      {
+        vtkCell* face = cell->GetFace(f);
+        vtkIdList* ids = face->GetPointIds();
+        std::vector<vtkIdType> cycle(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+        if (face->GetCellType() == VTK_PIXEL)
+        {
+          std::swap(cycle[2], cycle[3]); // a pixel's points in raster order, not around it
+        }
+        out[fixed].push_back(cycle);
+      }
+    }
+    return out;
+  }();
+  return type >= 0 && type < VTK_NUMBER_OF_CELL_TYPES ? faces[type] : faces[VTK_EMPTY_CELL];
+}
+
+// Splits every cell of the given dimension into simplices (triangles or tetrahedra), whatever
+// the numbering of its points: simplices are taken as they are, polygons (quads, pixels) become
+// fans and 3D cells of fixed topology and polyhedra tetrahedra about a point (chosen by position
+// order); other cells (quadratic ones) are triangulated by VTK. Chunks of cells are split in
+// parallel and appended in cell order, so the list does not depend on the thread count.
+template <std::size_t N>
+void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
+{
+  const int simplexType = N == 3 ? VTK_TRIANGLE : VTK_TETRA;
+  auto* pointSet = vtkPointSet::SafeDownCast(set);
+  if (!pointSet || !pointSet->GetPoints())
+  {
+    return;
+  }
+  if (auto* polyData = vtkPolyData::SafeDownCast(set); polyData && polyData->NeedToBuildCells())
+  {
+    polyData->BuildCells(); // before the threads: GetCellPoints would build it on first use
+  }
+  const PositionOrder before(pointSet->GetPoints());
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
+  vtkUnsignedCharArray* ghosts = set->GetCellGhostArray();
+  const vtkIdType cellCount = set->GetNumberOfCells();
+  constexpr vtkIdType Chunk = 16384;
+  std::vector<std::vector<std::array<int, N>>> parts(static_cast<std::size_t>((cellCount + Chunk - 1) / Chunk));
+#pragma omp parallel
+  {
+    CellsByType cells;
+    vtkNew<vtkIdList> ids;
+    vtkNew<vtkPoints> pts;
+#pragma omp for schedule(dynamic)
+    for (long part = 0; part < static_cast<long>(parts.size()); ++part)
+    {
+      std::vector<std::array<int, N>>& simplexList = parts[part];
+      auto add = [&](const std::array<vtkIdType, N>& simplex) {
+        std::array<int, N> mapped;
+        for (std::size_t v = 0; v < N; ++v)
+        {
+          mapped[v] = offset + static_cast<int>(pointMap ? pointMap[simplex[v]] : simplex[v]);
+        }
+        simplexList.push_back(mapped);
+      };
+      for (vtkIdType c = part * Chunk; c < std::min(cellCount, (part + 1) * Chunk); ++c)
+      {
+        if (ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL))
+        {
+          continue; // another process's cell, sampled there
+        }
+        const int type = set->GetCellType(c);
+        if (type != simplexType && cellDimension(type) != dimension)
+        {
+          continue;
+        }
+        set->GetCellPoints(c, ids);
+        vtkIdType* cellPoints = ids->GetPointer(0);
+        const vtkIdType n = ids->GetNumberOfIds();
+        if (type == simplexType)
+        {
+          std::array<vtkIdType, N> simplex;
+          std::copy_n(cellPoints, N, simplex.begin());
+          add(simplex);
+          continue;
+        }
+        if constexpr (N == 3)
+        {
+          if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_PIXEL)
+          {
+            if (type == VTK_PIXEL)
+            {
+              std::swap(cellPoints[2], cellPoints[3]);
+            }
+            fan(cellPoints, n, before, add);
+            continue;
+          }
+        }
+        else
+        {
+          if (type == VTK_POLYHEDRON && grid)
+          {
+            starTetrahedra([&](auto visit) { visitPolyhedronFaces(grid, c, visit); }, before, add);
+            continue;
+          }
+          if (const std::vector<std::vector<vtkIdType>>& local = localFaces(type); !local.empty())
+          {
+            starTetrahedra(
+              [&](auto visit) {
+                for (const std::vector<vtkIdType>& face : local)
+                {
+                  std::array<vtkIdType, 6> global; // a hexagonal prism's faces have 6 points at most
+                  for (std::size_t k = 0; k < face.size(); ++k)
+                  {
+                    global[k] = cellPoints[face[k]];
+                  }
+                  visit(global.data(), static_cast<vtkIdType>(face.size()));
+                }
+              },
+              before, add);
+            continue;
+          }
+        }
+        if (!cells.get(set, c)->Triangulate(0, ids, pts))
+        {
+          continue;
+        }
+        for (vtkIdType s = 0; s + static_cast<vtkIdType>(N) <= ids->GetNumberOfIds(); s += N)
+        {
+          std::array<vtkIdType, N> simplex;
+          std::copy_n(ids->GetPointer(s), N, simplex.begin());
+          add(simplex);
+        }
+      }
+    }
+  }
+  std::size_t total = out.size();
+  for (const auto& part : parts)
+  {
+    total += part.size();
+  }
+  out.reserve(total);
+  for (auto& part : parts)
+  {
+    out.insert(out.end(), part.begin(), part.end());
+    std::vector<std::array<int, N>>().swap(part);
+  }
+}
+}
+
+void setLocalCell(vtkGenericCell* cell, int type)
+{
+  cell->SetCellType(type);
+  for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
+  {
+    cell->GetPointIds()->SetId(i, i);
+  }
+}
+
+int cellDimension(int type)
+{
+  // the dimension plus one, 0 until asked (static storage starts at zero); concurrent first
+  // calls store the same value
+  static std::array<std::atomic<int>, VTK_NUMBER_OF_CELL_TYPES> known;
+  if (type < 0 || type >= VTK_NUMBER_OF_CELL_TYPES)
+  {
+    return 0;
+  }
+  if (known[type] == 0)
+  {
+    known[type] = 1 + vtkCellTypes::GetDimension(static_cast<unsigned char>(type));
+  }
+  return known[type] - 1;
+}
+
+mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group)
+{
+  mlsdeform::SamplingDomain domain;
+  domain.points = points(sets);
+  int offset = 0;
+  for (vtkPointSet* set : sets)
+  {
+    simplices<3>(set, 2, nullptr, offset, domain.triangles);
+    simplices<4>(set, 3, nullptr, offset, domain.tetrahedra);
+    offset += static_cast<int>(set->GetNumberOfPoints());
+  }
+  if (group.any(!domain.triangles.empty()) || !group.any(!domain.tetrahedra.empty()))
+  {
+    return domain;
+  }
+  // A volume mesh without surface cells: its boundary faces are the surface. Split over
+  // processes, a piece's boundary also holds the faces it shares with another piece: those are
+  // found by their vertices' positions on two processes, and left out.
+  std::vector<vtkSmartPointer<vtkPolyData>> boundaries;
+  std::vector<std::int64_t> keys;
+  for (vtkPointSet* set : sets)
+  {
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
+    if (!grid)
+    {
+      boundaries.emplace_back();
+      continue;
+    }
+    vtkNew<vtkGeometryFilter> boundary;
+    boundary->SetInputData(grid);
+    boundary->SetPassThroughPointIds(true);
+    boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
+    boundary->MergingOff();
+    boundary->Update();
+    boundaries.emplace_back(boundary->GetOutput());
+    vtkPolyData* faces = boundaries.back();
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType f = 0; group.size() > 1 && f < faces->GetNumberOfCells(); ++f)
+    {
+      faces->GetCellPoints(f, ids);
+      std::uint64_t key = 0;
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        mlsdeform::Vec3 x;
+        faces->GetPoint(ids->GetId(k), x.data());
+        key += mlsdeform::positionKey(x); // a sum: the same for either side's vertex order
+      }
+      keys.push_back(static_cast<std::int64_t>(key));
+    }
+  }
+  std::vector<std::int64_t> shared = group.size() > 1 ? group.gather(keys) : std::vector<std::int64_t>();
+  std::sort(shared.begin(), shared.end());
+  std::size_t face = 0;
+  offset = 0;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    if (vtkPolyData* faces = boundaries[s])
+    {
+      // The faces refer to renumbered points with their original ids in an array, or (the fast
+      // path for unstructured grids) to the grid's own points.
+      auto* ids = vtkIdTypeArray::SafeDownCast(faces->GetPointData()->GetArray("MLSOriginalPointIds"));
+      if (group.size() > 1)
+      {
+        vtkNew<vtkCellArray> outer;
+        vtkNew<vtkIdList> facePoints;
+        for (vtkIdType f = 0; f < faces->GetNumberOfCells(); ++f, ++face)
+        {
+          const auto range = std::equal_range(shared.begin(), shared.end(), keys[face]);
+          if (range.second - range.first < 2)
+          {
+            faces->GetCellPoints(f, facePoints);
+            outer->InsertNextCell(facePoints);
+          }
+        }
+        faces->SetPolys(outer); // the geometry filter's output holds polygons only
+      }
+      if (ids || faces->GetNumberOfPoints() == sets[s]->GetNumberOfPoints())
+      {
+        simplices<3>(faces, 2, ids ? ids->GetPointer(0) : nullptr, offset, domain.triangles);
+      }
+    }
+    offset += static_cast<int>(sets[s]->GetNumberOfPoints());
+  }
+  return domain;
+}
+
+vtkGenericCell* CellsByType::get(vtkDataSet* set, vtkIdType cell)
+{
+  const auto type = static_cast<std::size_t>(set->GetCellType(cell));
+  if (Cells.size() <= type)
+  {
+    Cells.resize(type + 1);
+  }
+  if (!Cells[type])
+  {
+    Cells[type] = vtkSmartPointer<vtkGenericCell>::New();
+  }
+  set->GetCell(cell, Cells[type]);
+  return Cells[type];
+}
+} // namespace mlsvtk

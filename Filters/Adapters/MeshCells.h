@@ -1,0 +1,60 @@
+// VTK cells as the core's simplices: the surface triangles and volume tetrahedra of point sets
+// (the domain to sample), split by their vertices' positions, and cheap per-type cell access.
+#pragma once
+
+#include "Common/Collective.h"
+#include "Common/SamplingDomain.h"
+#include <vtkSmartPointer.h>
+#include <vtkType.h>
+#include <vtkUnstructuredGrid.h>
+#include <vector>
+
+class vtkDataSet;
+class vtkGenericCell;
+class vtkPointSet;
+
+namespace mlsvtk
+{
+/// Surface triangles and volume tetrahedra of the point sets (indices into points(sets)); ghost
+/// cells (another process's) are left out. When there are 3D cells but no 2D cells (on all
+/// processes of group), the boundary faces of the 3D cells are the surface, without the faces
+/// that pieces on different processes share.
+mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group = mlsdeform::serial());
+
+/// The dimension of a VTK cell type (0 for an unknown type). vtkCellTypes::GetDimension builds a
+/// cell of the type on every call (for a snappyHexMesh cell, a polyhedron object); this asks it
+/// once per type.
+int cellDimension(int type);
+
+/// Makes cell a cell of the type whose point ids are 0 .. n-1, so that what VTK derives from it (its
+/// faces, its simplices) comes as positions in the point list of any cell of that type: asked once
+/// per type and mapped through each cell's point ids, instead of a vtkGenericCell per cell.
+void setLocalCell(vtkGenericCell* cell, int type);
+
+/// Calls visit(points, n) for every face of a polyhedron cell as its face stream stores it (no
+/// vtkPolyhedron object, whose construction costs more than what is done with it).
+template <typename Visit>
+void visitPolyhedronFaces(vtkUnstructuredGrid* grid, vtkIdType cell, Visit visit)
+{
+  vtkIdType faces = 0;
+  const vtkIdType* stream = nullptr;
+  grid->GetFaceStream(cell, faces, stream);
+  for (vtkIdType f = 0; f < faces && stream; ++f)
+  {
+    const vtkIdType n = *stream++;
+    visit(stream, n);
+    stream += n;
+  }
+}
+
+/// A cell of a dataset in a vtkGenericCell kept per cell type: one vtkGenericCell rebuilds its
+/// cell whenever the type changes, and a polyhedron's rebuild costs more than what is done with it.
+class CellsByType
+{
+public:
+  vtkGenericCell* get(vtkDataSet* set, vtkIdType cell);
+
+private:
+  std::vector<vtkSmartPointer<vtkGenericCell>> Cells;
+};
+} // namespace mlsvtk

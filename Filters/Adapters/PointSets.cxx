@@ -1,0 +1,116 @@
+#include "Adapters/PointSets.h"
+
+#include <vtkCellArray.h>
+#include <vtkCompositeDataIterator.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <algorithm>
+
+namespace mlsvtk
+{
+std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped)
+{
+  std::vector<vtkPointSet*> sets;
+  int others = 0;
+  if (auto* set = vtkPointSet::SafeDownCast(input))
+  {
+    sets.push_back(set);
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it = vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        sets.push_back(leaf);
+      }
+      else
+      {
+        ++others;
+      }
+    }
+  }
+  else if (input)
+  {
+    ++others;
+  }
+  if (skipped)
+  {
+    *skipped = others;
+  }
+  return sets;
+}
+
+namespace
+{
+// Copies the coordinates of a float or double array (false for other types).
+template <typename Array>
+bool copyCoordinates(vtkDataArray* data, mlsdeform::Vec3* out)
+{
+  auto* array = Array::SafeDownCast(data);
+  if (!array)
+  {
+    return false;
+  }
+  const auto* in = array->GetPointer(0);
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    out[i] = mlsdeform::Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]);
+  }
+  return true;
+}
+}
+
+mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
+{
+  mlsdeform::PointList out;
+  for (vtkPointSet* set : sets)
+  {
+    const vtkIdType n = set->GetNumberOfPoints();
+    const std::size_t offset = out.size();
+    out.resize(offset + n);
+    vtkDataArray* data = n > 0 ? set->GetPoints()->GetData() : nullptr;
+    if (n > 0 && !copyCoordinates<vtkFloatArray>(data, &out[offset]) && !copyCoordinates<vtkDoubleArray>(data, &out[offset]))
+    {
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        set->GetPoint(i, out[offset + i].data());
+      }
+    }
+  }
+  return out;
+}
+
+vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& positions,
+  const std::vector<std::pair<std::string, const std::vector<double>*>>& arrays)
+{
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(positions.size()));
+  vtkNew<vtkCellArray> vertices;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    pts->SetPoint(static_cast<vtkIdType>(i), positions[i].data());
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    vertices->InsertNextCell(1, &id);
+  }
+  cloud->SetPoints(pts);
+  cloud->SetVerts(vertices);
+  for (const auto& [name, values] : arrays)
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(name.c_str());
+    array->SetNumberOfValues(static_cast<vtkIdType>(values->size()));
+    std::copy(values->begin(), values->end(), array->GetPointer(0));
+    cloud->GetPointData()->AddArray(array);
+  }
+  return cloud;
+}
+} // namespace mlsvtk

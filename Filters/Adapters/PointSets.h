@@ -1,0 +1,27 @@
+// VTK point sets as the core's point lists: the point-set leaves of a dataset or composite, their
+// points concatenated, and point lists back as VTK point clouds.
+#pragma once
+
+#include "Common/CoreTypes.h"
+#include <vtkSmartPointer.h>
+#include <string>
+#include <utility>
+#include <vector>
+
+class vtkDataObject;
+class vtkPointSet;
+class vtkPolyData;
+
+namespace mlsvtk
+{
+/// The point sets in a vtkPointSet or composite dataset, in traversal order. Other leaf types
+/// (image data, ...) are skipped and counted in skipped.
+std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped = nullptr);
+
+/// All points of the point sets, concatenated.
+mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
+
+/// Points (with vertices) carrying the given point arrays, one value per point.
+vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& points,
+  const std::vector<std::pair<std::string, const std::vector<double>*>>& arrays);
+} // namespace mlsvtk

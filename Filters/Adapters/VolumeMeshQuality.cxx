@@ -1,0 +1,150 @@
+#include "Adapters/VolumeMeshQuality.h"
+
+#include "Adapters/MeshCells.h"
+#include "Common/BoundingBox.h"
+
+#include <vtkCell.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkMeshQuality.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mlsvtk
+{
+mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
+{
+  // The faces of each fixed cell type present as positions in its point list (setLocalCell),
+  // made before the cells are listed in parallel.
+  std::vector<mlsdeform::CellFaces> faceTemplates(VTK_NUMBER_OF_CELL_TYPES);
+  std::vector<bool> present(VTK_NUMBER_OF_CELL_TYPES, false);
+  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+  for (vtkIdType c = 0; types && c < types->GetNumberOfValues(); ++c)
+  {
+    present[types->GetValue(c)] = true;
+  }
+  vtkNew<vtkGenericCell> cell;
+  for (int type = 0; type < VTK_NUMBER_OF_CELL_TYPES; ++type)
+  {
+    if (present[type] && type != VTK_POLYHEDRON && cellDimension(type) == 3)
+    {
+      setLocalCell(cell, type);
+      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
+      {
+        vtkIdList* ids = cell->GetFace(f)->GetPointIds();
+        faceTemplates[type].emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+      }
+    }
+  }
+  return mlsdeform::CellFaceList::build(static_cast<int>(grid->GetNumberOfCells()), [&]() {
+    // per thread: GetCellPoints' thread-safe variant's list, a face's points
+    return [&, scratch = vtkSmartPointer<vtkIdList>::New(), polygon = std::vector<vtkIdType>()](int c, auto add) mutable {
+      const int type = grid->GetCellType(c);
+      if (type == VTK_POLYHEDRON)
+      {
+        visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { add(face, static_cast<std::size_t>(n)); });
+        return;
+      }
+      vtkIdType n = 0;
+      const vtkIdType* points = nullptr;
+      if (!faceTemplates[type].empty())
+      {
+        grid->GetCellPoints(c, n, points, scratch);
+      }
+      for (const std::vector<int>& face : faceTemplates[type])
+      {
+        polygon.resize(face.size());
+        for (std::size_t i = 0; i < face.size(); ++i)
+        {
+          polygon[i] = points[face[i]];
+        }
+        add(polygon.data(), polygon.size());
+      }
+    };
+  });
+}
+
+std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
+{
+  std::vector<double> jacobians(grid->GetNumberOfCells(), std::numeric_limits<double>::quiet_NaN());
+  CellsByType byType;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    double (*measure)(vtkCell*) = nullptr; // verdict's scaled Jacobian of the type, if it has one
+    switch (grid->GetCellType(c))
+    {
+      case VTK_TETRA:
+        measure = &vtkMeshQuality::TetScaledJacobian;
+        break;
+      case VTK_HEXAHEDRON:
+        measure = &vtkMeshQuality::HexScaledJacobian;
+        break;
+      case VTK_WEDGE:
+        measure = &vtkMeshQuality::WedgeScaledJacobian;
+        break;
+      case VTK_PYRAMID:
+        measure = &vtkMeshQuality::PyramidScaledJacobian;
+        break;
+      default:
+        continue;
+    }
+    jacobians[c] = measure(byType.get(grid, c)->GetRepresentativeCell());
+  }
+  return jacobians;
+}
+
+void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out)
+{
+  out.resize(grid->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    grid->GetPoint(i, out[i].data());
+  }
+  mlsdeform::requireFinite(out, what);
+}
+
+mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
+{
+  mlsdeform::PointList points;
+  gridPoints(grid, what, points);
+  return points;
+}
+
+VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
+  : Cells(cellFaces(rest))
+{
+  Has3DCells = Cells.faces() > 0;
+  if (Has3DCells)
+  {
+    Faces = mlsdeform::interiorFaces(Cells);
+    gridPoints(rest, "the mesh's points", Points);
+    Orientation = mlsdeform::faceOrientation(Points, Cells, Faces, Work, Measures);
+    Original = summarizeMeasures();
+  }
+}
+
+QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
+{
+  gridPoints(grid, "the mesh's points", Points);
+  mlsdeform::faceMeasures(Points, Cells, Faces, Orientation, Work, Measures);
+  return summarizeMeasures();
+}
+
+QualitySummary VolumeMeshQuality::summarizeMeasures() const
+{
+  QualitySummary s;
+  s.inverted = Measures.invertedCells;
+  for (std::size_t i = 0; i < Faces.size(); ++i)
+  {
+    s.maxNonOrthogonality = std::max(s.maxNonOrthogonality, Measures.nonOrthogonality[i]);
+    s.maxSkewness = std::max(s.maxSkewness, Measures.skewness[i]);
+  }
+  return s;
+}
+} // namespace mlsvtk

@@ -1,0 +1,473 @@
+#include "Basis/SubspaceOperators.h"
+
+#include "Common/PositionHash.h"
+#include "Common/ZOrder.h"
+
+#include <algorithm>
+
+#include <omp.h>
+
+// The BLAS's symmetric rank-k update C = alpha A^T A + beta C (Fortran interface; CHOLMOD links
+// the same BLAS).
+extern "C" void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+  const int* lda, const double* beta, double* c, const int* ldc, std::size_t uploLength, std::size_t transLength);
+
+namespace mlsdeform
+{
+namespace
+{
+// Assembles a row-major sparse matrix with rowsPerPoint rows per position in row blocks of
+// Chunk positions, evaluated in parallel; fill(i, values, rows) writes the rows of position i
+// from its shape functions. Within a chunk the positions are taken in Z-order, Group at a time,
+// so that a group shares one search for its candidate shape functions (the result does not
+// depend on the grouping: each position filters the candidates with the exact support test).
+template <typename Fill>
+RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
+  Fill fill, std::vector<int>* outside, const Progress& progress)
+{
+  const long n = static_cast<long>(positions.size());
+  constexpr long Chunk = 4096;
+  constexpr std::size_t Group = 16;
+  const long chunks = (n + Chunk - 1) / Chunk;
+  RowBlocks A;
+  A.rowsPerBlock = Chunk * rowsPerPoint;
+  A.columns = static_cast<long>(basis.size());
+  A.blocks.resize(chunks);
+  std::vector<std::vector<int>> outsideOf(chunks);
+  long done = 0;
+#pragma omp parallel
+  {
+    ShapeFunctionValues phi;
+    std::vector<std::vector<double>> rows(rowsPerPoint);
+    std::vector<int> columns, candidates;
+    std::vector<double> values;
+    std::vector<long> start(Chunk), rowLength(Chunk); // of each position's rows in columns and values
+#pragma omp for schedule(dynamic)
+    for (long c = 0; c < chunks; ++c)
+    {
+      columns.clear();
+      values.clear();
+      const long first = c * Chunk, last = std::min(n, first + Chunk);
+      forEachNearbyGroup(positions, first, last, Group, [&](const int* begin, const int* end, const Vec3& lower, const Vec3& upper) {
+        const bool shared = basis.candidatesInBox(lower, upper, candidates);
+        for (const int* at = begin; at < end; ++at)
+        {
+          const long i = *at;
+          if (shared)
+          {
+            basis.evaluateAmong(positions[i], candidates, phi, withDerivatives);
+          }
+          else
+          {
+            basis.evaluate(positions[i], phi, withDerivatives);
+          }
+          if (phi.empty())
+          {
+            outsideOf[c].push_back(static_cast<int>(i));
+          }
+          for (auto& row : rows)
+          {
+            row.resize(phi.index.size());
+          }
+          fill(i, phi, rows);
+          start[i - first] = static_cast<long>(columns.size());
+          rowLength[i - first] = static_cast<long>(phi.index.size());
+          for (const auto& row : rows)
+          {
+            columns.insert(columns.end(), phi.index.begin(), phi.index.end());
+            values.insert(values.end(), row.begin(), row.end());
+          }
+        }
+      });
+      std::sort(outsideOf[c].begin(), outsideOf[c].end());
+      // the block in compressed row storage, at its exact size, in the positions' order
+      SparseRowMatrix& block = A.blocks[c];
+      block.resize((last - first) * rowsPerPoint, A.columns);
+      block.resizeNonZeros(static_cast<long>(values.size()));
+      auto* outer = block.outerIndexPtr();
+      outer[0] = 0;
+      long entry = 0, row = 0;
+      for (long i = first; i < last; ++i)
+      {
+        const long from = start[i - first], length = rowLength[i - first];
+        std::copy(columns.begin() + from, columns.begin() + from + rowsPerPoint * length, block.innerIndexPtr() + entry);
+        std::copy(values.begin() + from, values.begin() + from + rowsPerPoint * length, block.valuePtr() + entry);
+        for (int r = 0; r < rowsPerPoint; ++r, ++row)
+        {
+          entry += length;
+          outer[row + 1] = static_cast<int>(entry);
+        }
+      }
+#pragma omp atomic
+      ++done;
+      if (omp_get_thread_num() == 0)
+      {
+        progress.report(static_cast<double>(done) / chunks);
+      }
+    }
+  }
+  if (outside)
+  {
+    for (const std::vector<int>& part : outsideOf)
+    {
+      outside->insert(outside->end(), part.begin(), part.end());
+    }
+  }
+  return A;
+}
+
+// The blocks as one matrix.
+SparseRowMatrix concatenate(const RowBlocks& A)
+{
+  long nonZeros = 0;
+  for (const SparseRowMatrix& block : A.blocks)
+  {
+    nonZeros += block.nonZeros();
+  }
+  SparseRowMatrix B(A.rows(), A.columns);
+  B.resizeNonZeros(nonZeros);
+  auto* outer = B.outerIndexPtr();
+  outer[0] = 0;
+  long row = 0;
+  for (const SparseRowMatrix& block : A.blocks)
+  {
+    const long offset = outer[row];
+    std::copy(block.innerIndexPtr(), block.innerIndexPtr() + block.nonZeros(), B.innerIndexPtr() + offset);
+    std::copy(block.valuePtr(), block.valuePtr() + block.nonZeros(), B.valuePtr() + offset);
+    for (long r = 0; r < block.rows(); ++r, ++row)
+    {
+      outer[row + 1] = static_cast<int>(offset + block.outerIndexPtr()[r + 1]);
+    }
+  }
+  return B;
+}
+
+// The rows of A for which keep(row) holds, in their order.
+template <typename Keep>
+SparseRowMatrix selectRows(const SparseRowMatrix& A, Keep keep)
+{
+  long rows = 0, nonZeros = 0;
+  for (long row = 0; row < A.rows(); ++row)
+  {
+    if (keep(row))
+    {
+      ++rows;
+      nonZeros += A.outerIndexPtr()[row + 1] - A.outerIndexPtr()[row];
+    }
+  }
+  SparseRowMatrix B(rows, A.cols());
+  B.resizeNonZeros(nonZeros);
+  auto* outer = B.outerIndexPtr();
+  outer[0] = 0;
+  long out = 0;
+  for (long row = 0; row < A.rows(); ++row)
+  {
+    if (keep(row))
+    {
+      const auto begin = A.outerIndexPtr()[row], end = A.outerIndexPtr()[row + 1];
+      std::copy(A.innerIndexPtr() + begin, A.innerIndexPtr() + end, B.innerIndexPtr() + outer[out]);
+      std::copy(A.valuePtr() + begin, A.valuePtr() + end, B.valuePtr() + outer[out]);
+      outer[out + 1] = outer[out] + (end - begin);
+      ++out;
+    }
+  }
+  return B;
+}
+}
+
+GramAccumulator::GramAccumulator(long size)
+  : Size(size)
+  , Sparse(size, size)
+{
+}
+
+void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  const long rows = end - begin;
+  const int* outer = A.outerIndexPtr() + begin; // of the range's rows
+  const int* inner = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+  if (outer[rows] - outer[0] > 0.25 * static_cast<double>(rows) * static_cast<double>(Size))
+  {
+    // dense: DenseLower += B^T B with B = diag(sqrt(rowWeight)) A(begin:end, :)
+    Eigen::MatrixXd B = rowWeight.cwiseSqrt().asDiagonal() * Eigen::MatrixXd(A.middleRows(begin, rows));
+    if (DenseLower.size() == 0)
+    {
+      DenseLower = Eigen::MatrixXd::Zero(Size, Size);
+    }
+    const int n = static_cast<int>(Size), k = static_cast<int>(rows);
+    const double one = 1.0;
+    dsyrk_("L", "T", &n, &k, &one, B.data(), &k, &one, DenseLower.data(), &n, 1, 1);
+    return;
+  }
+  // chunks of a fixed number of rows, not one per thread: the partial sums, and so the rounding of
+  // their sum, must not depend on the number of threads. A chunk's rows (nearby positions) share
+  // few columns: its Gram is summed in a dense matrix over those, row by row as outer products,
+  // then stored sparse (Eigen's sparse product took 0.38 s for the 66k rows of a hull region).
+  constexpr long ChunkRows = 8192;
+  const long chunks = std::max(1L, (rows + ChunkRows - 1) / ChunkRows);
+  std::vector<SparseMatrix> parts(chunks);
+#pragma omp parallel
+  {
+    std::vector<int> local(static_cast<std::size_t>(Size), -1); // a column's number in the chunk
+    std::vector<int> used;                                      // the chunk's columns, increasing
+    std::vector<std::pair<int, double>> rowEntries; // (number in the chunk, value)
+    Eigen::MatrixXd G;
+    std::vector<Eigen::Triplet<double>> entries;
+#pragma omp for schedule(dynamic, 1)
+    for (long c = 0; c < chunks; ++c)
+    {
+      const long first = c * ChunkRows, last = std::min(rows, first + ChunkRows);
+      used.clear();
+      for (long e = outer[first]; e < outer[last]; ++e)
+      {
+        if (local[inner[e]] < 0)
+        {
+          local[inner[e]] = 0;
+          used.push_back(inner[e]);
+        }
+      }
+      std::sort(used.begin(), used.end());
+      const long m = static_cast<long>(used.size());
+      for (long i = 0; i < m; ++i)
+      {
+        local[used[i]] = static_cast<int>(i);
+      }
+      G.setZero(m, m);
+      for (long row = first; row < last; ++row)
+      {
+        const long begin = outer[row], n = outer[row + 1] - begin;
+        rowEntries.resize(n);
+        for (long a = 0; a < n; ++a)
+        {
+          rowEntries[a] = { local[inner[begin + a]], value[begin + a] };
+        }
+        if (!std::is_sorted(rowEntries.begin(), rowEntries.end())) // Phi's rows are; others need not be
+        {
+          std::sort(rowEntries.begin(), rowEntries.end());
+        }
+        for (long b = 0; b < n; ++b)
+        {
+          // the lower triangle: entry a >= b is in row >= column
+          const double weighted = rowWeight[row] * rowEntries[b].second;
+          double* column = G.col(rowEntries[b].first).data();
+          for (long a = b; a < n; ++a)
+          {
+            column[rowEntries[a].first] += weighted * rowEntries[a].second;
+          }
+        }
+      }
+      entries.clear();
+      for (long j = 0; j < m; ++j)
+      {
+        for (long i = j; i < m; ++i)
+        {
+          if (G(i, j) != 0)
+          {
+            entries.emplace_back(used[i], used[j], G(i, j));
+            if (i != j)
+            {
+              entries.emplace_back(used[j], used[i], G(i, j));
+            }
+          }
+        }
+      }
+      parts[c].resize(Size, Size);
+      parts[c].setFromTriplets(entries.begin(), entries.end());
+      for (int column : used)
+      {
+        local[column] = -1;
+      }
+    }
+  }
+  for (const SparseMatrix& part : parts)
+  {
+    Sparse += part;
+  }
+}
+
+SparseMatrix GramAccumulator::sum() const
+{
+  if (DenseLower.size() == 0)
+  {
+    return Sparse;
+  }
+  // both triangles of the dense part, written column by column
+  SparseMatrix dense(Size, Size);
+  dense.resizeNonZeros(Size * Size);
+  for (long j = 0; j < Size; ++j)
+  {
+    dense.outerIndexPtr()[j] = static_cast<int>(j * Size);
+    for (long i = 0; i < Size; ++i)
+    {
+      dense.innerIndexPtr()[j * Size + i] = static_cast<int>(i);
+      dense.valuePtr()[j * Size + i] = i >= j ? DenseLower(i, j) : DenseLower(j, i);
+    }
+  }
+  dense.outerIndexPtr()[Size] = static_cast<int>(Size * Size);
+  return Sparse.nonZeros() == 0 ? dense : SparseMatrix(dense + Sparse);
+}
+
+SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  GramAccumulator gram(A.cols());
+  gram.add(A, begin, end, rowWeight);
+  return gram.sum();
+}
+
+long RowBlocks::rows() const
+{
+  long rows = 0;
+  for (const SparseRowMatrix& block : blocks)
+  {
+    rows += block.rows();
+  }
+  return rows;
+}
+
+RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+{
+  return assembleRows(
+    basis, positions, 1, false,
+    [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) { rows[0] = phi.value; },
+    outside, progress);
+}
+
+std::vector<long> positionsAmong(const PointList& points, const PointList& positions)
+{
+  // the positions' keys sorted; each point looks its key up (in parallel), then the first point
+  // of each key is taken in point order
+  std::vector<std::pair<std::uint64_t, long>> keys(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    keys[i] = { positionKey(positions[i]), static_cast<long>(i) };
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<long> slotOf(points.size(), -1); // per point: its key's first entry in keys, or -1
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < static_cast<long>(points.size()); ++p)
+  {
+    const std::uint64_t key = positionKey(points[p]);
+    const auto at = std::lower_bound(keys.begin(), keys.end(), std::make_pair(key, -1L));
+    if (at != keys.end() && at->first == key)
+    {
+      slotOf[p] = at - keys.begin();
+    }
+  }
+  std::vector<long> found(positions.size(), -1);
+  for (long p = 0; p < static_cast<long>(points.size()); ++p)
+  {
+    for (long k = slotOf[p]; k >= 0 && k < static_cast<long>(keys.size()) && keys[k].first == keys[slotOf[p]].first; ++k)
+    {
+      long& first = found[keys[k].second];
+      if (first < 0 && positions[keys[k].second].cwiseEqual(points[p]).all()) // the key's bits, compared exactly
+      {
+        first = p;
+      }
+    }
+  }
+  return found;
+}
+
+SparseRowMatrix subspaceMatrix(
+  const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress, const KnownRows& reuse)
+{
+  if (!reuse.known || reuse.row.size() != positions.size())
+  {
+    return concatenate(subspaceBlocks(basis, positions, outside, progress));
+  }
+  // Phi evaluated at the positions without a known row, then every row in the positions' order
+  PointList missing;
+  std::vector<long> missingIndex;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    if (reuse.row[i] < 0)
+    {
+      missing.push_back(positions[i]);
+      missingIndex.push_back(static_cast<long>(i));
+    }
+  }
+  std::vector<int> outsideMissing;
+  const SparseRowMatrix evaluated = concatenate(subspaceBlocks(basis, missing, &outsideMissing, progress));
+  if (outside)
+  {
+    for (int m : outsideMissing)
+    {
+      outside->push_back(static_cast<int>(missingIndex[m]));
+    }
+  }
+  const RowBlocks& known = *reuse.known;
+  const auto rowOf = [&](std::size_t i, long& next) -> std::pair<const SparseRowMatrix*, long> {
+    if (reuse.row[i] < 0)
+    {
+      return { &evaluated, next++ };
+    }
+    return { &known.blocks[reuse.row[i] / known.rowsPerBlock], reuse.row[i] % known.rowsPerBlock };
+  };
+  SparseRowMatrix A(static_cast<long>(positions.size()), static_cast<long>(basis.size()));
+  long nonZeros = 0, next = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    const auto [matrix, r] = rowOf(i, next);
+    nonZeros += matrix->outerIndexPtr()[r + 1] - matrix->outerIndexPtr()[r];
+  }
+  A.resizeNonZeros(nonZeros);
+  auto* outer = A.outerIndexPtr();
+  outer[0] = 0;
+  next = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    const auto [matrix, r] = rowOf(i, next);
+    const int from = matrix->outerIndexPtr()[r], to = matrix->outerIndexPtr()[r + 1];
+    std::copy(matrix->innerIndexPtr() + from, matrix->innerIndexPtr() + to, A.innerIndexPtr() + outer[i]);
+    std::copy(matrix->valuePtr() + from, matrix->valuePtr() + to, A.valuePtr() + outer[i]);
+    outer[i + 1] = outer[i] + (to - from);
+  }
+  return A;
+}
+
+EnergyNormals normalMatrices(const DeformationEnergy& energy)
+{
+  auto gram = [](const SparseRowMatrix& A) { return weightedGram(A, 0, A.rows(), Eigen::VectorXd::Ones(A.rows())); };
+  return { gram(energy.stretch), gram(energy.bend), energy.bend.rows(), energy.ridge };
+}
+
+EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+  double gradientScale, double laplacianScale, const Progress& progress)
+{
+  const long n = static_cast<long>(integrationPoints.size()), k = static_cast<long>(basis.size());
+  // points per block: about 8M shape function values (64 MB dense), and at least 1024 points:
+  // a dense block updates the whole k x k triangle, which costs memory traffic ~k^2 however
+  // few rows it has, so it must be tall to run at the BLAS's arithmetic speed
+  const long block = std::max(1024L, (1L << 23) / std::max(1L, k));
+  GramAccumulator stretch(k), bend(k);
+  for (long first = 0; first < n; first += block)
+  {
+    const long last = std::min(n, first + block);
+    const PointList points(integrationPoints.begin() + first, integrationPoints.begin() + last);
+    const Progress part{ progress.callback, progress.client, progress.begin + (progress.end - progress.begin) * first / n,
+      progress.begin + (progress.end - progress.begin) * last / n };
+    // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
+    SparseRowMatrix D = concatenate(assembleRows(
+      basis, points, 4, true,
+      [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
+        const double g = std::sqrt(volume[first + i]) * gradientScale, l = std::sqrt(volume[first + i]) * laplacianScale;
+        for (std::size_t a = 0; a < phi.index.size(); ++a)
+        {
+          for (int d = 0; d < 3; ++d)
+          {
+            rows[d][a] = g * phi.gradient[a][d];
+          }
+          rows[3][a] = l * phi.laplacian[a];
+        }
+      },
+      nullptr, part));
+    const SparseRowMatrix G = selectRows(D, [](long row) { return row % 4 != 3; });
+    const SparseRowMatrix L = selectRows(D, [](long row) { return row % 4 == 3; });
+    D = SparseRowMatrix(); // freed before the products
+    stretch.add(G, 0, G.rows(), Eigen::VectorXd::Ones(G.rows()));
+    bend.add(L, 0, L.rows(), Eigen::VectorXd::Ones(L.rows()));
+  }
+  return { stretch.sum(), bend.sum(), n, 0.0 };
+}
+} // namespace mlsdeform

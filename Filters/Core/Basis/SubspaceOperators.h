@@ -1,0 +1,152 @@
+// Sparse matrices of the MLS subspace evaluated at positions (paper sections 4 and 5):
+//   Phi_ij = phi_j(x_i)                                   (d = Phi w)
+//   G_{3i+d, j} = sqrt(V_i) d phi_j(q_i)/dx_d             (eq. 12, E_stretch = |G w|^2)
+//   L_{i,j}     = sqrt(V_i) Laplacian phi_j(q_i)          (eq. 13, E_bend    = |L w|^2)
+#pragma once
+
+#include "Basis/ShapeFunctions.h"
+
+namespace mlsdeform
+{
+/// A sparse matrix kept as blocks of consecutive rows, each a row-major matrix of rowsPerBlock
+/// rows (the last may hold fewer): rows evaluated in parallel chunks stay where they were
+/// assembled. Phi at a 1M-point mesh (80M entries) copied into one matrix doubled the peak memory.
+struct RowBlocks
+{
+  std::vector<SparseRowMatrix> blocks;
+  long rowsPerBlock = 1;
+  long columns = 0;
+  long rows() const;
+};
+
+/// Phi at the positions (one row each), as row blocks. Rows of positions outside every support
+/// are empty; their indices are appended to outside when given.
+RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+
+/// Phi rows evaluated before at some positions (with the same shape functions), to be copied
+/// rather than evaluated again: row[i] is the row of `known` that holds Phi at the i-th
+/// position, or -1 (a list of another length is not used).
+struct KnownRows
+{
+  const RowBlocks* known = nullptr;
+  std::vector<long> row;
+};
+
+/// For each position, the first index of points at exactly that position (+0 = -0), or -1.
+std::vector<long> positionsAmong(const PointList& points, const PointList& positions);
+
+/// Phi at the positions as one matrix (subspaceBlocks, concatenated). Rows given in `reuse` are
+/// copied from it (evaluating Phi at a position gives the same bits wherever it is done).
+SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr,
+  const Progress& progress = {}, const KnownRows& reuse = {});
+
+/// Row i of A X (d(x_i) = sum_j Phi_ij w_j) written as an (x, y, z) triple to out, summed in the
+/// order of the row.
+template <typename Dense>
+void multiplyRow(const SparseRowMatrix& A, long i, const Eigen::MatrixBase<Dense>& X, double* out)
+{
+  double x = 0, y = 0, z = 0;
+  for (auto a = A.outerIndexPtr()[i]; a < A.outerIndexPtr()[i + 1]; ++a)
+  {
+    const double v = A.valuePtr()[a];
+    const auto j = A.innerIndexPtr()[a];
+    x += v * X(j, 0);
+    y += v * X(j, 1);
+    z += v * X(j, 2);
+  }
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+/// Rows begin..end of A X for a dense X with three columns (either storage order), written as
+/// (x, y, z) triples to out: one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at
+/// many points). Each entry is summed by one thread in the order of its row, so the result does
+/// not depend on the number of threads.
+template <typename Dense>
+void multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+{
+#pragma omp parallel for schedule(static)
+  for (long i = begin; i < end; ++i)
+  {
+    multiplyRow(A, i, X, out + 3 * (i - begin));
+  }
+}
+
+/// The same for a matrix in row blocks.
+template <typename Dense>
+void multiplyRows(const RowBlocks& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+{
+#pragma omp parallel for schedule(static)
+  for (long i = begin; i < end; ++i)
+  {
+    multiplyRow(A.blocks[i / A.rowsPerBlock], i % A.rowsPerBlock, X, out + 3 * (i - begin));
+  }
+}
+
+/// A X for a dense X with three columns (multiplyRows over all rows).
+template <typename Dense>
+Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Dense>& X)
+{
+  PointDisplacements out(A.rows(), 3);
+  multiplyRows(A, X, 0, A.rows(), out.data());
+  return out;
+}
+
+/// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one non-negative weight per row
+/// of the range), the k x k Gram matrix of a row range (GramAccumulator on that one range).
+SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+
+/// Sums Gram matrices A^T diag(weight) A of row blocks. A sparse block is multiplied by sparse
+/// products over row chunks of a fixed size in parallel, summed in their order (the same result
+/// whatever the number of threads); a mostly full block (a global basis) by the BLAS's
+/// symmetric rank-k update (dsyrk, multithreaded and vectorized in OpenBLAS) into one dense
+/// lower triangle, so that a dense k x k result costs k^2 doubles, not a copy per block.
+class GramAccumulator
+{
+public:
+  explicit GramAccumulator(long size);
+  void add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+  /// The sum as a symmetric sparse matrix (both triangles).
+  SparseMatrix sum() const;
+
+private:
+  long Size;
+  SparseMatrix Sparse;
+  Eigen::MatrixXd DenseLower; // empty until a dense block came
+};
+
+/// The smoothness energies of a subspace as weighted rows: E_stretch = |G w|^2 and
+/// E_bend = |L w|^2 (eq. 9, 11, 12, 13).
+struct DeformationEnergy
+{
+  SparseRowMatrix stretch; // G
+  SparseRowMatrix bend;    // L
+  /// A ridge |w|^2 weighted by this fraction of the system's largest diagonal entry. Energies
+  /// measured at few points (eq. 11 at the vertices) leave combinations of shape functions that
+  /// move none of those points undetermined (more shape functions than vertices, or a global
+  /// basis's z polynomial on a plane z = const); the ridge picks the smallest. 0: none.
+  double ridge = 0;
+};
+
+/// What the normal equations (eq. 14) need of the energies: G^T G and L^T L (k x k).
+struct EnergyNormals
+{
+  SparseMatrix stretch; // G^T G
+  SparseMatrix bend;    // L^T L
+  long points = 0;      // the points the bending energy is measured at (rows of L)
+  double ridge = 0;     // as DeformationEnergy::ridge
+};
+
+/// G^T G and L^T L of an energy given by its rows.
+EnergyNormals normalMatrices(const DeformationEnergy& energy);
+
+/// G^T G and L^T L for G (3N x k) and L (N x k) at the integration points q_i with volumes V_i
+/// (eq. 12, 13): the gradient rows multiplied by sqrt(V_i) * gradientScale, the Laplacian rows
+/// by sqrt(V_i) * laplacianScale. The rows are formed for a block of points at a time (the
+/// derivatives evaluated once per point), multiplied into the normal matrices and dropped, so
+/// a global basis needs memory ~k^2, not ~N k (Fig. 4 up to k = 10k).
+EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
+  double gradientScale, double laplacianScale, const Progress& progress = {});
+
+} // namespace mlsdeform

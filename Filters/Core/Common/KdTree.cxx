@@ -1,0 +1,352 @@
+#include "Common/KdTree.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace mlsdeform
+{
+namespace
+{
+constexpr int LeafSize = 8;
+
+// Depth-first traversal stack without heap allocation: a balanced tree over fewer than 2^60
+// points is shallower than 60 levels and holds at most one pending sibling per level.
+struct TraversalStack
+{
+  int items[128];
+  int count = 0;
+  void push_back(int i) { items[count++] = i; }
+  int back() const { return items[count - 1]; }
+  void pop_back() { --count; }
+  bool empty() const { return count == 0; }
+};
+
+// A ball's squared distance over its squared radius (infinite for radius 0: never taken).
+double squaredRatio(double squaredDistance, double radius)
+{
+  return radius > 0 ? squaredDistance / (radius * radius) : std::numeric_limits<double>::infinity();
+}
+
+// Keeps the k least keys seen so far, sorted (k is small: insertion beats a heap); of equal keys
+// the first seen stays first.
+void insertSmallest(int k, double key, int index, std::vector<int>& indices, std::vector<double>& keys)
+{
+  if (k <= 0)
+  {
+    return;
+  }
+  if (static_cast<int>(indices.size()) == k)
+  {
+    if (!(key < keys.back()))
+    {
+      return;
+    }
+    indices.pop_back();
+    keys.pop_back();
+  }
+  const auto at = std::upper_bound(keys.begin(), keys.end(), key) - keys.begin();
+  keys.insert(keys.begin() + at, key);
+  indices.insert(indices.begin() + at, index);
+}
+
+// Pushes both children, the one of smaller bound (nearer) last so that it is visited first.
+template <typename Node, typename Nodes, typename Bound>
+void pushChildrenOf(const Node& node, const Nodes& nodes, TraversalStack& stack, Bound bound)
+{
+  if (bound(nodes[node.left]) < bound(nodes[node.right]))
+  {
+    stack.push_back(node.right);
+    stack.push_back(node.left);
+  }
+  else
+  {
+    stack.push_back(node.left);
+    stack.push_back(node.right);
+  }
+}
+}
+
+void KdTree::build(const PointList& points)
+{
+  Order.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    Order[i] = static_cast<int>(i);
+  }
+  Nodes.clear();
+  Radii.clear();
+  if (!points.empty())
+  {
+    Nodes.reserve(2 * points.size() / LeafSize + 2);
+    buildNode(points, 0, static_cast<int>(points.size()));
+  }
+  Points.resize(points.size());
+  Position.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    Points[i] = points[Order[i]];
+    Position[Order[i]] = static_cast<int>(i);
+  }
+}
+
+int KdTree::buildNode(const PointList& points, int begin, int end)
+{
+  Node node;
+  node.begin = begin;
+  node.end = end;
+  node.lower = node.upper = points[Order[begin]];
+  for (int i = begin + 1; i < end; ++i)
+  {
+    node.lower = node.lower.cwiseMin(points[Order[i]]);
+    node.upper = node.upper.cwiseMax(points[Order[i]]);
+  }
+  const int index = static_cast<int>(Nodes.size());
+  Nodes.push_back(node);
+  if (end - begin > LeafSize)
+  {
+    int axis;
+    (node.upper - node.lower).maxCoeff(&axis);
+    const int middle = (begin + end) / 2;
+    std::nth_element(Order.begin() + begin, Order.begin() + middle, Order.begin() + end,
+      [&](int a, int b) { return points[a][axis] < points[b][axis]; });
+    const int left = buildNode(points, begin, middle);
+    const int right = buildNode(points, middle, end);
+    Nodes[index].left = left;
+    Nodes[index].right = right;
+  }
+  return index;
+}
+
+void KdTree::setRadii(const std::vector<double>& radii)
+{
+  Radii.resize(radii.size());
+  for (std::size_t i = 0; i < radii.size() && i < Order.size(); ++i)
+  {
+    Radii[i] = radii[Order[i]];
+  }
+  if (!Nodes.empty() && Radii.size() == Points.size())
+  {
+    setReach(0);
+  }
+}
+
+void KdTree::setReach(int index)
+{
+  Node& node = Nodes[index];
+  if (node.left < 0)
+  {
+    node.maxRadius = 0;
+    node.reachLower = node.reachUpper = Points[node.begin];
+    for (int i = node.begin; i < node.end; ++i)
+    {
+      node.maxRadius = std::max(node.maxRadius, Radii[i]);
+      const Vec3 reach = Vec3::Constant(Radii[i]);
+      node.reachLower = node.reachLower.cwiseMin(Points[i] - reach);
+      node.reachUpper = node.reachUpper.cwiseMax(Points[i] + reach);
+    }
+    return;
+  }
+  setReach(node.left);
+  setReach(node.right);
+  const Node& left = Nodes[node.left];
+  const Node& right = Nodes[node.right];
+  node.maxRadius = std::max(left.maxRadius, right.maxRadius);
+  node.reachLower = left.reachLower.cwiseMin(right.reachLower);
+  node.reachUpper = left.reachUpper.cwiseMax(right.reachUpper);
+}
+
+int KdTree::nearest(const Vec3& x) const
+{
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  TraversalStack stack;
+  if (!Nodes.empty())
+  {
+    stack.push_back(0);
+  }
+  while (!stack.empty())
+  {
+    const Node& node = Nodes[stack.back()];
+    stack.pop_back();
+    if (squaredDistanceToBox(node, x) >= bestDistance)
+    {
+      continue;
+    }
+    if (node.left < 0)
+    {
+      for (int i = node.begin; i < node.end; ++i)
+      {
+        const double d2 = (Points[i] - x).squaredNorm();
+        if (d2 < bestDistance)
+        {
+          bestDistance = d2;
+          best = Order[i];
+        }
+      }
+    }
+    else
+    {
+      pushChildrenOf(node, Nodes, stack, [&](const Node& child) { return squaredDistanceToBox(child, x); });
+    }
+  }
+  return best;
+}
+
+void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const
+{
+  kSmallest(
+    k, [&](int i) { return (Points[i] - x).squaredNorm(); }, [&](const Node& node) { return squaredDistanceToBox(node, x); },
+    indices, squaredDistances);
+}
+
+void KdTree::leastRelativeCandidates(const Vec3& lower, const Vec3& upper, int k, std::vector<int>& candidates) const
+{
+  candidates.clear();
+  if (Nodes.empty() || Radii.size() != Points.size() || k <= 0)
+  {
+    return;
+  }
+  // Every x of the box has k balls with ratio at most U, the k-th least ratio of the box's farthest
+  // point; a ball nearer to the box than U times its radius may be among x's k least, no other.
+  const auto nearest = [&](const Vec3& a, const Vec3& b) { // squared, from the box to the box [a, b]
+    return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm();
+  };
+  const auto nodeBound = [&](const Node& node) { return squaredRatio(nearest(node.lower, node.upper), node.maxRadius); };
+  std::vector<int> indices;
+  std::vector<double> farthest;
+  kSmallest(
+    k,
+    [&](int i) {
+      return squaredRatio((Points[i] - lower).cwiseAbs().cwiseMax((Points[i] - upper).cwiseAbs()).squaredNorm(), Radii[i]);
+    },
+    nodeBound, indices, farthest);
+  constexpr double Margin = 1 + 1e-9; // for the roundings of the bounds
+  const double bound = static_cast<int>(farthest.size()) < k ? std::numeric_limits<double>::infinity() : farthest.back() * Margin;
+  collectBalls([&](const Node& node) { return nodeBound(node) <= bound; },
+    [&](int i) { return Radii[i] > 0 && squaredRatio(nearest(Points[i], Points[i]), Radii[i]) <= bound; }, candidates);
+}
+
+void KdTree::kLeastRelative(const Vec3& x, int k, const std::vector<int>& candidates, std::vector<int>& indices,
+  std::vector<double>& squaredRatios) const
+{
+  indices.clear();
+  squaredRatios.clear();
+  if (Radii.size() != Points.size())
+  {
+    return;
+  }
+  for (int j : candidates)
+  {
+    insertSmallest(k, squaredRatio((Points[Position[j]] - x).squaredNorm(), Radii[Position[j]]), j, indices, squaredRatios);
+  }
+}
+
+template <typename PointKey, typename NodeBound>
+void KdTree::kSmallest(int k, PointKey key, NodeBound bound, std::vector<int>& indices, std::vector<double>& keys) const
+{
+  // The best k so far, sorted by key (insertSmallest).
+  indices.clear();
+  keys.clear();
+  if (Nodes.empty() || k <= 0)
+  {
+    return;
+  }
+  auto worst = [&]() { return static_cast<int>(indices.size()) < k ? std::numeric_limits<double>::infinity() : keys.back(); };
+  TraversalStack stack;
+  stack.push_back(0);
+  while (!stack.empty())
+  {
+    const Node& node = Nodes[stack.back()];
+    stack.pop_back();
+    if (bound(node) >= worst())
+    {
+      continue;
+    }
+    if (node.left < 0)
+    {
+      for (int i = node.begin; i < node.end; ++i)
+      {
+        insertSmallest(k, key(i), Order[i], indices, keys);
+      }
+    }
+    else
+    {
+      pushChildrenOf(node, Nodes, stack, bound);
+    }
+  }
+}
+
+void KdTree::containing(const Vec3& x, std::vector<int>& indices) const
+{
+  collectBalls(
+    [&](const Node& node) {
+      return !(x.array() < node.reachLower.array()).any() && !(x.array() > node.reachUpper.array()).any() &&
+        squaredDistanceToBox(node, x) < node.maxRadius * node.maxRadius;
+    },
+    [&](int i) { return (Points[i] - x).squaredNorm() < Radii[i] * Radii[i]; }, indices);
+}
+
+bool KdTree::containedInAtLeast(const Vec3& x, int count, const std::vector<int>& candidates) const
+{
+  int found = 0;
+  for (std::size_t a = 0; a < candidates.size() && found < count; ++a)
+  {
+    const int i = Position[candidates[a]];
+    found += (Points[i] - x).squaredNorm() < Radii[i] * Radii[i]; // the test of containing
+  }
+  return found >= count;
+}
+
+void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const
+{
+  // A ball containing x of the box is nearer the box than its radius: |p - box| <= |p - x| < r
+  // (rounding is monotonic). The margin keeps that true whatever order the sums are taken in.
+  constexpr double Margin = 1 + 1e-9;
+  const auto squaredDistance = [&](const Vec3& a, const Vec3& b) {
+    return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm(); // from the box [a, b]
+  };
+  collectBalls(
+    [&](const Node& node) {
+      return !(upper.array() < node.reachLower.array()).any() && !(lower.array() > node.reachUpper.array()).any() &&
+        squaredDistance(node.lower, node.upper) < node.maxRadius * node.maxRadius * Margin;
+    },
+    [&](int i) { return squaredDistance(Points[i], Points[i]) < Radii[i] * Radii[i] * Margin; }, indices);
+}
+
+template <typename NodeMeets, typename BallMeets>
+void KdTree::collectBalls(NodeMeets nodeMeets, BallMeets ballMeets, std::vector<int>& indices) const
+{
+  indices.clear();
+  if (Nodes.empty() || Radii.size() != Points.size())
+  {
+    return;
+  }
+  TraversalStack stack;
+  stack.push_back(0);
+  while (!stack.empty())
+  {
+    const Node& node = Nodes[stack.back()];
+    stack.pop_back();
+    if (!nodeMeets(node))
+    {
+      continue;
+    }
+    if (node.left < 0)
+    {
+      for (int i = node.begin; i < node.end; ++i)
+      {
+        if (ballMeets(i))
+        {
+          indices.push_back(Order[i]);
+        }
+      }
+    }
+    else
+    {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+    }
+  }
+  std::sort(indices.begin(), indices.end());
+}
+} // namespace mlsdeform

@@ -1,0 +1,34 @@
+// Z-order (Morton) sorting of points: consecutive points in that order are near each other, so a
+// group of them can share one spatial search.
+#pragma once
+
+#include "Common/CoreTypes.h"
+
+#include <algorithm>
+
+namespace mlsdeform
+{
+/// The indices first..last-1 of points sorted along the Z-order curve of their bounding box
+/// (2^21 cells per axis; ties by index).
+std::vector<int> zOrder(const PointList& points, long first, long last);
+
+/// Calls visit(begin, end, lower, upper) for each group of up to size consecutive indices
+/// [begin, end) of zOrder(points, first, last), with the group's bounding box [lower, upper].
+template <typename Visit>
+void forEachNearbyGroup(const PointList& points, long first, long last, std::size_t size, Visit visit)
+{
+  const std::vector<int> order = zOrder(points, first, last);
+  for (std::size_t g = 0; g < order.size(); g += size)
+  {
+    const int* begin = order.data() + g;
+    const int* end = order.data() + std::min(order.size(), g + size);
+    Vec3 lower = points[*begin], upper = lower;
+    for (const int* i = begin + 1; i < end; ++i)
+    {
+      lower = lower.cwiseMin(points[*i]);
+      upper = upper.cwiseMax(points[*i]);
+    }
+    visit(begin, end, lower, upper);
+  }
+}
+} // namespace mlsdeform

@@ -1,0 +1,965 @@
+#include "Primitives/EfficientRansac.h"
+
+#include "Common/BoundingBox.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <numeric>
+#include <random>
+
+namespace mlsdeform
+{
+namespace
+{
+// Bits of the Morton code per axis: the finest octree cell is 1/1024 of the bounding box.
+constexpr int MortonBits = 10;
+// Samples evaluated for a new candidate's score; the next subsets double.
+constexpr long FirstSubset = 256;
+// Minimal sets drawn between two decisions.
+constexpr int DrawsPerBatch = 200;
+// A search that draws this many minimal sets stops whatever it found.
+constexpr long MaximumDraws = 20000000;
+// Candidates kept between batches, the best estimates.
+constexpr std::size_t KeptCandidates = 1000;
+// Width of the confidence interval of an estimated score, in standard deviations.
+constexpr double ConfidenceWidth = 2;
+
+std::uint64_t spreadBits(std::uint64_t v)
+{
+  // 10 bits to every third of 30
+  v &= 0x3ff;
+  v = (v | (v << 16)) & 0x30000ff;
+  v = (v | (v << 8)) & 0x300f00f;
+  v = (v | (v << 4)) & 0x30c30c3;
+  v = (v | (v << 2)) & 0x9249249;
+  return v;
+}
+
+// The octree of the samples, implicit in their Morton order (Schnabel et al. section 4.3).
+class MortonOctree
+{
+public:
+  MortonOctree(const PointList& points, const std::vector<int>& valid)
+  {
+    PointList used;
+    for (int i : valid)
+    {
+      used.push_back(points[i]);
+    }
+    Box = boundingBox(used);
+    const BoundingBox& box = Box;
+    const double size = std::max(box.size().maxCoeff(), 1e-300);
+    Code.assign(points.size(), 0);
+    for (int i : valid)
+    {
+      const Vec3 t = (points[i] - box.lower) / size * ((1 << MortonBits) - 1);
+      Code[i] = spreadBits(static_cast<std::uint64_t>(t.x())) | (spreadBits(static_cast<std::uint64_t>(t.y())) << 1) |
+        (spreadBits(static_cast<std::uint64_t>(t.z())) << 2);
+    }
+    Order = valid;
+    std::stable_sort(Order.begin(), Order.end(), [&](int a, int b) { return Code[a] < Code[b]; });
+    Sorted.resize(Order.size());
+    for (std::size_t a = 0; a < Order.size(); ++a)
+    {
+      Sorted[a] = Code[Order[a]];
+    }
+  }
+
+  /// The samples in the cell of the given level (0: the root) that contains sample i, as a
+  /// range [first, last) of order().
+  std::pair<long, long> cell(int i, int level) const
+  {
+    const int shift = 3 * (MortonBits - level);
+    const std::uint64_t lower = (Code[i] >> shift) << shift, upper = lower + (std::uint64_t(1) << shift);
+    const long first = std::lower_bound(Sorted.begin(), Sorted.end(), lower) - Sorted.begin();
+    const long last = std::lower_bound(Sorted.begin(), Sorted.end(), upper) - Sorted.begin();
+    return { first, last };
+  }
+  const std::vector<int>& order() const { return Order; }
+  /// The bounding box of the samples.
+  const BoundingBox& box() const { return Box; }
+
+private:
+  BoundingBox Box;
+  std::vector<std::uint64_t> Code;
+  std::vector<int> Order;
+  std::vector<std::uint64_t> Sorted;
+};
+
+// The connected components of the samples (indices into points): samples whose cells of size
+// clusterEpsilon touch (26-neighbourhood) are connected (Schnabel et al. section 4.4), and so are
+// faces that share a vertex when faces are given (a coarse mesh's faces can be farther apart
+// than clusterEpsilon and still be one surface). Returns the component of every sample position,
+// named by one of its positions.
+std::vector<long> components(const PointList& points, const std::vector<int>& samples, double clusterEpsilon,
+  const std::vector<std::vector<int>>* faces, std::vector<int>& vertexOwner)
+{
+  if (samples.empty())
+  {
+    return {};
+  }
+  PointList used;
+  for (int i : samples)
+  {
+    used.push_back(points[i]);
+  }
+  const Vec3 lower = boundingBox(used).lower;
+  auto key = [&](const std::array<long, 3>& c) { return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]); };
+  const long n = static_cast<long>(samples.size());
+  std::vector<std::array<long, 3>> cellOf(n);
+  std::vector<std::pair<std::uint64_t, long>> byCell(n); // (cell key, sample position)
+  for (long a = 0; a < n; ++a)
+  {
+    const Vec3 t = (points[samples[a]] - lower) / clusterEpsilon;
+    for (int d = 0; d < 3; ++d)
+    {
+      cellOf[a][d] = std::min(static_cast<long>(t[d]) + 1, (1L << 21) - 2); // +1: neighbours stay >= 0
+    }
+    byCell[a] = { key(cellOf[a]), a };
+  }
+  std::sort(byCell.begin(), byCell.end());
+  std::vector<long> parent(n);
+  std::iota(parent.begin(), parent.end(), 0L);
+  auto find = [&](long a) {
+    while (parent[a] != a)
+    {
+      a = parent[a] = parent[parent[a]];
+    }
+    return a;
+  };
+  auto unite = [&](long a, long b) { parent[find(a)] = find(b); };
+  // the first sample of a cell represents it
+  auto representative = [&](std::uint64_t k) {
+    const auto it = std::lower_bound(byCell.begin(), byCell.end(), std::make_pair(k, 0L));
+    return it != byCell.end() && it->first == k ? it->second : -1L;
+  };
+  for (long c = 0; c < n; ++c)
+  {
+    const long a = byCell[c].second, first = representative(byCell[c].first);
+    unite(a, first);
+    if (a != first)
+    {
+      continue; // the cell's neighbours are joined once, through its representative
+    }
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+        {
+          const long other = representative(key({ cellOf[a][0] + dx, cellOf[a][1] + dy, cellOf[a][2] + dz }));
+          if (other >= 0)
+          {
+            unite(other, a);
+          }
+        }
+  }
+  if (faces)
+  {
+    for (long a = 0; a < n; ++a)
+    {
+      for (int v : (*faces)[samples[a]])
+      {
+        if (vertexOwner[v] >= 0)
+        {
+          unite(a, vertexOwner[v]);
+        }
+        vertexOwner[v] = static_cast<int>(a);
+      }
+    }
+    for (long a = 0; a < n; ++a)
+    {
+      for (int v : (*faces)[samples[a]])
+      {
+        vertexOwner[v] = -1;
+      }
+    }
+  }
+  std::vector<long> component(n);
+  for (long a = 0; a < n; ++a)
+  {
+    component[a] = find(a);
+  }
+  return component;
+}
+
+// The largest connected component of the samples (components).
+std::vector<int> largestComponent(const PointList& points, const std::vector<int>& samples, double clusterEpsilon,
+  const std::vector<std::vector<int>>* faces, std::vector<int>& vertexOwner)
+{
+  if (samples.size() < 2)
+  {
+    return samples;
+  }
+  const std::vector<long> component = components(points, samples, clusterEpsilon, faces, vertexOwner);
+  std::vector<long> size(samples.size(), 0);
+  for (long c : component)
+  {
+    ++size[c];
+  }
+  const long largest = std::max_element(size.begin(), size.end()) - size.begin();
+  std::vector<int> largestSamples;
+  for (std::size_t a = 0; a < samples.size(); ++a)
+  {
+    if (component[a] == largest)
+    {
+      largestSamples.push_back(samples[a]);
+    }
+  }
+  return largestSamples;
+}
+
+struct Candidate
+{
+  Primitive shape;
+  std::array<int, 3> samples;
+  int level = 0;
+  int subsets = 0;      // evaluated subsets
+  long evaluated = 0;   // samples in them
+  long compatible = 0;  // compatible samples among them
+  double estimate = 0, lower = 0, upper = 0;
+};
+
+class Search
+{
+public:
+  Search(const PointList& points, const std::vector<Vec3>& normals, const std::vector<std::vector<int>>* faces,
+    const RansacParameters& p, const std::vector<int>& valid)
+    : Points(points)
+    , Normals(normals)
+    , Faces(faces)
+    , P(p)
+    , CosAlpha(std::cos(p.normalThreshold))
+    , Octree(points, valid)
+    , Valid(valid)
+    , Available(points.size(), 0)
+    , Random(p.seed)
+  {
+    for (int i : valid)
+    {
+      Available[i] = 1;
+    }
+    Diagonal = Octree.box().size().norm();
+    Refinement.floor = P.epsilon / 4;
+    Refinement.cosAlpha = CosAlpha;
+    Refinement.ceiling = P.epsilon;
+    if (faces)
+    {
+      int vertices = 0;
+      for (const std::vector<int>& face : *faces)
+      {
+        for (int v : face)
+        {
+          vertices = std::max(vertices, v + 1);
+        }
+      }
+      VertexOwner.assign(vertices, -1);
+    }
+    // levels 0 .. L-1, the finest with about four samples per cell
+    const double perCell = std::max(1.0, static_cast<double>(valid.size()) / 4);
+    Levels = std::clamp(static_cast<int>(std::ceil(std::log(perCell) / std::log(8.0))), 1, MortonBits);
+    LevelDraws.assign(Levels, 0);
+    LevelScore.assign(Levels, 0);
+    for (PrimitiveType type : { PrimitiveType::Plane, PrimitiveType::Cylinder, PrimitiveType::Sphere, PrimitiveType::Cone })
+    {
+      const bool enabled = type == PrimitiveType::Plane ? p.planes : type == PrimitiveType::Cylinder ? p.cylinders
+        : type == PrimitiveType::Sphere                  ? p.spheres
+                                                         : p.cones;
+      if (enabled)
+      {
+        Types.push_back(type);
+      }
+    }
+    resetSubsets();
+  }
+
+  std::vector<DetectedPrimitive> run(const Progress& progress)
+  {
+    std::vector<DetectedPrimitive> found;
+    const double total = static_cast<double>(Remaining.size());
+    while (static_cast<long>(Remaining.size()) >= P.minimumSupport && !Types.empty() && Draws < MaximumDraws)
+    {
+      const bool searched = detectionProbability(P.minimumSupport) >= P.probability;
+      if (!searched)
+      {
+        drawBatch(); // once a shape of minimumSupport samples would have been found, only the candidates left are tried
+      }
+      Candidate* best = refineBest();
+      if (best && best->estimate >= P.minimumSupport && detectionProbability(best->estimate) >= P.probability)
+      {
+        DetectedPrimitive primitive;
+        if (extract(*best, primitive))
+        {
+          found.push_back(std::move(primitive));
+          removeMembers(found.back().members);
+          progress.report(1 - Remaining.size() / total);
+        }
+        else
+        {
+          *best = Candidates.back();
+          Candidates.pop_back();
+        }
+      }
+      else if (searched)
+      {
+        break;
+      }
+    }
+    splitIntoPlanes(found);
+    settle(found);
+    return found;
+  }
+
+private:
+  // 1 - (1 - n / (N L 2^(k-1)))^T for minimal sets of k = 3 samples (Schnabel et al. eq. 4)
+  double detectionProbability(double n) const
+  {
+    const double N = static_cast<double>(Remaining.size());
+    const double single = std::min(1.0, n / (N * Levels * 4));
+    return 1 - std::pow(1 - single, static_cast<double>(Draws));
+  }
+
+  void resetSubsets()
+  {
+    Remaining.clear();
+    for (int i : Octree.order())
+    {
+      if (Available[i])
+      {
+        Remaining.push_back(i);
+      }
+    }
+    std::shuffle(Remaining.begin(), Remaining.end(), Random);
+    SubsetEnd.clear();
+    long end = 0, size = FirstSubset;
+    while (end < static_cast<long>(Remaining.size()))
+    {
+      end = std::min(static_cast<long>(Remaining.size()), end + size);
+      SubsetEnd.push_back(end);
+      size *= 2;
+    }
+  }
+
+  void evaluateNextSubset(Candidate& c) const
+  {
+    const long begin = c.subsets == 0 ? 0 : SubsetEnd[c.subsets - 1], end = SubsetEnd[c.subsets];
+    long compatible = 0;
+    for (long a = begin; a < end; ++a)
+    {
+      const int i = Remaining[a];
+      compatible += c.shape.compatible(Points[i], Normals[i], P.epsilon, CosAlpha);
+    }
+    c.compatible += compatible;
+    c.evaluated += end - begin;
+    ++c.subsets;
+    // expected score N c / m with a normal approximation of the hypergeometric spread
+    const double N = static_cast<double>(Remaining.size()), m = static_cast<double>(c.evaluated);
+    const double f = static_cast<double>(c.compatible) / m, fSpread = (c.compatible + 1.0) / (m + 2);
+    const double spread = N * std::sqrt(fSpread * (1 - fSpread) / m * std::max(0.0, (N - m) / std::max(1.0, N - 1)));
+    c.estimate = N * f;
+    c.lower = c.estimate - ConfidenceWidth * spread;
+    c.upper = c.estimate + ConfidenceWidth * spread;
+  }
+
+  // Spheres and cylinders wider than the samples' bounding box are planes or free-form patches
+  // within epsilon, cones must keep their angle range (MinimumConeAngle).
+  bool plausible(const Primitive& s) const
+  {
+    switch (s.type)
+    {
+      case PrimitiveType::Sphere:
+      case PrimitiveType::Cylinder:
+        return s.radius <= Diagonal;
+      case PrimitiveType::Cone:
+        return s.angle >= MinimumConeAngle && s.angle <= M_PI / 2 - MinimumConeAngle;
+      case PrimitiveType::Plane:
+        break;
+    }
+    return true;
+  }
+
+  bool fullyEvaluated(const Candidate& c) const { return c.subsets == static_cast<int>(SubsetEnd.size()); }
+
+  // Draws minimal sets (serially, from the seeded generator) and scores their candidates on the
+  // first subset (in parallel).
+  void drawBatch()
+  {
+    std::vector<double> weight(Levels);
+    double sum = 0;
+    for (int l = 0; l < Levels; ++l)
+    {
+      sum += LevelDraws[l] > 0 ? LevelScore[l] / LevelDraws[l] : 0;
+    }
+    for (int l = 0; l < Levels; ++l)
+    {
+      const double learned = sum > 0 && LevelDraws[l] > 0 ? LevelScore[l] / LevelDraws[l] / sum : 1.0 / Levels;
+      weight[l] = 0.9 * learned + 0.1 / Levels;
+    }
+    std::discrete_distribution<int> pickLevel(weight.begin(), weight.end());
+    std::uniform_int_distribution<long> pickRemaining(0, static_cast<long>(Remaining.size()) - 1);
+    const std::size_t first = Candidates.size();
+    for (int draw = 0; draw < DrawsPerBatch; ++draw)
+    {
+      ++Draws;
+      const int level = pickLevel(Random);
+      ++LevelDraws[level];
+      std::array<int, 3> s;
+      s[0] = Remaining[pickRemaining(Random)];
+      const auto [begin, end] = Octree.cell(s[0], level);
+      if (end - begin < 3)
+      {
+        continue;
+      }
+      std::uniform_int_distribution<long> pickInCell(begin, end - 1);
+      int found = 1;
+      for (int attempt = 0; attempt < 20 && found < 3; ++attempt)
+      {
+        const int i = Octree.order()[pickInCell(Random)];
+        if (Available[i] && std::find(s.begin(), s.begin() + found, i) == s.begin() + found)
+        {
+          s[found++] = i;
+        }
+      }
+      if (found < 3)
+      {
+        continue;
+      }
+      const Vec3 p[3] = { Points[s[0]], Points[s[1]], Points[s[2]] };
+      const Vec3 n[3] = { Normals[s[0]], Normals[s[1]], Normals[s[2]] };
+      for (PrimitiveType type : Types)
+      {
+        const std::optional<Primitive> shape = fitMinimal(type, p, n, P.epsilon, CosAlpha);
+        if (shape && plausible(*shape))
+        {
+          Candidate c;
+          c.shape = *shape;
+          c.samples = s;
+          c.level = level;
+          Candidates.push_back(c);
+        }
+      }
+    }
+    scoreFrom(first);
+    for (std::size_t c = first; c < Candidates.size(); ++c)
+    {
+      LevelScore[Candidates[c].level] += Candidates[c].estimate;
+    }
+    if (Candidates.size() > 2 * KeptCandidates)
+    {
+      // the candidates far down the ranking will not be extracted before new draws replace them
+      std::stable_sort(Candidates.begin(), Candidates.end(), [](const Candidate& a, const Candidate& b) { return a.estimate > b.estimate; });
+      Candidates.resize(KeptCandidates);
+    }
+  }
+
+  void scoreFrom(std::size_t first)
+  {
+    const long count = static_cast<long>(Candidates.size() - first);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (long c = 0; c < count; ++c)
+    {
+      evaluateNextSubset(Candidates[first + c]);
+    }
+  }
+
+  // The candidate with the best estimate, its score refined on more subsets until its interval
+  // lies above every other candidate's (section 4.5), or until its score is exact (then the
+  // others, expected lower, are not evaluated in full one after another).
+  Candidate* refineBest()
+  {
+    while (!Candidates.empty())
+    {
+      auto byEstimate = [](const Candidate& a, const Candidate& b) { return a.estimate < b.estimate; };
+      Candidate& best = *std::max_element(Candidates.begin(), Candidates.end(), byEstimate);
+      Candidate* challenger = nullptr;
+      for (Candidate& c : Candidates)
+      {
+        if (&c != &best && c.upper > best.lower && (!challenger || c.upper > challenger->upper))
+        {
+          challenger = &c;
+        }
+      }
+      if (!challenger || fullyEvaluated(best))
+      {
+        return &best;
+      }
+      if (!fullyEvaluated(best))
+      {
+        evaluateNextSubset(best);
+      }
+      else if (!fullyEvaluated(*challenger))
+      {
+        evaluateNextSubset(*challenger);
+      }
+      else
+      {
+        return &best;
+      }
+    }
+    return nullptr;
+  }
+
+  std::vector<int> compatibleComponent(const Primitive& shape) const
+  {
+    const long n = static_cast<long>(Remaining.size());
+    std::vector<char> flag(n);
+#pragma omp parallel for schedule(static)
+    for (long a = 0; a < n; ++a)
+    {
+      flag[a] = shape.compatible(Points[Remaining[a]], Normals[Remaining[a]], P.epsilon, CosAlpha);
+    }
+    std::vector<int> compatible;
+    for (long a = 0; a < n; ++a)
+    {
+      if (flag[a])
+      {
+        compatible.push_back(Remaining[a]);
+      }
+    }
+    std::sort(compatible.begin(), compatible.end());
+    return largestComponent(Points, compatible, P.clusterEpsilon, Faces, VertexOwner);
+  }
+
+  // Occam's razor by Schwarz's Bayesian information criterion ("Estimating the dimension of a
+  // model", Annals of Statistics 6(2), 1978) for nested models on the n members of a curved
+  // primitive of k parameters (parameterCount): the least-squares plane explains them as well
+  // unless n log(RSS_plane / RSS_curved) > (k - 3) log n (a cone of a far apex or a wide cylinder
+  // lies within the tolerance of a noisy flat face and fits its noise a little closer). A
+  // residual sum counts at least n (floor / jump)^2: below that deviation the forward search
+  // tells no fit from another (exact samples of a flat face lie as exactly on a far cone).
+  // The criterion assumes independent residuals, but face barycenters share their vertices'
+  // noise: a cone with its apex four part diagonals away fits a noisy box face with 11% less
+  // RSS, though its surface bends there by 0.4 times the floor. A bend below the floor tells
+  // no more than a residual does, so the plane explains a curved primitive whose sagitta over
+  // its members is less than the floor.
+  bool planeExplains(const Primitive& curved, const std::vector<int>& members) const
+  {
+    if (members.size() < 3)
+    {
+      return false; // no plane to compare with
+    }
+    if (sagitta(curved, members) < Refinement.floor)
+    {
+      return true;
+    }
+    Primitive plane;
+    plane.type = PrimitiveType::Plane;
+    plane = fitLeastSquares(plane, Points, members);
+    const double n = static_cast<double>(members.size());
+    return simplerExplains(n, squaredSum(plane, members), 3, squaredSum(curved, members), parameterCount(curved.type));
+  }
+
+  // The sagitta of a curved primitive over samples (extent^2 / (8 radius) for an arc): the width,
+  // across their least-squares plane, of the points of its surface closest to the samples (their
+  // feet; a sample closest to a cone's apex gets a point off the surface, which only widens it).
+  double sagitta(const Primitive& curved, const std::vector<int>& samples) const
+  {
+    PointList feet;
+    for (int i : samples)
+    {
+      const Vec3 step = curved.distance(Points[i]) * curved.normalAt(Points[i]);
+      const Vec3 inward = Points[i] - step, outward = Points[i] + step;
+      feet.push_back(curved.distance(inward) <= curved.distance(outward) ? inward : outward);
+    }
+    std::vector<int> all(feet.size());
+    std::iota(all.begin(), all.end(), 0);
+    Primitive plane;
+    plane.type = PrimitiveType::Plane;
+    plane = fitLeastSquares(plane, feet, all);
+    double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+    for (const Vec3& foot : feet)
+    {
+      const double height = plane.axis.dot(foot) - plane.offset;
+      lowest = std::min(lowest, height);
+      highest = std::max(highest, height);
+    }
+    return highest - lowest;
+  }
+
+  double squaredSum(const Primitive& shape, const std::vector<int>& samples) const
+  {
+    return static_cast<double>(samples.size()) * std::pow(distanceStatistics(shape, Points, samples).rms, 2);
+  }
+
+  // Schwarz's criterion on n samples: a model of k parameters and residual sum of squares rss
+  // against a richer one of K > k (or K <= k: then it must fit as well or better), both sums at
+  // least n (floor / jump)^2 (planeExplains).
+  bool simplerExplains(double n, double rss, int k, double richRss, int richK) const
+  {
+    const double deviation = Refinement.floor / Refinement.jump, least = n * deviation * deviation;
+    return n * std::log(std::max(least, rss) / std::max(least, richRss)) <= (richK - k) * std::log(n);
+  }
+
+  // A curved primitive tangent to several flat faces (a cone in the corner of two faces of a
+  // box, found before either face's plane) holds strips of those faces within epsilon; its
+  // members as a whole are no plane, so planeExplains keeps it, and the faces' remaining pieces
+  // come out as other primitives, never one plane per face. The greedy extraction never
+  // revisits it, so here planes are searched among its members (the same search, planes only,
+  // the same seed): when they hold all but fewer than minimumSupport of them and explain them
+  // as well by Schwarz's criterion (m planes: 3 m parameters), they replace it, and settle then
+  // drops the pieces that the planes explain and merges the rest into them.
+  void splitIntoPlanes(std::vector<DetectedPrimitive>& found) const
+  {
+    if (!P.planes)
+    {
+      return;
+    }
+    RansacParameters planesOnly = P;
+    planesOnly.cylinders = planesOnly.spheres = planesOnly.cones = false;
+    std::vector<DetectedPrimitive> split;
+    for (DetectedPrimitive& primitive : found)
+    {
+      if (primitive.shape.type != PrimitiveType::Plane)
+      {
+        Search search(Points, Normals, Faces, planesOnly, primitive.members);
+        std::vector<DetectedPrimitive> planes = search.run({});
+        long held = 0;
+        double planesSum = 0;
+        for (const DetectedPrimitive& plane : planes)
+        {
+          held += static_cast<long>(plane.members.size());
+          planesSum += squaredSum(plane.shape, plane.members);
+        }
+        const long n = static_cast<long>(primitive.members.size());
+        if (!planes.empty() && n - held < P.minimumSupport)
+        {
+          // the members no plane holds count with their distance from the curved primitive
+          std::vector<char> inPlane(Points.size(), 0);
+          for (const DetectedPrimitive& plane : planes)
+          {
+            for (int i : plane.members)
+            {
+              inPlane[i] = 1;
+            }
+          }
+          std::vector<int> rest;
+          for (int i : primitive.members)
+          {
+            if (!inPlane[i])
+            {
+              rest.push_back(i);
+            }
+          }
+          planesSum += squaredSum(primitive.shape, rest);
+          if (simplerExplains(static_cast<double>(n), planesSum, 3 * static_cast<int>(planes.size()),
+                squaredSum(primitive.shape, primitive.members), parameterCount(primitive.shape.type)))
+          {
+            std::move(planes.begin(), planes.end(), std::back_inserter(split));
+            continue;
+          }
+        }
+      }
+      split.push_back(std::move(primitive));
+    }
+    found = std::move(split);
+  }
+
+  bool extract(const Candidate& candidate, DetectedPrimitive& primitive) const
+  {
+    Primitive shape = candidate.shape;
+    std::vector<int> component = compatibleComponent(shape);
+    for (int pass = 0; pass < 2 && static_cast<int>(component.size()) >= P.minimumSupport; ++pass)
+    {
+      const Primitive refit = fitLeastSquares(shape, Points, component);
+      if (!plausible(refit))
+      {
+        break;
+      }
+      std::vector<int> grown = compatibleComponent(refit);
+      if (grown.size() < component.size())
+      {
+        break;
+      }
+      shape = refit;
+      component = std::move(grown);
+    }
+    if (static_cast<int>(component.size()) < P.minimumSupport)
+    {
+      return false;
+    }
+    ForwardSearchResult refined = forwardSearch(shape, Points, Normals, component, Refinement);
+    if (refined.shape.type != PrimitiveType::Plane && P.planes && planeExplains(refined.shape, refined.members))
+    {
+      Primitive plane;
+      plane.type = PrimitiveType::Plane;
+      refined = forwardSearch(fitLeastSquares(plane, Points, refined.members), Points, Normals, component, Refinement);
+    }
+    if (static_cast<int>(refined.members.size()) < P.minimumSupport || !plausible(refined.shape))
+    {
+      return false;
+    }
+    primitive.shape = refined.shape;
+    primitive.members = refined.members;
+    primitive.rmsDistance = refined.rmsDistance;
+    primitive.maxDistance = refined.maxDistance;
+    return true;
+  }
+
+  // The largest normal deviation a primitive admits: the forward search's outlier rule (ForwardSearch.h)
+  // on its members' normal deviations, jump x their RMS angle, at least the normal threshold and
+  // at most 90 degrees. Faces a few times wider than the vertex noise tilt by about noise / width
+  // radians, beyond any fixed threshold for some of them (about 10% beyond 20 degrees at 5x).
+  double admissionAngle(const DetectedPrimitive& primitive) const
+  {
+    double squared = 0;
+    for (int i : primitive.members)
+    {
+      const double cosine = std::abs(Normals[i].dot(primitive.shape.normalAt(Points[i])));
+      squared += std::pow(std::acos(std::min(1.0, cosine)), 2);
+    }
+    const double rms = std::sqrt(squared / static_cast<double>(primitive.members.size()));
+    return std::clamp(Refinement.jump * rms, P.normalThreshold, M_PI / 2);
+  }
+
+  // The samples a primitive explains (Schnabel et al.'s refitting: the compatible samples of the
+  // final fit, gathered again): its members and the samples within its admission distance
+  // (ForwardSearch.h) and admission angle, in the connected components of its members. Increasing.
+  std::vector<int> explained(const DetectedPrimitive& primitive) const
+  {
+    const Primitive& shape = primitive.shape;
+    const double reach = admissionDistance(Refinement, primitive.rmsDistance);
+    const double cosAngle = std::cos(admissionAngle(primitive));
+    const long n = static_cast<long>(Valid.size());
+    std::vector<char> flag(n);
+#pragma omp parallel for schedule(static)
+    for (long a = 0; a < n; ++a)
+    {
+      const int i = Valid[a];
+      flag[a] = shape.distance(Points[i]) <= reach && std::abs(Normals[i].dot(shape.normalAt(Points[i]))) >= cosAngle;
+    }
+    std::vector<int> admitted;
+    for (long a = 0; a < n; ++a)
+    {
+      if (flag[a])
+      {
+        admitted.push_back(Valid[a]);
+      }
+    }
+    std::vector<int> candidates;
+    std::set_union(admitted.begin(), admitted.end(), primitive.members.begin(), primitive.members.end(), std::back_inserter(candidates));
+    const std::vector<long> component = components(Points, candidates, P.clusterEpsilon, Faces, VertexOwner);
+    std::vector<char> reached(candidates.size(), 0);
+    for (std::size_t a = 0, m = 0; a < candidates.size(); ++a)
+    {
+      if (m < primitive.members.size() && candidates[a] == primitive.members[m])
+      {
+        reached[component[a]] = 1;
+        ++m;
+      }
+    }
+    std::vector<int> samples;
+    for (std::size_t a = 0; a < candidates.size(); ++a)
+    {
+      if (reached[component[a]])
+      {
+        samples.push_back(candidates[a]);
+      }
+    }
+    return samples;
+  }
+
+  // After the greedy extraction, which never revisits a primitive (Schnabel et al. section 4.2):
+  //   1. a primitive of whose members the other primitives explain all but fewer than the
+  //      minimum support is redundant (a piece of a surface that noise split off, a cone tangent
+  //      to two flat faces found before them) and goes, the smallest first;
+  //   2. a sample no kept primitive holds goes to the kept primitive that explains it with the
+  //      least distance relative to its admission distance (noisy faces beyond the normal
+  //      threshold, the members of a redundant primitive);
+  //   3. a primitive that gained samples is fit again to its members by least squares.
+  void settle(std::vector<DetectedPrimitive>& found) const
+  {
+    const int count = static_cast<int>(found.size());
+    std::vector<std::vector<int>> explains(count);
+    std::vector<int> explainers(Points.size(), 0); // kept primitives that explain a sample
+    for (int p = 0; p < count; ++p)
+    {
+      explains[p] = explained(found[p]);
+      for (int i : explains[p])
+      {
+        ++explainers[i];
+      }
+    }
+    std::vector<int> bySize(count);
+    std::iota(bySize.begin(), bySize.end(), 0);
+    std::stable_sort(bySize.begin(), bySize.end(), [&](int a, int b) { return found[a].members.size() < found[b].members.size(); });
+    std::vector<char> kept(count, 1), own(Points.size(), 0);
+    for (int p : bySize)
+    {
+      for (int i : explains[p])
+      {
+        own[i] = 1;
+      }
+      int unexplained = 0;
+      for (int i : found[p].members)
+      {
+        unexplained += explainers[i] - own[i] == 0;
+      }
+      for (int i : explains[p])
+      {
+        own[i] = 0;
+      }
+      if (unexplained < P.minimumSupport)
+      {
+        kept[p] = 0;
+        for (int i : explains[p])
+        {
+          --explainers[i];
+        }
+      }
+    }
+    std::vector<int> owner(Points.size(), -1);
+    std::vector<double> closeness(Points.size(), std::numeric_limits<double>::infinity());
+    for (int p = 0; p < count; ++p)
+    {
+      if (!kept[p])
+      {
+        continue;
+      }
+      for (int i : found[p].members)
+      {
+        owner[i] = p;
+        closeness[i] = -1; // held: stays
+      }
+    }
+    for (int p = 0; p < count; ++p)
+    {
+      if (!kept[p])
+      {
+        continue;
+      }
+      const double reach = admissionDistance(Refinement, found[p].rmsDistance);
+      for (int i : explains[p])
+      {
+        const double relative = found[p].shape.distance(Points[i]) / reach;
+        if (relative < closeness[i])
+        {
+          closeness[i] = relative;
+          owner[i] = p;
+        }
+      }
+    }
+    std::vector<std::vector<int>> members(count);
+    for (int i : Valid)
+    {
+      if (owner[i] >= 0)
+      {
+        members[owner[i]].push_back(i);
+      }
+    }
+    std::vector<DetectedPrimitive> settled;
+    for (int p = 0; p < count; ++p)
+    {
+      if (!kept[p])
+      {
+        continue;
+      }
+      DetectedPrimitive primitive = std::move(found[p]);
+      if (members[p].size() > primitive.members.size())
+      {
+        const Primitive refit = fitLeastSquares(primitive.shape, Points, members[p]);
+        if (plausible(refit))
+        {
+          primitive.shape = refit;
+        }
+        primitive.members = std::move(members[p]);
+        const DistanceStatistics statistics = distanceStatistics(primitive.shape, Points, primitive.members);
+        primitive.rmsDistance = statistics.rms;
+        primitive.maxDistance = statistics.max;
+      }
+      settled.push_back(std::move(primitive));
+    }
+    found = std::move(settled);
+  }
+
+  void removeMembers(const std::vector<int>& members)
+  {
+    for (int i : members)
+    {
+      Available[i] = 0;
+    }
+    // candidates drawn from removed samples go; the others are scored again on new subsets
+    Candidates.erase(std::remove_if(Candidates.begin(), Candidates.end(),
+                       [&](const Candidate& c) { return !Available[c.samples[0]] || !Available[c.samples[1]] || !Available[c.samples[2]]; }),
+      Candidates.end());
+    resetSubsets();
+    for (Candidate& c : Candidates)
+    {
+      c.subsets = 0;
+      c.evaluated = c.compatible = 0;
+    }
+    if (Remaining.empty())
+    {
+      Candidates.clear();
+      return;
+    }
+    scoreFrom(0);
+  }
+
+  const PointList& Points;
+  const std::vector<Vec3>& Normals;
+  const std::vector<std::vector<int>>* Faces;
+  mutable std::vector<int> VertexOwner; // scratch of largestComponent: a sample per vertex, -1
+  RansacParameters P;
+  double CosAlpha;
+  double Diagonal = 0;
+  ForwardSearchSettings Refinement; // of every extracted primitive
+  MortonOctree Octree;
+  std::vector<int> Valid; // the samples with a unit normal, increasing
+  std::vector<char> Available;
+  std::vector<int> Remaining; // available samples in random order: the scoring subsets
+  std::vector<long> SubsetEnd;
+  std::vector<Candidate> Candidates;
+  std::vector<PrimitiveType> Types;
+  int Levels = 1;
+  std::vector<double> LevelDraws, LevelScore;
+  long Draws = 0;
+  std::mt19937_64 Random;
+};
+}
+
+std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const std::vector<Vec3>& normals,
+  const RansacParameters& parameters, const std::vector<std::vector<int>>* faces, const Progress& progress)
+{
+  if (points.size() != normals.size() || (faces && faces->size() != points.size()))
+  {
+    throw InvalidInputException("primitive detection: one normal (and face, if faces are given) per sample is needed");
+  }
+  if (faces)
+  {
+    for (const std::vector<int>& face : *faces)
+    {
+      for (int v : face)
+      {
+        if (v < 0)
+        {
+          throw InvalidInputException("primitive detection: a face has a negative vertex index");
+        }
+      }
+    }
+  }
+  requireFinite(points, "primitive detection samples");
+  if (!(parameters.epsilon > 0) || !(parameters.clusterEpsilon > 0) || !(parameters.normalThreshold > 0) ||
+    !(parameters.normalThreshold <= M_PI / 2) || parameters.minimumSupport < 3 || !(parameters.probability > 0) ||
+    !(parameters.probability < 1))
+  {
+    throw InvalidInputException("primitive detection: epsilon and cluster epsilon must be positive, the normal threshold in "
+                                "(0, 90] degrees, the minimum support at least 3 and the probability in (0, 1)");
+  }
+  std::vector<int> valid;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (normals[i].allFinite() && std::abs(normals[i].norm() - 1) < 1e-6)
+    {
+      valid.push_back(static_cast<int>(i));
+    }
+  }
+  if (valid.empty())
+  {
+    return {};
+  }
+  Search search(points, normals, faces, parameters, valid);
+  return search.run(progress);
+}
+} // namespace mlsdeform
+

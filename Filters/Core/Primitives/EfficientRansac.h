@@ -1,0 +1,63 @@
+// Automatic detection of planes, cylinders, spheres and cones in oriented samples (paper section
+// 6.3): the efficient RANSAC of Schnabel, Wahl and Klein 2007 ("Efficient RANSAC for point-cloud
+// shape detection", Computer Graphics Forum 26(2), [39]) followed by a forward-search refinement
+// of every primitive it extracts (ForwardSearch.h, [40, 41]).
+//   - Localized sampling (section 4.3): a minimal set is the first sample drawn at random and two
+//     more from the octree cell around it at a random level; the levels that produced good
+//     candidates are drawn more often.
+//   - Score (section 4.4): the samples within epsilon of a candidate whose normal deviates by
+//     less than the normal threshold, restricted to the largest connected component among them
+//     (cells of size clusterEpsilon that touch; for mesh faces also faces sharing a vertex,
+//     since a coarse mesh's faces lie farther apart than clusterEpsilon); estimated on growing random subsets with a
+//     confidence interval (section 4.5) and refined only for the best candidates.
+//   - Probabilistic stopping (section 4.2): the best candidate, of n samples, is extracted once
+//     1 - (1 - n / (N L 4))^T >= probability after T minimal sets (N samples left, L octree
+//     levels); once a shape of minimumSupport samples would have been found with that
+//     probability, no more sets are drawn and the search ends with the candidates left.
+// Spheres and cylinders of a radius above the samples' bounding-box diagonal (planes or free
+// forms within epsilon) and cones outside the angle range of Primitives.h are not kept.
+// Extraction refits the best candidate to its compatible component by least squares (twice,
+// which lets an inexact candidate from noisy normals grow onto its surface), then the forward
+// search settles its members and parameters; a curved primitive whose members a plane explains
+// as well by Schwarz's information criterion becomes that plane. After the extraction, a curved
+// primitive whose members planes found among them explain as well (the same criterion) becomes
+// those planes (a cone tangent to two faces of a box, found before their planes); then every
+// primitive gathers again the connected samples within its admission distance and its
+// noise-aware admission angle (Schnabel et al.'s refitting); a primitive that the others explain
+// but for fewer than minimumSupport members goes (a piece of a surface that noise split off, a
+// cone tangent to two faces), and samples no primitive holds join the one that explains them.
+// Deterministic for a seed: random draws are serial, only the scoring runs in parallel.
+#pragma once
+
+#include "Primitives/ForwardSearch.h"
+
+#include <cstdint>
+
+namespace mlsdeform
+{
+struct RansacParameters
+{
+  bool planes = true, cylinders = true, spheres = true, cones = true;
+  double epsilon = 0;          // distance tolerance (absolute)
+  double clusterEpsilon = 0;   // connectivity of a primitive's samples (absolute)
+  double normalThreshold = 0;  // largest normal deviation (radians)
+  int minimumSupport = 1;      // fewest samples of a primitive
+  double probability = 0.95;   // of finding a shape of minimumSupport samples
+  std::uint64_t seed = 0;
+};
+
+struct DetectedPrimitive
+{
+  Primitive shape;
+  std::vector<int> members; // sample indices, increasing
+  double rmsDistance = 0, maxDistance = 0;
+};
+
+/// Primitives in the oriented samples (points with unit normals), in the order found; a sample
+/// belongs to at most one. Samples whose normal is not a finite unit vector take part in none.
+/// faces (optional): the vertex indices of the face each sample stands for (FaceSamples.h);
+/// faces sharing a vertex are connected. Throws InvalidInputException for non-finite points,
+/// mismatched sizes or invalid parameters.
+std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const std::vector<Vec3>& normals,
+  const RansacParameters& parameters, const std::vector<std::vector<int>>* faces = nullptr, const Progress& progress = {});
+} // namespace mlsdeform

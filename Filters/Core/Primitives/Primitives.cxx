@@ -1,0 +1,400 @@
+#include "Primitives/Primitives.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mlsdeform
+{
+namespace
+{
+// Two unit vectors orthogonal to a and to each other.
+void tangentBasis(const Vec3& a, Vec3& e1, Vec3& e2)
+{
+  e1 = (std::abs(a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(a).normalized();
+  e2 = a.cross(e1);
+}
+
+// Cone coordinates of x: height h along the axis from the apex and distance rho from the axis.
+void coneCoordinates(const Primitive& cone, const Vec3& x, double& h, double& rho, Vec3& radial)
+{
+  const Vec3 v = x - cone.center;
+  h = v.dot(cone.axis);
+  radial = v - h * cone.axis;
+  rho = radial.norm();
+  radial = rho > 0 ? Vec3(radial / rho) : Vec3(Vec3::Zero());
+}
+
+// Signed distance (positive outside) of x from the surface; for a cone, points whose closest
+// surface point is the apex get their distance to it.
+double signedDistance(const Primitive& s, const Vec3& x)
+{
+  switch (s.type)
+  {
+    case PrimitiveType::Plane:
+      return s.axis.dot(x) - s.offset;
+    case PrimitiveType::Sphere:
+      return (x - s.center).norm() - s.radius;
+    case PrimitiveType::Cylinder:
+    {
+      const Vec3 v = x - s.center;
+      return (v - v.dot(s.axis) * s.axis).norm() - s.radius;
+    }
+    case PrimitiveType::Cone:
+    {
+      double h, rho;
+      Vec3 radial;
+      coneCoordinates(s, x, h, rho, radial);
+      const double c = s.cosAngle, sn = s.sinAngle;
+      // in the (h, rho) half plane the surface is the ray t (cos a, sin a), t >= 0
+      return h * c + rho * sn >= 0 ? rho * c - h * sn : std::hypot(h, rho);
+    }
+  }
+  return 0;
+}
+
+// The primitive moved by the small parameter change theta around base (Levenberg-Marquardt
+// works on these local coordinates): sphere (center, radius); cylinder (axis tilt in the
+// tangent plane, axis point shift, radius); cone (apex, axis tilt, angle).
+Primitive perturbed(const Primitive& base, const Eigen::VectorXd& theta)
+{
+  Primitive s = base;
+  Vec3 e1, e2;
+  tangentBasis(base.axis, e1, e2);
+  switch (base.type)
+  {
+    case PrimitiveType::Sphere:
+      s.center += theta.head<3>();
+      s.radius += theta[3];
+      break;
+    case PrimitiveType::Cylinder:
+      s.axis = (base.axis + theta[0] * e1 + theta[1] * e2).normalized();
+      s.center += theta[2] * e1 + theta[3] * e2;
+      s.radius += theta[4];
+      break;
+    case PrimitiveType::Cone:
+      s.center += theta.head<3>();
+      s.axis = (base.axis + theta[3] * e1 + theta[4] * e2).normalized();
+      s.setAngle(base.angle + theta[5]);
+      break;
+    case PrimitiveType::Plane:
+      break;
+  }
+  return s;
+}
+
+Primitive fitPlane(const Primitive& start, const PointList& points, const std::vector<int>& subset)
+{
+  Vec3 mean = Vec3::Zero();
+  for (int i : subset)
+  {
+    mean += points[i];
+  }
+  mean /= static_cast<double>(subset.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (int i : subset)
+  {
+    const Vec3 d = points[i] - mean;
+    covariance += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  Primitive plane;
+  plane.type = PrimitiveType::Plane;
+  // collinear points determine no plane: keep the start's normal
+  const bool collinear = !(eigen.eigenvalues()[1] > 1e-12 * eigen.eigenvalues()[2]);
+  plane.axis = collinear && start.type == PrimitiveType::Plane ? start.axis : Vec3(eigen.eigenvectors().col(0));
+  plane.offset = plane.axis.dot(mean);
+  return plane;
+}
+
+// Levenberg-Marquardt on the signed distances of the subset, in coordinates centered at the
+// subset's centroid and scaled by its spread (so the finite differences are well scaled).
+Primitive fitGeometric(const Primitive& start, const PointList& points, const std::vector<int>& subset)
+{
+  const int m = parameterCount(start.type);
+  const long n = static_cast<long>(subset.size());
+  Vec3 mean = Vec3::Zero();
+  for (int i : subset)
+  {
+    mean += points[i];
+  }
+  mean /= static_cast<double>(n);
+  double spread = 0;
+  for (int i : subset)
+  {
+    spread += (points[i] - mean).squaredNorm();
+  }
+  spread = std::sqrt(spread / n);
+  if (!(spread > 0))
+  {
+    return start;
+  }
+  PointList y(n);
+  for (long a = 0; a < n; ++a)
+  {
+    y[a] = (points[subset[a]] - mean) / spread;
+  }
+  Primitive current = start;
+  current.center = (start.center - mean) / spread;
+  current.radius = start.radius / spread;
+  if (current.type == PrimitiveType::Cylinder)
+  {
+    // the axis point nearest to the centroid keeps the parameters small
+    current.center -= current.center.dot(current.axis) * current.axis;
+  }
+  auto residuals = [&](const Primitive& s) {
+    Eigen::VectorXd r(n);
+    for (long a = 0; a < n; ++a)
+    {
+      r[a] = signedDistance(s, y[a]);
+    }
+    return r;
+  };
+  // Levenberg-Marquardt; stops when a step gains less than 1e-10 of the cost, when the RMS
+  // distance is below 1e-9 of the spread (settled far below any distance tolerance: exact data
+  // would otherwise be refined to round-off), or when no damping finds a better fit
+  Eigen::VectorXd r = residuals(current);
+  double cost = r.squaredNorm(), lambda = 1e-3;
+  constexpr double Step = 1e-6;
+  for (int iteration = 0; iteration < 30; ++iteration)
+  {
+    Eigen::MatrixXd J(n, m);
+    for (int j = 0; j < m; ++j)
+    {
+      Eigen::VectorXd theta = Eigen::VectorXd::Zero(m);
+      theta[j] = Step;
+      const Eigen::VectorXd plus = residuals(perturbed(current, theta));
+      theta[j] = -Step;
+      J.col(j) = (plus - residuals(perturbed(current, theta))) / (2 * Step);
+    }
+    const Eigen::MatrixXd A = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
+    double decrease = -1;
+    for (int attempt = 0; attempt < 8 && decrease < 0; ++attempt)
+    {
+      Eigen::MatrixXd damped = A;
+      damped.diagonal() += lambda * A.diagonal() + Eigen::VectorXd::Constant(m, 1e-12);
+      const Primitive next = perturbed(current, damped.ldlt().solve(-g));
+      const Eigen::VectorXd rNext = residuals(next);
+      if (rNext.allFinite() && rNext.squaredNorm() < cost)
+      {
+        decrease = cost - rNext.squaredNorm();
+        current = next;
+        r = rNext;
+        cost = r.squaredNorm();
+        lambda = std::max(lambda / 10, 1e-12);
+      }
+      else
+      {
+        lambda *= 10;
+      }
+    }
+    if (decrease <= 1e-10 * (cost + decrease) || cost <= 1e-18 * static_cast<double>(n))
+    {
+      break;
+    }
+  }
+  current.center = current.center * spread + mean;
+  current.radius *= spread;
+  return current;
+}
+}
+
+int parameterCount(PrimitiveType type)
+{
+  return type == PrimitiveType::Sphere ? 4 : type == PrimitiveType::Cylinder ? 5 : type == PrimitiveType::Cone ? 6 : 3;
+}
+
+const char* primitiveTypeName(PrimitiveType type)
+{
+  switch (type)
+  {
+    case PrimitiveType::Plane:
+      return "Plane";
+    case PrimitiveType::Cylinder:
+      return "Cylinder";
+    case PrimitiveType::Sphere:
+      return "Sphere";
+    case PrimitiveType::Cone:
+      return "Cone";
+  }
+  return "";
+}
+
+double Primitive::distance(const Vec3& x) const
+{
+  return std::abs(signedDistance(*this, x));
+}
+
+Vec3 Primitive::normalAt(const Vec3& x) const
+{
+  switch (type)
+  {
+    case PrimitiveType::Plane:
+      return axis;
+    case PrimitiveType::Sphere:
+    {
+      const Vec3 v = x - center;
+      return v.norm() > 0 ? Vec3(v.normalized()) : Vec3(Vec3::UnitZ());
+    }
+    case PrimitiveType::Cylinder:
+    {
+      const Vec3 v = x - center, radial = v - v.dot(axis) * axis;
+      return radial.norm() > 0 ? Vec3(radial.normalized()) : Vec3(Vec3::UnitZ());
+    }
+    case PrimitiveType::Cone:
+    {
+      double h, rho;
+      Vec3 radial;
+      coneCoordinates(*this, x, h, rho, radial);
+      if (rho == 0)
+      {
+        return axis;
+      }
+      return cosAngle * radial - sinAngle * axis;
+    }
+  }
+  return axis;
+}
+
+std::optional<Primitive> fitMinimal(PrimitiveType type, const Vec3 (&p)[3], const Vec3 (&n)[3], double epsilon, double cosAlpha)
+{
+  Primitive s;
+  s.type = type;
+  switch (type)
+  {
+    case PrimitiveType::Plane:
+    {
+      const Vec3 normal = (p[1] - p[0]).cross(p[2] - p[0]);
+      if (!(normal.norm() > 0))
+      {
+        return std::nullopt;
+      }
+      s.axis = normal.normalized();
+      s.offset = s.axis.dot(p[0]);
+      break;
+    }
+    case PrimitiveType::Sphere:
+    {
+      // the midpoint of the shortest segment between the normal lines p_i + t n_i (i = 0, 1)
+      const double b = n[0].dot(n[1]), denominator = 1 - b * b;
+      if (!(denominator > 1e-12))
+      {
+        return std::nullopt;
+      }
+      const Vec3 w = p[0] - p[1];
+      const double d = n[0].dot(w), e = n[1].dot(w);
+      const double t = (b * e - d) / denominator, u = (e - b * d) / denominator;
+      s.center = 0.5 * (p[0] + t * n[0] + p[1] + u * n[1]);
+      s.radius = ((p[0] - s.center).norm() + (p[1] - s.center).norm()) / 2;
+      break;
+    }
+    case PrimitiveType::Cylinder:
+    {
+      // axis n_0 x n_1; the center where the normal lines meet in the plane normal to it
+      const Vec3 axis = n[0].cross(n[1]);
+      if (!(axis.norm() > 1e-6))
+      {
+        return std::nullopt;
+      }
+      s.axis = axis.normalized();
+      auto flat = [&](const Vec3& v) { return Vec3(v - v.dot(s.axis) * s.axis); };
+      const Vec3 q0 = flat(p[0]), q1 = flat(p[1]), m0 = flat(n[0]).normalized(), m1 = flat(n[1]).normalized();
+      const double b = m0.dot(m1), denominator = 1 - b * b;
+      if (!(denominator > 1e-12))
+      {
+        return std::nullopt;
+      }
+      const Vec3 w = q0 - q1;
+      const double d = m0.dot(w), e = m1.dot(w);
+      const double t = (b * e - d) / denominator, u = (e - b * d) / denominator;
+      s.center = 0.5 * (q0 + t * m0 + q1 + u * m1);
+      s.radius = ((q0 - s.center).norm() + (q1 - s.center).norm()) / 2;
+      break;
+    }
+    case PrimitiveType::Cone:
+    {
+      // apex: the common point of the three tangent planes n_i . x = n_i . p_i
+      Eigen::Matrix3d A;
+      Vec3 rhs;
+      for (int i = 0; i < 3; ++i)
+      {
+        A.row(i) = n[i].transpose();
+        rhs[i] = n[i].dot(p[i]);
+      }
+      if (!(std::abs(A.determinant()) > 1e-6))
+      {
+        return std::nullopt;
+      }
+      s.center = A.partialPivLu().solve(rhs);
+      // the axis makes the same angle with the three directions from the apex
+      Vec3 u[3];
+      for (int i = 0; i < 3; ++i)
+      {
+        const Vec3 v = p[i] - s.center;
+        if (!(v.norm() > 0))
+        {
+          return std::nullopt;
+        }
+        u[i] = v.normalized();
+      }
+      const Vec3 axis = (u[1] - u[0]).cross(u[2] - u[0]);
+      if (!(axis.norm() > 1e-12))
+      {
+        return std::nullopt;
+      }
+      s.axis = axis.normalized();
+      if (s.axis.dot(u[0]) < 0)
+      {
+        s.axis = -s.axis;
+      }
+      s.setAngle((std::acos(std::clamp(s.axis.dot(u[0]), -1.0, 1.0)) + std::acos(std::clamp(s.axis.dot(u[1]), -1.0, 1.0)) +
+                   std::acos(std::clamp(s.axis.dot(u[2]), -1.0, 1.0))) / 3);
+      if (s.angle < MinimumConeAngle || s.angle > M_PI / 2 - MinimumConeAngle)
+      {
+        return std::nullopt;
+      }
+      break;
+    }
+  }
+  const bool finite = s.axis.allFinite() && s.center.allFinite() && std::isfinite(s.radius) && std::isfinite(s.offset);
+  if (!finite || ((type == PrimitiveType::Sphere || type == PrimitiveType::Cylinder) && !(s.radius > 0)))
+  {
+    return std::nullopt;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!s.compatible(p[i], n[i], epsilon, cosAlpha))
+    {
+      return std::nullopt;
+    }
+  }
+  return s;
+}
+
+DistanceStatistics distanceStatistics(const Primitive& shape, const PointList& points, const std::vector<int>& subset)
+{
+  DistanceStatistics statistics;
+  double squared = 0;
+  for (int i : subset)
+  {
+    const double d = shape.distance(points[i]);
+    squared += d * d;
+    statistics.max = std::max(statistics.max, d);
+  }
+  statistics.rms = subset.empty() ? 0 : std::sqrt(squared / static_cast<double>(subset.size()));
+  return statistics;
+}
+
+Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset)
+{
+  // three points determine a plane; Levenberg-Marquardt needs more samples than parameters
+  const int needed = start.type == PrimitiveType::Plane ? 3 : parameterCount(start.type) + 1;
+  if (static_cast<int>(subset.size()) < needed)
+  {
+    return start;
+  }
+  return start.type == PrimitiveType::Plane ? fitPlane(start, points, subset) : fitGeometric(start, points, subset);
+}
+} // namespace mlsdeform

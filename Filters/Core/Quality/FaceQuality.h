@@ -1,0 +1,173 @@
+// Face-based mesh quality as OpenFOAM's checkMesh defines it (primitiveMeshCheck, used in paper
+// section 7.3): face centres and area vectors by triangle fans about the average point, cell
+// centres and volumes by pyramids on the faces about the average face centre (any polyhedron),
+// and per interior face
+//   non-orthogonality = angle between the face area vector S_f and d = C_N - C_P (degrees),
+//   skewness = |sv| / fd, sv the offset of the face centre from where the line P-N crosses the
+//              face plane, fd the largest extent of the face along sv (at least 0.2 |d|).
+#pragma once
+
+#include "Common/CoreTypes.h"
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+namespace mlsdeform
+{
+/// A polygon's centre (area weighted) and area vector (normal by the right-hand rule, length = area).
+struct FaceGeometry
+{
+  Vec3 centre = Vec3::Zero();
+  Vec3 area = Vec3::Zero();
+};
+FaceGeometry faceGeometry(const PointList& points, const int* face, std::size_t n);
+inline FaceGeometry faceGeometry(const PointList& points, const std::vector<int>& face)
+{
+  return faceGeometry(points, face.data(), face.size());
+}
+
+/// A polyhedron's centre and volume from its faces (any orientation), or from their geometries.
+struct CellGeometry
+{
+  Vec3 centre = Vec3::Zero();
+  double volume = 0;
+};
+CellGeometry cellGeometry(const PointList& points, const std::vector<std::vector<int>>& faces);
+CellGeometry cellGeometry(const std::vector<FaceGeometry>& faces);
+
+/// OpenFOAM's face-pyramid check (checkMesh's "Face pyramids", the test of an inverted cell): a
+/// face's pyramid with apex at the cell centre, S_f . (C_f - C) / 3, must have positive volume
+/// with the face listed as seen from outside the cell (VTK's order; OpenFOAM's for the owner).
+bool hasNegativePyramid(const std::vector<FaceGeometry>& faces, const Vec3& centre);
+
+/// Non-orthogonality in degrees of a face with area vector S between cells with centres P and N;
+/// S points from the owner P to the neighbour N (out of P), as in OpenFOAM.
+double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area);
+
+/// OpenFOAM's face skewness of an interior face (face points needed for its extent).
+double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
+  const int* faceIndices, std::size_t n);
+inline double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
+  const std::vector<int>& faceIndices)
+{
+  return skewness(ownerCentre, neighbourCentre, face, points, faceIndices.data(), faceIndices.size());
+}
+
+/// A cell as its list of faces, each a polygon of point indices.
+using CellFaces = std::vector<std::vector<int>>;
+
+/// The faces of many cells in flat arrays (a 1M-cell mesh as one CellFaces per cell made ~8M small
+/// allocations): the faces of cell c are firstFace(c) .. firstFace(c + 1) - 1, numbered over all
+/// cells, each a polygon of point indices.
+class CellFaceList
+{
+public:
+  CellFaceList() = default;
+  explicit CellFaceList(const std::vector<CellFaces>& cells);
+
+  /// Lists the faces of cells 0 .. count - 1 in parallel. Each thread makes its own visitor with
+  /// newVisitor(); visitor(c, add) calls add(points, n) for each face of cell c, the same faces
+  /// each time (it runs twice: to count them, then to store them in place).
+  template <typename NewVisitor>
+  static CellFaceList build(int count, NewVisitor newVisitor);
+
+  int cells() const { return static_cast<int>(CellStart.size()) - 1; }
+  long faces() const { return static_cast<long>(FaceStart.size()) - 1; }
+  long firstFace(int cell) const { return CellStart[cell]; }
+  const int* face(long f) const { return Points.data() + FaceStart[f]; }
+  std::size_t faceSize(long f) const { return static_cast<std::size_t>(FaceStart[f + 1] - FaceStart[f]); }
+
+private:
+  std::vector<long> CellStart{ 0 };
+  std::vector<long> FaceStart{ 0 };
+  std::vector<int> Points;
+};
+
+template <typename NewVisitor>
+CellFaceList CellFaceList::build(int count, NewVisitor newVisitor)
+{
+  CellFaceList list;
+  list.CellStart.assign(static_cast<std::size_t>(count) + 1, 0);
+  std::vector<long> pointStart(static_cast<std::size_t>(count) + 1, 0);
+#pragma omp parallel
+  {
+    auto visitor = newVisitor();
+#pragma omp for schedule(dynamic, 4096)
+    for (int c = 0; c < count; ++c)
+    {
+      long faces = 0, points = 0;
+      visitor(c, [&](const auto*, std::size_t n) {
+        ++faces;
+        points += static_cast<long>(n);
+      });
+      list.CellStart[c + 1] = faces;
+      pointStart[c + 1] = points;
+    }
+  }
+  std::partial_sum(list.CellStart.begin(), list.CellStart.end(), list.CellStart.begin());
+  std::partial_sum(pointStart.begin(), pointStart.end(), pointStart.begin());
+  list.FaceStart.assign(static_cast<std::size_t>(list.CellStart.back()) + 1, 0);
+  list.Points.resize(static_cast<std::size_t>(pointStart.back()));
+#pragma omp parallel
+  {
+    auto visitor = newVisitor();
+#pragma omp for schedule(dynamic, 4096)
+    for (int c = 0; c < count; ++c)
+    {
+      long face = list.CellStart[c], point = pointStart[c];
+      visitor(c, [&](const auto* points, std::size_t n) {
+        std::copy(points, points + n, list.Points.begin() + point);
+        point += static_cast<long>(n);
+        list.FaceStart[++face] = point;
+      });
+    }
+  }
+  return list;
+}
+
+/// A face shared by two cells; `face` is the owner's copy (a face number of the CellFaceList).
+struct InteriorFace
+{
+  int owner = -1;
+  int neighbour = -1;
+  long face = -1;
+};
+
+/// The faces shared by two cells, matched by their point sets (the owner is the lower cell index).
+/// Throws std::invalid_argument for a face shared by more than two cells.
+std::vector<InteriorFace> interiorFaces(const CellFaceList& cells);
+
+/// Per interior face, +1 or -1 so that the oriented area vector points out of the owner on
+/// `points`. OpenFOAM fixes that order in the topology, so decide it on the undeformed mesh and
+/// keep it: a neighbour whose centre folds over to the owner's side then shows above 90 degrees.
+std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces);
+
+/// Non-orthogonality (degrees) and skewness of every interior face; the cells with a pyramid of
+/// negative volume (inverted, hasNegativePyramid) and their number.
+struct FaceMeasures
+{
+  std::vector<double> nonOrthogonality;
+  std::vector<double> skewness;
+  std::vector<unsigned char> inverted; // per cell
+  long invertedCells = 0;
+};
+FaceMeasures faceMeasures(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation);
+
+/// The mesh-sized buffers of faceMeasures, kept between calls on the same cells so that measuring
+/// another deformation allocates nothing.
+struct FaceWorkspace
+{
+  std::vector<Vec3> centres; // per cell
+};
+
+/// faceMeasures into out, with the buffers of work.
+void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
+
+/// faceOrientation, and with it the measures of these points into out (with the buffers of work):
+/// the rest mesh's measures at the cost of one pass over its cells.
+std::vector<int> faceOrientation(
+  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, FaceWorkspace& work, FaceMeasures& out);
+} // namespace mlsdeform

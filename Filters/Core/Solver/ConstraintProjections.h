@@ -1,0 +1,51 @@
+// Shape-Up projections (Bouaziz et al. [21], paper section 6.2): for the current positions of a
+// constrained point set, the closest positions (in the least-squares sense) that satisfy the
+// constraint. The alternating optimization pulls the deformation towards them (eq. 15-17).
+#pragma once
+
+#include "Common/CoreTypes.h"
+
+namespace mlsdeform
+{
+/// A plane through point with unit normal; farthest: the largest distance of the points it was
+/// fitted to.
+struct Plane
+{
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  double farthest = 0;
+
+  /// x moved along the normal onto the plane.
+  Vec3 project(const Vec3& x) const { return x - normal.dot(x - point) * normal; }
+};
+
+/// The least-squares plane of at least 3 points: through their mean, normal along the
+/// covariance's smallest principal direction. A normal within 1e-9 of a coordinate axis is
+/// that axis exactly (a ground or symmetry plane of a CFD domain: motions within it then keep
+/// that coordinate exactly).
+Plane fitPlane(const PointList& x);
+
+/// Onto the least-squares plane (fitPlane).
+PointList projectToPlane(const PointList& x);
+
+/// Onto a given plane: the slip constraint, whose points slide within their rest plane.
+PointList projectTo(const Plane& plane, const PointList& x);
+
+/// Onto the least-squares plane, then onto the least-squares circle in it (algebraic fit of
+/// Kasa, refined by Gauss-Newton on the geometric distances).
+PointList projectToCircle(const PointList& x);
+
+/// Onto the least-squares cylinder of Eberly, "Least Squares Fitting of Data by Linear or
+/// Quadratic Structures" (Geometric Tools, 2019), section "Fitting a Cylinder" [36]: for an axis
+/// direction W the center and radius have closed forms, and W minimizes the remaining error.
+/// axis is the search's start and returns the fitted direction (zero: search all directions).
+PointList projectToCylinder(const PointList& x, Vec3& axis);
+
+/// The best similarity transform (rotation, translation, uniform scale) of the rest positions
+/// onto x, applied to the rest positions (Umeyama 1991): the feature-line constraint.
+PointList projectToSimilarity(const PointList& rest, const PointList& x);
+
+/// The best rigid transform (rotation, translation) of the rest positions onto x, applied to the
+/// rest positions (Kabsch / Umeyama without scale): the rigid constraint.
+PointList projectToRigid(const PointList& rest, const PointList& x);
+} // namespace mlsdeform

@@ -1,0 +1,117 @@
+// Geometric constraints in the deformation (paper section 6): for each constrained point set t
+// the constraint energy gamma_c * weight_t / n_t * |C_t (x_t + Phi_t w) - C_t P_t(x_t + Phi_t w)|^2
+// of eq. 15, with C_t either the mean-centering matrix of Shape-Up (eq. 16) or the sparse
+// formulation of section 6.1 (row i: x_i - x_p with p the point closest to the mean). With the
+// projections P_t held fixed this is quadratic in w: its normal matrix joins eq. 17 once, and
+// each local/global iteration only needs new projections and a new right-hand side.
+//
+// The two C_t are different penalties: C_s^T C_s = C_m^T C_m + n u u^T with u = e_p - 1/n, so
+// the sparse one adds n |r_p - rbar|^2 (r = y - P). At a finite gamma_c that term pulls the
+// pivot's residual towards the mean and, since the pivot is not exactly at the mean, tilts planes
+// and turns feature lines away from the energy minimum (by 2e-3 of the diagonal in a test). The
+// sparse right-hand side therefore also carries n u u^T Phi_t w of the current w (a deferred
+// correction): the matrix stays the sparse one of section 6.1, and the fixed point of the
+// iteration is exactly the mean-centered one.
+//
+// The slip constraint (a ground, symmetry, inlet or outlet plane of a CFD domain) is not a shape
+// but a place: its points stay on their rest plane and slide freely within it. Its C_t is the
+// identity (a translation normal to the plane must cost), and P_t projects onto the rest plane,
+// so the local step asks for the tangential part of the current displacement only. A slip plane
+// normal to a coordinate axis a is exact and needs no iteration: its term asks d_a = 0 at its
+// points, which touches the system of coordinate a only (axisNormal(a)).
+#pragma once
+
+#include "Solver/ConstraintProjections.h"
+#include "Basis/ShapeFunctions.h"
+
+namespace mlsdeform
+{
+enum class ConstraintType
+{
+  Planarity,
+  Circularity,
+  Cylinder,
+  FeatureLine,
+  Rigid,
+  Slip
+};
+const char* constraintName(ConstraintType type);
+
+enum class ConstraintFormulation
+{
+  Sparse,      // section 6.1: two entries per row, sparse even for a set covering the mesh
+  MeanCentered // eq. 16: dense over the set's samples
+};
+
+/// A constrained point set: its rest positions and relative weight.
+struct ShapeConstraint
+{
+  ConstraintType type = ConstraintType::Planarity;
+  PointList positions;
+  double weight = 1.0;
+};
+
+class ShapeConstraints
+{
+public:
+  /// Phi and C Phi at each set's positions. Throws InvalidInputException for a set with too
+  /// few points for its type or positions outside every support.
+  ShapeConstraints(const ShapeFunctions& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation);
+
+  /// sum_t weight_t / n_t (C_t Phi_t)^T (C_t Phi_t), the constraint part of eq. 17 (k x k),
+  /// over the sets other than axis-normal slip planes.
+  const SparseMatrix& normalMatrix() const { return Normal; }
+
+  /// sum weight_t / n_t Phi_t^T Phi_t over the slip planes normal to axis a: the part of eq. 17
+  /// for coordinate a only (the target is d_a = 0); zero when there is none.
+  const SparseMatrix& axisNormal(int a) const { return AxisNormals[a]; }
+  bool hasAxisSlips() const { return AxisSlips; }
+
+  /// Whether the local/global iteration is needed: any set other than an axis-normal slip.
+  bool iterative() const { return Iterative; }
+
+  /// Every set's current positions y_t = x_t + Phi_t w.
+  std::vector<PointList> positions(const Displacements& w) const;
+
+  /// The largest distance of a constrained point between two lists of every set's positions.
+  static double largestDistance(const std::vector<PointList>& a, const std::vector<PointList>& b);
+
+  /// The cylinder fits' axes of the rest positions (zero for the other types): where the local
+  /// steps of one solve start.
+  std::vector<Vec3> restAxes() const;
+
+  /// The local step: every set's projection of its current positions. axes (one per set, from
+  /// restAxes) start the cylinder fits and return their axes; the iteration that owns them
+  /// carries them from step to step, so that a solve depends on its inputs only.
+  std::vector<PointList> project(const std::vector<PointList>& positions, std::vector<Vec3>& axes) const;
+
+  /// The constraint part of the right-hand side of eq. 17 for the projections of the current
+  /// positions: sum_t weight_t / n_t Phi_t^T v_t with v_t = C_m^T C_m (P_t - x_t), plus, for the
+  /// sparse formulation, the deferred correction n u u^T (y_t - x_t) (see above).
+  Displacements rightHandSide(const std::vector<PointList>& positions, const std::vector<PointList>& projections) const;
+
+  /// Per set: the largest distance between two lists of positions (e.g. from the projections).
+  static std::vector<double> largestDistances(const std::vector<PointList>& a, const std::vector<PointList>& b);
+
+
+private:
+  struct Set
+  {
+    ShapeConstraint constraint;
+    long begin = 0;                   // its first row in Subspace: Phi_t = rows begin .. begin + n_t
+    int pivot = 0;                    // p of the sparse formulation
+    double scale = 1;                 // weight_t / n_t
+    Vec3 restAxis = Vec3::Zero();     // the cylinder fit's axis of the rest positions
+    Plane restPlane;                  // the slip constraint's plane of the rest positions
+    int slipAxis = -1;                // the axis a slip plane is normal to, or -1
+  };
+
+  std::vector<Set> Sets;
+  SparseRowMatrix Subspace;           // Phi at every set's positions, the sets in turn
+  SparseRowMatrix TransposedSubspace; // its transpose, for the right-hand side of every iteration
+  ConstraintFormulation Formulation;
+  SparseMatrix Normal;
+  SparseMatrix AxisNormals[3];
+  bool AxisSlips = false, Iterative = false;
+};
+} // namespace mlsdeform
