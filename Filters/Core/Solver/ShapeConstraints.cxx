@@ -9,29 +9,6 @@
 
 namespace mlsdeform
 {
-namespace
-{
-std::size_t minimumPoints(ConstraintType type)
-{
-  switch (type)
-  {
-    case ConstraintType::Cylinder:
-      return 6;
-    case ConstraintType::FeatureLine:
-    case ConstraintType::Rigid:
-      return 2;
-    default:
-      return 3;
-  }
-}
-}
-
-const char* constraintName(ConstraintType type)
-{
-  static const char* names[] = { "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid", "Slip" };
-  return names[static_cast<int>(type)];
-}
-
 ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vector<ShapeConstraint>& constraints, ConstraintFormulation formulation)
   : Formulation(formulation)
   , Normal(basis.size(), basis.size())
@@ -41,10 +18,10 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
   for (std::size_t t = 0; t < constraints.size(); ++t)
   {
     const ShapeConstraint& c = constraints[t];
-    if (c.positions.size() < minimumPoints(c.type))
+    if (c.positions.size() < fewestPoints(c.type))
     {
       throw InvalidInputException(which(t) + " has " + std::to_string(c.positions.size()) + " point(s); it needs at least " +
-        std::to_string(minimumPoints(c.type)));
+        std::to_string(fewestPoints(c.type)));
     }
     requireFinite(c.positions, (which(t) + " positions").c_str());
     all.insert(all.end(), c.positions.begin(), c.positions.end());

@@ -35,7 +35,26 @@ enum class ConstraintType
   Rigid,
   Slip
 };
-const char* constraintName(ConstraintType type);
+/// One row per constraint type: its name and the fewest points its projection needs. A new type
+/// is a row here, a value above and its projection (ConstraintProjections.h).
+struct ConstraintTypeRow
+{
+  const char* name;
+  std::size_t fewestPoints;
+};
+inline constexpr ConstraintTypeRow ConstraintTypes[] = {
+  { "Planarity", 3 }, { "Circularity", 3 }, { "Cylinder", 6 }, { "FeatureLine", 2 }, { "Rigid", 2 }, { "Slip", 3 },
+};
+static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Slip) + 1,
+  "one row per constraint type");
+inline const char* constraintName(ConstraintType type)
+{
+  return ConstraintTypes[static_cast<int>(type)].name;
+}
+inline std::size_t fewestPoints(ConstraintType type)
+{
+  return ConstraintTypes[static_cast<int>(type)].fewestPoints;
+}
 
 enum class ConstraintFormulation
 {

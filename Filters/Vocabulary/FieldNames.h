@@ -1,0 +1,27 @@
+// The names of the arrays that pass between the filters (and reach scripts and the GUI): one
+// definition each, so that a producer and its consumers cannot disagree.
+#pragma once
+
+namespace mlsvtk::fields
+{
+// Constraint Region output -> MLS Deform / Shell Deform
+constexpr const char* Role = "Role";                       // field data, int: the role's value (RegionRoles.h)
+constexpr const char* RoleName = "RoleName";               // field data, string
+constexpr const char* Weight = "Weight";                   // field data, double
+constexpr const char* PrescribedDisplacement = "PrescribedDisplacement"; // point data, 3 components
+constexpr const char* ConstraintSet = "ConstraintSet";     // point data: the constraint set of a position (CellSets)
+// MLS Deform / Shell Deform output
+constexpr const char* Displacement = "Displacement";       // point data, 3 components
+/// Field-data string on an output whose filter failed: the message (the output window has it too).
+constexpr const char* Error = "DeformationError";
+// MLS Sampler output -> MLS Deform
+constexpr const char* SupportRadius = "SupportRadius";     // point data of the samples
+constexpr const char* OnSurface = "OnSurface";             // point data of the samples
+constexpr const char* Volume = "Volume";                   // point data of the integration points
+// Primitive Detector output -> Constraint Region
+constexpr const char* PrimitiveId = "PrimitiveId";         // cell data
+constexpr const char* PrimitiveType = "PrimitiveType";     // cell data
+constexpr const char* PrimitiveIds = "PrimitiveIds";       // point data, padded with -1
+constexpr const char* PrimitiveCount = "PrimitiveCount";   // point data
+constexpr const char* PrimitiveTypes = "PrimitiveTypes";   // field data: the type of each primitive id
+} // namespace mlsvtk::fields
