@@ -1,9 +1,12 @@
 // A minimal test harness: each test is a named function; the executable runs the one named on
 // its command line (CTest registers one test per name). A failed CHECK prints and fails the test.
+// "--count N" fails unless exactly N tests are registered: CMake passes the number of TEST( lines
+// it found, so that a test it missed fails loudly instead of never running.
 #pragma once
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -25,15 +28,26 @@ struct Register
 {
   Register(const char* name, std::function<void()> f) { registry()[name] = std::move(f); }
 };
+inline void listTests()
+{
+  for (const auto& entry : registry())
+  {
+    std::printf("  %s\n", entry.first.c_str());
+  }
+}
 inline int run(int argc, char* argv[])
 {
+  if (argc == 3 && std::strcmp(argv[1], "--count") == 0)
+  {
+    const std::size_t expected = std::strtoul(argv[2], nullptr, 10);
+    std::printf("%zu tests registered, CMake found %zu (TEST( at the start of a line):\n", registry().size(), expected);
+    listTests();
+    return registry().size() == expected ? 0 : 1;
+  }
   if (argc < 2 || !registry().count(argv[1]))
   {
-    std::printf("usage: %s TEST\ntests:\n", argv[0]);
-    for (const auto& entry : registry())
-    {
-      std::printf("  %s\n", entry.first.c_str());
-    }
+    std::printf("usage: %s TEST | --count N\ntests:\n", argv[0]);
+    listTests();
     return 2;
   }
   registry()[argv[1]]();
