@@ -1,11 +1,14 @@
 // Per-iteration cost of the constrained deformation (paper section 6) at k = 4000 samples: a
 // plane of 160k points bent between a fixed and a lifted strip, a planarity constraint on n
-// points of the bent middle. Prints one JSON line per n and iteration kind.
+// points of the bent middle. Prints one JSON line per n and iteration kind; fails (exit code 1)
+// when an iteration did not converge or its residual is not finite, so that the smoke run
+// (Benchmarks.ConstraintsSmoke) checks what it prints.
 // Usage: BenchmarkConstraints [K] [N1 N2 ...]
 #include "Solver/SpaceDeformation.h"
 #include "../Core/TestGeometry.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -41,6 +44,7 @@ int main(int argc, char* argv[])
   const std::vector<PointDisplacements> prescribed = { Vec3(0, 0, 0.3).transpose().replicate(regions[0].positions.size(), 1),
     Displacements::Zero(regions[1].positions.size(), 3) };
 
+  bool failed = false;
   for (int n : counts)
   {
     const PointList set(middle.begin(), middle.begin() + std::min<std::size_t>(n, middle.size()));
@@ -62,7 +66,12 @@ int main(int argc, char* argv[])
         model.basis().size(), set.size(), depth ? "Anderson" : "None", s.iterations, s.converged ? "true" : "false", seconds,
         1000 * seconds / std::max(1, s.iterations), s.constraintResidual[0], setup);
       std::fflush(stdout);
+      if (!s.converged || !std::isfinite(s.constraintResidual[0]))
+      {
+        std::fprintf(stderr, "n = %d, %s: the iteration did not converge to a finite residual\n", n, depth ? "Anderson" : "None");
+        failed = true;
+      }
     }
   }
-  return 0;
+  return failed ? 1 : 0;
 }
