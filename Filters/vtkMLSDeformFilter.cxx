@@ -7,6 +7,7 @@
 #include "Adapters/MeshCells.h"
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/ProcessCollective.h"
+#include "Vocabulary/FieldNames.h"
 #include "Basis/ShellOperators.h"
 #include "Solver/SpaceDeformation.h"
 
@@ -40,8 +41,8 @@ void gatherWithValues(vtkPolyData* data, vtkDataArray* array, PointList& positio
 
 Samples readSamples(vtkPolyData* centers, vtkPolyData* integration, const Collective& group)
 {
-  vtkDataArray* radius = centers && integration ? centers->GetPointData()->GetArray("SupportRadius") : nullptr;
-  vtkDataArray* volume = centers && integration ? integration->GetPointData()->GetArray("Volume") : nullptr;
+  vtkDataArray* radius = centers && integration ? centers->GetPointData()->GetArray(mlsvtk::fields::SupportRadius) : nullptr;
+  vtkDataArray* volume = centers && integration ? integration->GetPointData()->GetArray(mlsvtk::fields::Volume) : nullptr;
   agree(group, [&] {
     if (!integration)
     {
@@ -59,6 +60,21 @@ Samples readSamples(vtkPolyData* centers, vtkPolyData* integration, const Collec
   return samples;
 }
 
+
+// The internal sampling's parameters from the properties: the one list that gives both the
+// subspace's cache key and the sampler's parameters.
+SamplingParameters samplingParameters(vtkMLSDeformFilter* filter)
+{
+  SamplingParameters parameters;
+  parameters.numberOfVolumeSamples = static_cast<int>(std::lround(filter->GetVolumeSampleFraction() * filter->GetNumberOfSamples()));
+  parameters.numberOfSurfaceSamples = filter->GetNumberOfSamples() - parameters.numberOfVolumeSamples;
+  parameters.integrationPointRatio = filter->GetIntegrationPointRatio();
+  parameters.lloydIterations = filter->GetLloydIterations();
+  parameters.cover = filter->GetCover();
+  parameters.randomSeed = static_cast<std::uint64_t>(filter->GetRandomSeed());
+  parameters.followMeshGrading = filter->GetFollowMeshGrading() != 0;
+  return parameters;
+}
 }
 
 vtkMLSDeformFilter::vtkMLSDeformFilter()
@@ -85,10 +101,8 @@ mlsvtk::SubspaceDependencies vtkMLSDeformFilter::GetSubspaceDependencies(vtkInfo
   }
   else
   {
-    dependencies.settings.insert(dependencies.settings.end(),
-      { static_cast<double>(this->NumberOfSamples), this->VolumeSampleFraction, this->IntegrationPointRatio,
-        static_cast<double>(this->LloydIterations), this->Cover, static_cast<double>(this->RandomSeed),
-        static_cast<double>(this->FollowMeshGrading) });
+    const std::vector<double> sampling = samplingParameters(this).key();
+    dependencies.settings.insert(dependencies.settings.end(), sampling.begin(), sampling.end());
   }
   return dependencies;
 }
@@ -105,15 +119,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
   }
   else
   {
-    SamplingParameters parameters;
-    parameters.numberOfVolumeSamples = static_cast<int>(std::lround(this->VolumeSampleFraction * this->NumberOfSamples));
-    parameters.numberOfSurfaceSamples = this->NumberOfSamples - parameters.numberOfVolumeSamples;
-    parameters.integrationPointRatio = this->IntegrationPointRatio;
-    parameters.lloydIterations = this->LloydIterations;
-    parameters.cover = this->Cover;
-    parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
-    parameters.followMeshGrading = this->FollowMeshGrading != 0;
-    samples = sampleDomain(mlsvtk::samplingDomain(inSets, group), parameters, { &mlsvtk::reportProgress, this, 0.0, 0.4 }, group);
+    samples = sampleDomain(mlsvtk::samplingDomain(inSets, group), samplingParameters(this), { &mlsvtk::reportProgress, this, 0.0, 0.4 }, group);
   }
   const BasisKind kind = static_cast<BasisKind>(this->Basis);
   if (this->EnergyDiscretization == SurfaceVertices)

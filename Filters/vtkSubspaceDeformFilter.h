@@ -38,11 +38,13 @@
  * every process with the message. Shell Deform and the SurfaceVertices energies need the whole
  * mesh and run on one process only.
  *
- * Errors (bad input, a singular system) leave the output as the unchanged input with the field
- * data string "DeformationError" holding the message, report it in the output window, and set
- * the error code (GetErrorCode() is vtkErrorCode::UserError; NoError after a success). The
- * request itself succeeds, so that a pipeline (ParaView's among them) updates normally once the
- * input is fixed.
+ * Errors (bad input, a singular system, a cancelled set-up) follow the plugin's one convention
+ * (Adapters/FailurePolicy.h): the output is the unchanged input with the field data string
+ * "DeformationError" holding the message, the message is in the output window, GetErrorCode() is
+ * vtkErrorCode::UserError (NoError after a success), and the request itself succeeds, so that a
+ * pipeline (ParaView's among them) updates normally once the input is fixed. Setting
+ * AbortExecute (ParaView's progress bar's cancel) stops the set-up between its stages; the next
+ * update continues from the last finished stage (Session/DeformationSession.h).
  */
 #ifndef vtkSubspaceDeformFilter_h
 #define vtkSubspaceDeformFilter_h
@@ -51,19 +53,16 @@
 #include "vtkPassInputTypeAlgorithm.h"
 
 #include <memory>
-
-class vtkFieldData;
-#include <string>
 #include <vector>
 
 class vtkPointSet;
 namespace mlsdeform
 {
-class Collective;
 class SpaceDeformation;
 }
 namespace mlsvtk
 {
+class DeformationSession;
 struct SubspaceDependencies;
 }
 
@@ -146,10 +145,15 @@ public:
   void RemoveAllRegions() { this->SetInputConnection(1, nullptr); }
 
   ///@{
-  /// How often the expensive steps ran (for tests of the cache).
-  vtkGetMacro(NumberOfSamplings, int);
-  vtkGetMacro(NumberOfFactorizations, int);
-  vtkGetMacro(NumberOfSolves, int);
+  /// How often the stages of the set-up ran (for tests of the cache): the subspace (sampling,
+  /// shape functions, energies), Phi at the input points, the Handle and Fixed regions, the
+  /// constraints, the factorization, and the solves.
+  int GetNumberOfSamplings();
+  int GetNumberOfPointEvaluations();
+  int GetNumberOfTargetSetups();
+  int GetNumberOfConstraintSetups();
+  int GetNumberOfFactorizations();
+  int GetNumberOfSolves();
   ///@}
 
 protected:
@@ -167,10 +171,6 @@ protected:
   virtual std::unique_ptr<mlsdeform::SpaceDeformation> BuildSubspace(
     const std::vector<vtkPointSet*>& inputs, vtkInformationVector** inputVector) = 0;
 
-  /// The quality summaries of the volume cells of the input and output point sets, into field.
-  void ReportMeshQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-    const mlsdeform::Collective& group);
-
   double StretchWeight = 0.0;
   double BendWeight = 1.0;
   double FixWeight = 1000.0;
@@ -181,16 +181,11 @@ protected:
   int Acceleration = Anderson;
   vtkTypeBool MeshQuality = 1;
 
-  int NumberOfSamplings = 0;
-  int NumberOfFactorizations = 0;
-  int NumberOfSolves = 0;
-
 private:
   vtkSubspaceDeformFilter(const vtkSubspaceDeformFilter&) = delete;
   void operator=(const vtkSubspaceDeformFilter&) = delete;
 
-  struct Cache;
-  Cache* Cached;
+  std::unique_ptr<mlsvtk::DeformationSession> Session;
 };
 
 #endif

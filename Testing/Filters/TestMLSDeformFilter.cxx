@@ -5,6 +5,7 @@
 #include "vtkDeformationQuality.h"
 #include "vtkMLSSampler.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkErrorCode.h>
@@ -32,6 +33,8 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <string>
+#include <tuple>
 
 #include <omp.h>
 
@@ -259,6 +262,103 @@ TEST(HandleMotionReusesTheSetUp)
   scene.deform->SetNumberOfSamples(600);
   scene.deform->Update();
   CHECK(scene.deform->GetNumberOfSamplings() == 2 && scene.deform->GetNumberOfFactorizations() == 4);
+}
+
+namespace
+{
+// How often each stage of the deformation session ran so far.
+struct StageRuns
+{
+  int samplings, points, targets, constraints, factorizations, solves;
+  explicit StageRuns(vtkMLSDeformFilter* f)
+    : samplings(f->GetNumberOfSamplings())
+    , points(f->GetNumberOfPointEvaluations())
+    , targets(f->GetNumberOfTargetSetups())
+    , constraints(f->GetNumberOfConstraintSetups())
+    , factorizations(f->GetNumberOfFactorizations())
+    , solves(f->GetNumberOfSolves())
+  {
+  }
+  // the stages that ran between before and after, as "s p t c f v" flags
+  static std::string ran(const StageRuns& before, const StageRuns& after)
+  {
+    std::string flags;
+    for (auto [a, b, name] : { std::make_tuple(before.samplings, after.samplings, 's'), std::make_tuple(before.points, after.points, 'p'),
+           std::make_tuple(before.targets, after.targets, 't'), std::make_tuple(before.constraints, after.constraints, 'c'),
+           std::make_tuple(before.factorizations, after.factorizations, 'f'), std::make_tuple(before.solves, after.solves, 'v') })
+    {
+      flags += b != a ? name : '-';
+    }
+    return flags;
+  }
+};
+}
+
+// The session's stages (Session/DeformationSession.h) run again exactly when their keys change:
+// a handle motion solves only; a region change sets the targets up and refactorizes; a weight
+// change refactorizes; a sampling change redoes everything.
+TEST(SessionStagesRunWhenTheirKeysChange)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  auto step = [&](const char* what, auto change, const char* expected) {
+    const StageRuns before(scene.deform);
+    change();
+    scene.deform->Update();
+    CHECK(fieldValue(scene.deform->GetOutputDataObject(0), "HandleResidual") >= 0);
+    const std::string ran = StageRuns::ran(before, StageRuns(scene.deform));
+    std::printf("%s: stages that ran %s (expected %s)\n", what, ran.c_str(), expected);
+    CHECK(ran == expected);
+  };
+  step("first update", [] {}, "sptcfv");
+  step("handle motion", [&] { scene.handle->SetTranslation(0.05, 0, 0.2); }, "-----v");
+  const double wider[6] = { 0.85, 1.1, -0.1, 1.1, -0.1, 0.1 };
+  step("region change", [&] { vtkBox::SafeDownCast(scene.handle->GetRegion())->SetBounds(wider); }, "--t-fv");
+  step("weight change", [&] { scene.deform->SetFixWeight(2000); }, "----fv");
+  step("sampling change", [&] { scene.deform->SetRandomSeed(3); }, "sptcfv");
+  step("nothing changed", [&] { scene.deform->Modified(); }, "-----v");
+}
+
+// Cancelling (AbortExecute, ParaView's progress bar) stops the set-up between stages with the
+// failure convention; the next update finishes it from the last finished stage and gives the
+// uninterrupted answer bitwise.
+TEST(CancelledSetUpResumes)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene uninterrupted(plane);
+  uninterrupted.deform->Update();
+  auto* expected = vtkDoubleArray::SafeDownCast(
+    vtkPointSet::SafeDownCast(uninterrupted.deform->GetOutputDataObject(0))->GetPointData()->GetArray("Displacement"));
+  CHECK(expected != nullptr);
+
+  PlaneScene scene(plane);
+  vtkNew<vtkCallbackCommand> cancel; // cancels once the sampling is done (progress 0.6: Phi at the points starts)
+  cancel->SetCallback([](vtkObject* caller, unsigned long, void*, void* progress) {
+    if (*static_cast<double*>(progress) >= 0.6)
+    {
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecuteAndUpdateTime();
+    }
+  });
+  const unsigned long observer = scene.deform->AddObserver(vtkCommand::ProgressEvent, cancel);
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::UserError);
+  CHECK(messages->errorContains("cancelled"));
+  CHECK(out->GetFieldData()->GetAbstractArray("DeformationError") != nullptr);
+  CHECK(vtkPointSet::SafeDownCast(out)->GetPoints() == plane->GetPoints()); // the unchanged input
+  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 0);
+
+  scene.deform->RemoveObserver(observer);
+  scene.deform->SetAbortExecute(0); // the application clears the request once the update ended
+  scene.deform->Modified();
+  scene.deform->Update();
+  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::NoError);
+  CHECK(scene.deform->GetNumberOfSamplings() == 1); // the finished sampling was kept
+  CHECK(scene.deform->GetNumberOfFactorizations() == 1);
+  auto* resumed = vtkDoubleArray::SafeDownCast(vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0))->GetPointData()->GetArray("Displacement"));
+  CHECK(resumed != nullptr && resumed->GetNumberOfValues() == expected->GetNumberOfValues());
+  CHECK(resumed && std::equal(resumed->GetPointer(0), resumed->GetPointer(0) + resumed->GetNumberOfValues(), expected->GetPointer(0)));
 }
 
 namespace

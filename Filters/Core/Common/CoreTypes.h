@@ -20,16 +20,29 @@ using Displacements = Eigen::Matrix<double, Eigen::Dynamic, 3>; // one row per p
 using PointDisplacements = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using PointDisplacementsView = Eigen::Map<const PointDisplacements>;
 
-/// Bad input (empty, NaN, degenerate, nothing selected): the caller reports it and keeps its data.
-struct InvalidInputException : std::runtime_error
+/// The one family of the plugin's exceptions: every VTK algorithm catches it at its boundary and
+/// reports the message (and catches any other std::exception the same way).
+struct Error : std::runtime_error
 {
   using std::runtime_error::runtime_error;
 };
 
-/// The linear system could not be solved (singular or not positive definite).
-struct SolverException : std::runtime_error
+/// Bad input (empty, NaN, degenerate, nothing selected): the caller reports it and keeps its data.
+struct InvalidInputException : Error
 {
-  using std::runtime_error::runtime_error;
+  using Error::Error;
+};
+
+/// The linear system could not be solved (singular or not positive definite).
+struct SolverException : Error
+{
+  using Error::Error;
+};
+
+/// The user cancelled a long computation (ParaView's progress bar); what finished is kept.
+struct AbortedException : Error
+{
+  using Error::Error;
 };
 
 /// Reports the fraction [0,1] of a long computation; may be empty.

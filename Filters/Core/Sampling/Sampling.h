@@ -29,6 +29,15 @@ struct SamplingParameters
   // (a snappyHexMesh case: dense at the refined body, sparse at the far field). Off: uniform in
   // area and volume, as in the paper's CAD examples.
   bool followMeshGrading = true;
+
+  /// Every parameter above, in order: the key of a sampling (two samplings with equal keys are
+  /// the same). A parameter added above must be added here.
+  std::vector<double> key() const
+  {
+    return { static_cast<double>(numberOfSurfaceSamples), static_cast<double>(numberOfVolumeSamples), integrationPointRatio,
+      static_cast<double>(lloydIterations), cover, static_cast<double>(randomSeed), surfaceWeight,
+      static_cast<double>(denseSamplesPerSample), boundsPadding, followMeshGrading ? 1.0 : 0.0 };
+  }
 };
 
 struct Samples

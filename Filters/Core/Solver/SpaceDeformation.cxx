@@ -178,6 +178,7 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
     }
     Factors.push_back(std::move(factor));
   }
+  FactorizedFor = requested;
 }
 
 Displacements SpaceDeformation::solveSystem(const Displacements& b) const

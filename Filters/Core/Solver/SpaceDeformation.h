@@ -44,6 +44,10 @@ struct EnergyWeights
   double bend = 1.0;        // gamma_b
   double fix = 1000.0;      // gamma_f
   double constraint = 10.0; // gamma_c (eq. 17)
+  bool operator==(const EnergyWeights& o) const
+  {
+    return stretch == o.stretch && bend == o.bend && fix == o.fix && constraint == o.constraint;
+  }
 };
 
 /// The alternating (local/global) optimization of section 6.
@@ -98,6 +102,10 @@ public:
   /// term picks the least stretched of the equally bent results.
   void factorize(const EnergyWeights& weights);
 
+  /// Whether the system is factorized for these weights (as given to factorize) with the current
+  /// regions and constraints: setRegions and setConstraints discard the factor.
+  bool isFactorizedFor(const EnergyWeights& weights) const { return !Factors.empty() && FactorizedFor == weights; }
+
   struct Solution
   {
     Displacements w;                        // the MLS coefficients, k x 3
@@ -140,7 +148,8 @@ private:
   std::vector<SparseRowMatrix> RegionTransposed; // Phi_r^T per region, for the right-hand sides
   std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end
-  EnergyWeights Weights;
+  EnergyWeights Weights;       // as used (stretch at least 1e-6 bend)
+  EnergyWeights FactorizedFor; // as requested
   std::vector<SparseMatrix> RegionNormals; // A_r = Phi_r^T F_r^2 Phi_r (k x k) per region
   std::unique_ptr<ShapeConstraints> Constraints;
   double Length = 1;

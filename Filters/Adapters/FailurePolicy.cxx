@@ -1,0 +1,37 @@
+#include "Adapters/FailurePolicy.h"
+
+#include "Vocabulary/FieldNames.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkDataObject.h>
+#include <vtkFieldData.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkStringArray.h>
+
+namespace mlsvtk
+{
+int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const std::string& message, const char* outcome)
+{
+  // a cancel (CheckAbort) asked the executive to empty the outputs: they keep this convention's instead
+  algorithm->SetAbortOutput(false);
+  for (int port = 0; port < outputs->GetNumberOfInformationObjects(); ++port)
+  {
+    vtkDataObject* output = vtkDataObject::GetData(outputs, port);
+    if (!output)
+    {
+      continue;
+    }
+    if (!output->GetFieldData())
+    {
+      output->SetFieldData(vtkNew<vtkFieldData>());
+    }
+    vtkNew<vtkStringArray> error;
+    error->SetName(fields::Error);
+    error->InsertNextValue(message);
+    output->GetFieldData()->AddArray(error);
+  }
+  vtkErrorWithObjectMacro(algorithm, << algorithm->GetClassName() << " failed: " << message << ". " << outcome);
+  return 1;
+}
+} // namespace mlsvtk

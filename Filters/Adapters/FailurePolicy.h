@@ -1,0 +1,24 @@
+// The one failure convention of the plugin's algorithms. RequestData catches every exception at
+// the VTK boundary, resets its outputs (to the unchanged input for a filter that passes its input
+// on, else empty) and calls reportFailure: the message goes to the output window (ParaView's
+// Output Messages) and every output carries the
+// field-data string fields::Error ("DeformationError") with the message, which a script tests;
+// the algorithm sets its error code to vtkErrorCode::UserError (a protected member of vtkAlgorithm)
+// and to NoError at the start of RequestData.
+// The request itself succeeds, so that a pipeline (ParaView's among them) updates normally once
+// the input is fixed: a failed request left ParaView's representation stale after two failures in
+// a row. A cancel (vtkAlgorithm::CheckAbort between the stages of a long set-up) is a failure like
+// the others, so that the outputs are the same whatever stopped the update.
+#pragma once
+
+#include <string>
+
+class vtkAlgorithm;
+class vtkInformationVector;
+
+namespace mlsvtk
+{
+/// outcome says what the outputs are now ("The output is the unchanged input."). Returns 1, the
+/// value RequestData returns.
+int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const std::string& message, const char* outcome);
+} // namespace mlsvtk

@@ -1,0 +1,205 @@
+#include "Session/DeformationSession.h"
+
+#include "Adapters/AlgorithmProgress.h"
+#include "Adapters/PointSets.h"
+#include "Common/BoundingBox.h"
+#include "Vocabulary/RegionRoles.h"
+
+#include <vtkAlgorithm.h>
+
+#include <string>
+
+using namespace mlsdeform;
+
+namespace mlsvtk
+{
+namespace
+{
+// The key of the regions of one kind (constraints or targets).
+std::vector<RegionKey> regionKeys(const std::vector<RegionInput>& regions, bool constraints)
+{
+  std::vector<RegionKey> keys;
+  for (const RegionInput& r : regions)
+  {
+    if (isConstraint(r.role) == constraints)
+    {
+      keys.push_back({ r.version, r.role, r.weight });
+    }
+  }
+  return keys;
+}
+}
+
+DeformationSession::DeformationSession(vtkAlgorithm* owner)
+  : Owner(owner)
+{
+}
+
+void DeformationSession::checkAbort(const Collective& group) const
+{
+  if (group.any(Owner->CheckAbort()))
+  {
+    throw AbortedException("cancelled; the next update continues the set-up from the last finished step");
+  }
+}
+
+void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, const Collective& group)
+{
+  agree(group, [&] {
+    Stamp stamp = pointsStamp(sets);
+    if (stamp != PointsStamp)
+    {
+      PointList read = points(sets);
+      requireFinite(read, "input points");
+      if (read != Points || PointsVersion < 0)
+      {
+        Points = std::move(read);
+        PointsVersion = NextVersion++;
+        Diagonal = -1;
+      }
+      PointsStamp = std::move(stamp);
+    }
+    readRegions(regions, Regions);
+  });
+  if (!group.any(!Points.empty()))
+  {
+    throw InvalidInputException("the input has no points");
+  }
+  if (group.any(Diagonal < 0))
+  {
+    Diagonal = boundingBox(Points, group).size().norm();
+  }
+  gatherRegions(Regions, NextVersion, group);
+  std::vector<RegionKey> slipKey;
+  for (const RegionInput& r : Regions)
+  {
+    slipKey.push_back({ r.version, r.role, 0.0 }); // a plane depends on the positions and the role only
+  }
+  if (SlipKey.stale(slipKey))
+  {
+    SlipKey.invalidate();
+    Slips = slipPlanes(Regions);
+    SlipKey.built(std::move(slipKey));
+  }
+}
+
+bool DeformationSession::updateSubspace(const SubspaceDependencies& dependencies, const std::vector<vtkPointSet*>& sets,
+  const std::function<std::unique_ptr<SpaceDeformation>()>& build, const Collective& group)
+{
+  SubspaceKey key{ dependencies, dependencies.geometry ? cellsStamp(sets) : Stamp(), dependencies.geometry ? PointsVersion : 0 };
+  if (!group.any(!Model || Subspace.stale(key)))
+  {
+    return false;
+  }
+  // everything built on the subspace goes first (its memory too)
+  Subspace.invalidate();
+  PointRowsKey.invalidate();
+  Targets.invalidate();
+  Constraints.invalidate();
+  Model.reset();
+  PointRows = RowBlocks();
+  Model = build();
+  Subspace.built(std::move(key));
+  ++Counts.subspace;
+  checkAbort(group);
+  return true;
+}
+
+void DeformationSession::updatePointRows(const Collective& group)
+{
+  agree(group, [&] {
+    if (PointRowsKey.stale(PointsVersion))
+    {
+      PointRowsKey.invalidate();
+      std::vector<int> outside;
+      PointRows = subspaceBlocks(Model->basis(), Points, &outside, { &reportProgress, Owner, 0.6, 0.9 });
+      if (!outside.empty())
+      {
+        throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
+          std::to_string(outside[0]) + "): the samples do not cover the input; sample this input or raise Cover");
+      }
+      PointRowsKey.built(PointsVersion);
+      ++Counts.pointRows;
+    }
+  });
+  checkAbort(group);
+}
+
+void DeformationSession::updateTargets()
+{
+  TargetsKey key{ regionKeys(Regions, false) };
+  if (!Targets.stale(key))
+  {
+    return;
+  }
+  Targets.invalidate();
+  std::vector<DirichletRegion> targets;
+  PointList positions;
+  for (const RegionInput& r : Regions)
+  {
+    if (!isConstraint(r.role))
+    {
+      targets.push_back({ r.gathered.positions, r.weight });
+      positions.insert(positions.end(), r.gathered.positions.begin(), r.gathered.positions.end());
+    }
+  }
+  // a region's points are usually input points too (a patch of the mesh): their rows of Phi are
+  // copied from stage 2's rather than evaluated again
+  Model->setRegions(targets, { &PointRows, positionsAmong(Points, positions) });
+  Targets.built(std::move(key));
+  ++Counts.targets;
+}
+
+void DeformationSession::updateConstraints(ConstraintFormulation formulation)
+{
+  ConstraintsKey key{ regionKeys(Regions, true), formulation };
+  if (!Constraints.stale(key))
+  {
+    return;
+  }
+  Constraints.invalidate();
+  std::vector<ShapeConstraint> shapes;
+  for (const RegionInput& r : Regions)
+  {
+    if (isConstraint(r.role))
+    {
+      addConstraintSets(r, shapes);
+    }
+  }
+  Model->setConstraints(shapes, formulation);
+  Constraints.built(std::move(key));
+  ++Counts.constraints;
+}
+
+bool DeformationSession::updateFactorization(const EnergyWeights& weights)
+{
+  if (Model->isFactorizedFor(weights))
+  {
+    return false;
+  }
+  Model->factorize(weights);
+  ++Counts.factorization;
+  return true;
+}
+
+SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& settings, const Collective& group)
+{
+  SpaceDeformation::Solution solution = Model->solve(gatherPrescribed(Regions, Prescribed, group), settings);
+  ++Counts.solve;
+  return solution;
+}
+
+void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
+  const SpaceDeformation::Solution& solution)
+{
+  const PointDisplacements w = solution.w; // row-major: a shape function's x, y, z share a cache line
+  Output.write(inSets, outSets, Points, PointRows, w, Slips);
+}
+
+void DeformationSession::reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
+  vtkFieldData* field, const Collective& group)
+{
+  Quality.report(inSets, outSets, field, group, Owner);
+  checkAbort(group);
+}
+} // namespace mlsvtk

@@ -1,0 +1,183 @@
+// The cached state of a deformation between updates (libigl's precompute/solve split; VTK's
+// MTimes say what changed): what was read from the inputs, the subspace, Phi at the points, the
+// target regions, the constraints, the factorization and the output arrays. One method per stage,
+// each with its own key; a stage runs again only when its key changed or an earlier stage it
+// depends on ran again:
+//
+//   stage                  key                                          invalidates
+//   0 readInputs           point and region stamps -> values' versions  (versions feed the keys below)
+//   1 updateSubspace       SubspaceKey: subclass's dependencies,        2, 3, 4, 5
+//                          cells and points (if it samples the input)
+//   2 updatePointRows      the points' version                          -
+//   3 updateTargets        TargetsKey: (version, role, weight) per      5
+//                          Handle/Fixed region
+//   4 updateConstraints    ConstraintsKey: (version, role, weight) per  5
+//                          constraint region, the formulation
+//   5 updateFactorization  the weights (SpaceDeformation knows which    -
+//                          weights its factor is for)
+//   6 solve, writeOutput   none: every update (a new handle motion costs a right-hand side,
+//                          a back-substitution and d = Phi w at the points)
+//
+// A stage's key is stored only once the stage succeeded, so a failure or a cancel leaves the
+// session consistent: the next update redoes what did not finish. Every process of an MPI run
+// passes the same stages in the same order (their keys are global), and a cancel on any process
+// stops all of them between stages.
+#pragma once
+
+#include "Basis/SubspaceOperators.h"
+#include "Common/Collective.h"
+#include "Session/DeformedOutput.h"
+#include "Session/MeshQualityReport.h"
+#include "Session/RegionInputs.h"
+#include "Session/SlipPlanes.h"
+#include "Session/SubspaceDependencies.h"
+#include "Solver/SpaceDeformation.h"
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkFieldData;
+class vtkInformationVector;
+class vtkPointSet;
+
+namespace mlsvtk
+{
+/// A region as a stage depends on it.
+struct RegionKey
+{
+  long version; // of its gathered positions (and sets)
+  int role;
+  double weight;
+  bool operator==(const RegionKey& o) const { return version == o.version && role == o.role && weight == o.weight; }
+};
+
+/// Stage 1: what the subspace was built from.
+struct SubspaceKey
+{
+  SubspaceDependencies dependencies;
+  Stamp cells;       // of the input's cells, when the subspace depends on the geometry
+  long points = 0;   // the input points' version, when the subspace depends on the geometry
+  bool operator==(const SubspaceKey& o) const { return dependencies == o.dependencies && cells == o.cells && points == o.points; }
+};
+
+/// Stage 3: the Handle and Fixed regions.
+struct TargetsKey
+{
+  std::vector<RegionKey> regions;
+  bool operator==(const TargetsKey& o) const { return regions == o.regions; }
+};
+
+/// Stage 4: the constraint regions and how they are measured.
+struct ConstraintsKey
+{
+  std::vector<RegionKey> regions;
+  mlsdeform::ConstraintFormulation formulation;
+  bool operator==(const ConstraintsKey& o) const { return regions == o.regions && formulation == o.formulation; }
+};
+
+/// A stage's key as last built (none: not built, or invalidated).
+template <typename Key>
+class Stage
+{
+public:
+  bool stale(const Key& key) const { return !Built || !(*Built == key); }
+  void built(Key key) { Built = std::move(key); }
+  void invalidate() { Built.reset(); }
+
+private:
+  std::optional<Key> Built;
+};
+
+class DeformationSession
+{
+public:
+  /// owner: the algorithm whose progress is reported and whose AbortExecute cancels the set-up.
+  explicit DeformationSession(vtkAlgorithm* owner);
+
+  /// How often each stage ran (the cache's tests read them).
+  struct Runs
+  {
+    int subspace = 0, pointRows = 0, targets = 0, constraints = 0, factorization = 0, solve = 0;
+  };
+  const Runs& runs() const { return Counts; }
+
+  /// Stage 0: this process's points (read again when their stamp changes, a new version when
+  /// their values do) and the Regions inputs of all processes (RegionInputs.h), the slip planes
+  /// fitted again when a region changed. Throws InvalidInputException on bad input (no points on
+  /// any process, NaN, a region that selects nothing, no Handle, a Slip region that is no plane).
+  void readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, const mlsdeform::Collective& group);
+
+  /// Stage 1: the subspace (shape functions and energies), rebuilt by build when its key changed;
+  /// returns whether it was (the output's "Resampled").
+  bool updateSubspace(const SubspaceDependencies& dependencies, const std::vector<vtkPointSet*>& sets,
+    const std::function<std::unique_ptr<mlsdeform::SpaceDeformation>()>& build, const mlsdeform::Collective& group);
+
+  /// Stage 2: Phi at this process's points; throws InvalidInputException for a point outside
+  /// every support. Progress from 0.6 to 0.9.
+  void updatePointRows(const mlsdeform::Collective& group);
+
+  /// Stage 3: the Handle and Fixed regions' rows of Phi (copied from stage 2's where a region
+  /// position is an input point) and their normal matrices.
+  void updateTargets();
+
+  /// Stage 4: the geometric constraints (section 6).
+  void updateConstraints(mlsdeform::ConstraintFormulation formulation);
+
+  /// Stage 5: the factorization of eq. 14 (17); returns whether it ran (the output's
+  /// "Refactorized"). Throws SolverException for a singular system.
+  bool updateFactorization(const mlsdeform::EnergyWeights& weights);
+
+  /// Stage 6: the solve for the targets' prescribed displacements of this update.
+  mlsdeform::SpaceDeformation::Solution solve(const mlsdeform::IterationSettings& settings, const mlsdeform::Collective& group);
+
+  /// x + d(x) and Displacement into the output point sets (d = Phi w, slid onto the slip planes).
+  void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
+    const mlsdeform::SpaceDeformation::Solution& solution);
+
+  /// The volume mesh's quality before and after, into field (MeshQualityReport.h).
+  void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
+    const mlsdeform::Collective& group);
+
+  const mlsdeform::SpaceDeformation& model() const { return *Model; }
+  const std::vector<RegionInput>& regions() const { return Regions; }
+  /// The diagonal of the bounding box of all processes' points.
+  double diagonal() const { return Diagonal; }
+  /// Seconds the last set-up (a run of stage 1 or 5) took.
+  double setupTime() const { return SetupTime; }
+  void setSetupTime(double seconds) { SetupTime = seconds; }
+
+private:
+  /// Throws AbortedException when the owner's AbortExecute is set on any process.
+  void checkAbort(const mlsdeform::Collective& group) const;
+
+  vtkAlgorithm* Owner;
+  Runs Counts;
+  long NextVersion = 0;
+
+  // stage 0
+  Stamp PointsStamp;
+  mlsdeform::PointList Points; // the input points of this process, concatenated over the point sets
+  long PointsVersion = -1;
+  double Diagonal = -1; // -1: not known for these points
+  std::vector<RegionInput> Regions;
+  Stage<std::vector<RegionKey>> SlipKey;
+  std::vector<SlipPlane> Slips;
+
+  // stages 1-5 (the factorization's state is the model's own)
+  Stage<SubspaceKey> Subspace;
+  std::unique_ptr<mlsdeform::SpaceDeformation> Model;
+  Stage<long> PointRowsKey;
+  mlsdeform::RowBlocks PointRows;
+  Stage<TargetsKey> Targets;
+  Stage<ConstraintsKey> Constraints;
+  double SetupTime = 0;
+
+  // stage 6
+  std::vector<std::vector<double>> Prescribed; // the targets' displacements of all processes, gathered
+  DeformedOutput Output;
+  MeshQualityReport Quality;
+};
+} // namespace mlsvtk

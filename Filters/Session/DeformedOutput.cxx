@@ -1,0 +1,118 @@
+#include "Session/DeformedOutput.h"
+
+#include "Adapters/ArrayRanges.h"
+#include "Vocabulary/FieldNames.h"
+
+#include <vtkCompositeDataIterator.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPoints.h>
+
+using namespace mlsdeform;
+
+namespace mlsvtk
+{
+void copyInput(vtkDataObject* input, vtkDataObject* output)
+{
+  auto* inComposite = vtkCompositeDataSet::SafeDownCast(input);
+  auto* outComposite = vtkCompositeDataSet::SafeDownCast(output);
+  if (inComposite && outComposite)
+  {
+    outComposite->CopyStructure(inComposite);
+    vtkSmartPointer<vtkCompositeDataIterator> it = vtkSmartPointer<vtkCompositeDataIterator>::Take(inComposite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      vtkDataObject* leaf = it->GetCurrentDataObject();
+      vtkSmartPointer<vtkDataObject> copy = vtkSmartPointer<vtkDataObject>::Take(leaf->NewInstance());
+      copy->ShallowCopy(leaf);
+      outComposite->SetDataSet(it, copy);
+    }
+    outComposite->GetFieldData()->ShallowCopy(inComposite->GetFieldData());
+  }
+  else
+  {
+    output->ShallowCopy(input);
+  }
+}
+
+namespace
+{
+// x + d written straight into a float or double points array (false for other types).
+template <typename Array>
+bool writeMoved(vtkDataArray* data, const PointList& points, long offset, const double* d, vtkIdType n)
+{
+  auto* array = Array::SafeDownCast(data);
+  if (!array)
+  {
+    return false;
+  }
+  auto* out = array->GetPointer(0);
+#pragma omp parallel for schedule(static)
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out[3 * i + c] = static_cast<typename Array::ValueType>(points[offset + i][c] + d[3 * i + c]);
+    }
+  }
+  return true;
+}
+
+// An output array of the previous update, to be written again, when it fits and no one but this
+// object holds it (the output released it when it was reset to the input); else a new one.
+template <typename Object>
+Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
+{
+  if (!kept || !fits || kept->GetReferenceCount() > 1)
+  {
+    kept = vtkSmartPointer<Object>::New();
+  }
+  return kept;
+}
+}
+
+void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const PointList& points,
+  const RowBlocks& phi, const PointDisplacements& w, const std::vector<SlipPlane>& slips)
+{
+  Moved.resize(inSets.size());
+  Displacement.resize(inSets.size());
+  long offset = 0;
+  for (std::size_t s = 0; s < inSets.size(); ++s)
+  {
+    const vtkIdType n = inSets[s]->GetNumberOfPoints();
+    if (n == 0)
+    {
+      continue;
+    }
+    const int type = inSets[s]->GetPoints()->GetDataType();
+    vtkDoubleArray* displacement = reusable(Displacement[s], Displacement[s] && Displacement[s]->GetNumberOfTuples() == n);
+    displacement->SetName(fields::Displacement);
+    displacement->SetNumberOfComponents(3);
+    displacement->SetNumberOfTuples(n);
+    multiplyRows(phi, w, offset, offset + n, displacement->GetPointer(0));
+    slideOnPlanes(slips, points, offset, n, displacement->GetPointer(0));
+    displacement->Modified();
+    vtkPoints* moved = reusable(Moved[s], Moved[s] && Moved[s]->GetNumberOfPoints() == n && Moved[s]->GetDataType() == type);
+    moved->SetDataType(type);
+    moved->SetNumberOfPoints(n);
+    if (!writeMoved<vtkFloatArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n) &&
+      !writeMoved<vtkDoubleArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n))
+    {
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        const Vec3 x = points[offset + i] + Vec3(displacement->GetPointer(3 * i));
+        moved->SetPoint(i, x.data());
+      }
+    }
+    moved->Modified();
+    storeRanges(displacement);
+    storeRanges(moved->GetData());
+    offset += n;
+    outSets[s]->SetPoints(moved);
+    outSets[s]->GetPointData()->AddArray(displacement);
+  }
+}
+} // namespace mlsvtk

@@ -1,0 +1,37 @@
+// The deformation's output: the input's structure with every point moved by d(x) and a
+// Displacement array, written into the arrays of the previous update when no one else holds them
+// (a new handle motion allocates nothing of the mesh's size).
+#pragma once
+
+#include "Common/CoreTypes.h"
+#include "Basis/SubspaceOperators.h"
+#include "Session/SlipPlanes.h"
+
+#include <vtkSmartPointer.h>
+
+#include <vector>
+
+class vtkDataObject;
+class vtkDoubleArray;
+class vtkPoints;
+class vtkPointSet;
+
+namespace mlsvtk
+{
+/// The output starts as the unchanged input: shallow copies in new leaf objects, so that setting
+/// new points on them never touches the input.
+void copyInput(vtkDataObject* input, vtkDataObject* output);
+
+class DeformedOutput
+{
+public:
+  /// Writes x + d(x), d(x) = Phi(x) w (slid onto the slip planes), into the output point sets
+  /// (outSets[s] matching inSets[s]; points concatenated over the sets, Phi's rows in that order).
+  void write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const mlsdeform::PointList& points,
+    const mlsdeform::RowBlocks& phi, const mlsdeform::PointDisplacements& w, const std::vector<SlipPlane>& slips);
+
+private:
+  std::vector<vtkSmartPointer<vtkPoints>> Moved;
+  std::vector<vtkSmartPointer<vtkDoubleArray>> Displacement;
+};
+} // namespace mlsvtk

@@ -1,0 +1,35 @@
+// The volume mesh's quality before and after the deformation (paper section 7.3, as OpenFOAM's
+// checkMesh measures it), over every block and process, into the output's field data: the faces
+// and the original's measures are found once per input mesh, the deformed mesh is measured every
+// update.
+#pragma once
+
+#include "Adapters/Stamp.h"
+#include "Adapters/VolumeMeshQuality.h"
+#include "Common/Collective.h"
+
+#include <memory>
+#include <vector>
+
+class vtkFieldData;
+class vtkObject;
+class vtkPointSet;
+
+namespace mlsvtk
+{
+class MeshQualityReport
+{
+public:
+  /// Adds InvertedCells, MaxNonOrthogonality, MaxSkewness and the same prefixed "Original" to
+  /// field when some process has volume cells. Split over processes, each measures its own piece
+  /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
+  /// it cannot measure give a warning (from owner) once per input mesh; the deformation stands.
+  void report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
+    const mlsdeform::Collective& group, vtkObject* owner);
+
+private:
+  Stamp Measured; // of the cells and points the faces and the original's measures come from
+  std::vector<std::unique_ptr<VolumeMeshQuality>> Quality;
+  QualitySummary Original;
+};
+} // namespace mlsvtk

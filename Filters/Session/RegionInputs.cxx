@@ -1,0 +1,167 @@
+#include "Session/RegionInputs.h"
+
+#include "Adapters/PointSets.h"
+#include "Common/BoundingBox.h"
+#include "Vocabulary/FieldNames.h"
+#include "Vocabulary/RegionRoles.h"
+
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <map>
+#include <string>
+
+using namespace mlsdeform;
+
+namespace mlsvtk
+{
+void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& regions)
+{
+  regions.resize(connections->GetNumberOfInformationObjects());
+  for (int c = 0; c < connections->GetNumberOfInformationObjects(); ++c)
+  {
+    vtkPolyData* data = vtkPolyData::GetData(connections, c);
+    const std::string which = "Regions input #" + std::to_string(c);
+    auto* role = data ? vtkIntArray::SafeDownCast(data->GetFieldData()->GetArray(fields::Role)) : nullptr;
+    vtkDataArray* displacement = data ? data->GetPointData()->GetArray(fields::PrescribedDisplacement) : nullptr;
+    if (!role || role->GetNumberOfValues() < 1 || !displacement || displacement->GetNumberOfComponents() != 3)
+    {
+      throw InvalidInputException(which + " is not a ConstraintRegion output (no Role or PrescribedDisplacement)");
+    }
+    RegionInput& region = regions[c];
+    region.role = role->GetValue(0);
+    if (region.role == roles::FromPrimitive || !regionRole(region.role).name) // regionRole throws for an unknown role
+    {
+      throw InvalidInputException(which + " has the role FromPrimitive, which a Constraint Region replaces by its primitive's role");
+    }
+    region.displacement = displacement;
+    vtkDataArray* weight = data->GetFieldData()->GetArray(fields::Weight);
+    region.weight = weight ? weight->GetTuple1(0) : 1.0;
+    Stamp stamp = pointsStamp({ data });
+    if (stamp != region.stamp)
+    {
+      PointList positions = points({ data });
+      requireFinite(positions, (which + " positions").c_str());
+      std::vector<int> sets;
+      if (vtkDataArray* setArray = data->GetPointData()->GetArray(fields::ConstraintSet))
+      {
+        for (vtkIdType i = 0; i < setArray->GetNumberOfTuples(); ++i)
+        {
+          sets.push_back(static_cast<int>(setArray->GetTuple1(i)));
+        }
+      }
+      if (!sets.empty() && sets.size() != positions.size())
+      {
+        throw InvalidInputException(which + ": one ConstraintSet per point is needed");
+      }
+      if (positions != region.localPositions || sets != region.localSets)
+      {
+        region.localPositions = std::move(positions);
+        region.localSets = std::move(sets);
+        region.localChanged = true;
+      }
+      region.stamp = std::move(stamp);
+    }
+    if (displacement->GetNumberOfTuples() != static_cast<vtkIdType>(region.localPositions.size()))
+    {
+      throw InvalidInputException(which + ": one PrescribedDisplacement per point is needed");
+    }
+  }
+}
+
+void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const Collective& group)
+{
+  bool changed = false;
+  for (const RegionInput& region : regions)
+  {
+    changed = changed || region.localChanged;
+  }
+  if (group.any(changed))
+  {
+    for (RegionInput& region : regions)
+    {
+      GatheredPositions gathered = gatherPositions(region.localPositions, region.localSets, group);
+      if (gathered.positions != region.gathered.positions || gathered.sets != region.gathered.sets || region.version < 0)
+      {
+        region.version = nextVersion++;
+      }
+      region.gathered = std::move(gathered);
+      region.localChanged = false;
+    }
+  }
+  bool handle = false;
+  for (std::size_t c = 0; c < regions.size(); ++c)
+  {
+    if (regions[c].gathered.positions.empty())
+    {
+      throw InvalidInputException("Regions input #" + std::to_string(c) + " (" + regionRole(regions[c].role).name + ") selects no point");
+    }
+    handle = handle || regions[c].role == roles::Handle;
+  }
+  if (!handle)
+  {
+    throw InvalidInputException("no Handle region among the Regions inputs: nothing would move");
+  }
+}
+
+void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& shapes)
+{
+  const ConstraintType type = *regionRole(region.role).constraint;
+  if (region.gathered.sets.empty())
+  {
+    shapes.push_back({ type, region.gathered.positions, region.weight });
+    return;
+  }
+  std::map<int, PointList> sets;
+  for (std::size_t i = 0; i < region.gathered.positions.size(); ++i)
+  {
+    sets[region.gathered.sets[i]].push_back(region.gathered.positions[i]);
+  }
+  const double share = region.weight / static_cast<double>(region.gathered.positions.size());
+  for (auto& [id, positions] : sets)
+  {
+    const double weight = share * static_cast<double>(positions.size());
+    shapes.push_back({ type, std::move(positions), weight });
+  }
+}
+
+std::vector<PointDisplacementsView> gatherPrescribed(const std::vector<RegionInput>& regions, std::vector<std::vector<double>>& values,
+  const Collective& group)
+{
+  std::vector<PointDisplacementsView> prescribed;
+  values.resize(regions.size());
+  for (std::size_t r = 0; r < regions.size(); ++r)
+  {
+    if (isConstraint(regions[r].role))
+    {
+      continue;
+    }
+    // this process's values, as doubles, then every process's in the regions' gathered order
+    vtkDataArray* d = regions[r].displacement;
+    const vtkIdType n = d->GetNumberOfTuples();
+    std::vector<double> local;
+    const double* given = nullptr;
+    if (auto* doubles = vtkDoubleArray::SafeDownCast(d))
+    {
+      given = doubles->GetPointer(0);
+    }
+    else
+    {
+      local.resize(3 * static_cast<std::size_t>(n));
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        d->GetTuple(i, &local[3 * i]);
+      }
+      given = local.data();
+    }
+    values[r] = gatherValues(given, n, 3, regions[r].gathered, group);
+    prescribed.emplace_back(values[r].data(), static_cast<long>(regions[r].gathered.positions.size()), 3);
+  }
+  return prescribed;
+}
+} // namespace mlsvtk

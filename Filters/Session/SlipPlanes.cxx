@@ -1,0 +1,56 @@
+#include "Session/SlipPlanes.h"
+
+#include "Vocabulary/RegionRoles.h"
+
+#include <string>
+
+using namespace mlsdeform;
+
+namespace mlsvtk
+{
+std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions)
+{
+  std::vector<SlipPlane> planes;
+  for (std::size_t c = 0; c < regions.size(); ++c)
+  {
+    if (regions[c].role != roles::Slip)
+    {
+      continue;
+    }
+    SlipPlane slip;
+    slip.bounds = boundingBox(regions[c].gathered.positions);
+    const double diagonal = slip.bounds.size().norm();
+    slip.plane = fitPlane(regions[c].gathered.positions);
+    if (regions[c].gathered.positions.size() < 3 || slip.plane.farthest > 1e-6 * diagonal)
+    {
+      throw InvalidInputException("Regions input #" + std::to_string(c) + " (Slip) is not a plane: its points lie up to " +
+        std::to_string(slip.plane.farthest / diagonal) + " of their diagonal from their least-squares plane (at most 1e-6)");
+    }
+    slip.tolerance = slip.plane.farthest + 1e-9 * diagonal;
+    slip.bounds.lower.array() -= slip.tolerance;
+    slip.bounds.upper.array() += slip.tolerance;
+    planes.push_back(slip);
+  }
+  return planes;
+}
+
+void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points, long offset, long n, double* d)
+{
+  if (planes.empty())
+  {
+    return;
+  }
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i)
+  {
+    for (const SlipPlane& slip : planes)
+    {
+      if (slip.holds(points[offset + i]))
+      {
+        Eigen::Map<Vec3> displacement(d + 3 * i);
+        displacement -= slip.plane.normal.dot(displacement) * slip.plane.normal;
+      }
+    }
+  }
+}
+} // namespace mlsvtk
