@@ -9,6 +9,8 @@
 #include "Adapters/Stamp.h"
 #include "Common/PositionHash.h"
 #include "Adapters/ProcessCollective.h"
+#include "Vocabulary/FieldNames.h"
+#include "Vocabulary/RegionRoles.h"
 
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
@@ -34,6 +36,14 @@
 
 
 vtkStandardNewMacro(vtkConstraintRegion);
+
+// The class's enum (wrapped for Python) has the values of the table of roles.
+static_assert(vtkConstraintRegion::Handle == mlsvtk::roles::Handle && vtkConstraintRegion::Fixed == mlsvtk::roles::Fixed &&
+    vtkConstraintRegion::Planarity == mlsvtk::roles::Planarity && vtkConstraintRegion::Circularity == mlsvtk::roles::Circularity &&
+    vtkConstraintRegion::Cylinder == mlsvtk::roles::Cylinder && vtkConstraintRegion::FeatureLine == mlsvtk::roles::FeatureLine &&
+    vtkConstraintRegion::Rigid == mlsvtk::roles::Rigid && vtkConstraintRegion::FromPrimitive == mlsvtk::roles::FromPrimitive &&
+    vtkConstraintRegion::Slip == mlsvtk::roles::Slip && vtkConstraintRegion::Slip + 1 == mlsvtk::roles::Table.size(),
+  "vtkConstraintRegion::Roles follows mlsvtk::roles");
 
 namespace
 {
@@ -270,23 +280,6 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
   }
   return out;
 }
-
-// The role that keeps a primitive of that type (vtkPrimitiveDetector's codes), -1 for none.
-int roleOfPrimitive(int type)
-{
-  switch (type)
-  {
-    case 0:
-      return vtkConstraintRegion::Planarity;
-    case 1:
-      return vtkConstraintRegion::Cylinder;
-    case 2:
-    case 3:
-      return vtkConstraintRegion::FeatureLine; // similarity: spheres stay spheres, cones keep their angle
-    default:
-      return -1;
-  }
-}
 }
 vtkCxxSetObjectMacro(vtkConstraintRegion, Region, vtkImplicitFunction);
 
@@ -340,8 +333,8 @@ vtkConstraintRegion::~vtkConstraintRegion()
 
 const char* vtkConstraintRegion::GetRoleName(int role)
 {
-  static const char* names[] = { "Handle", "Fixed", "Planarity", "Circularity", "Cylinder", "FeatureLine", "Rigid", "FromPrimitive", "Slip" };
-  return role >= Handle && role <= Slip ? names[role] : "Unknown";
+  // a name getter (also for printing a bad value): no table row, no name
+  return role >= 0 && role < static_cast<int>(mlsvtk::roles::Table.size()) ? mlsvtk::roles::Table[role].name : "Unknown";
 }
 
 void vtkConstraintRegion::SetSelectionArray(const char* name)
@@ -406,7 +399,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   for (vtkPointSet* set : sets)
   {
     values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set)
-        : this->SelectionMode == Primitive           ? set->GetPointData()->GetArray("PrimitiveIds")
+        : this->SelectionMode == Primitive           ? set->GetPointData()->GetArray(mlsvtk::fields::PrimitiveIds)
                                                      : nullptr);
   }
   std::string problem; // a check on this process's data: every process stops if one fails
@@ -416,7 +409,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     vtkDataArray* types = nullptr;
     for (vtkPointSet* set : sets)
     {
-      types = types ? types : set->GetFieldData()->GetArray("PrimitiveTypes");
+      types = types ? types : set->GetFieldData()->GetArray(mlsvtk::fields::PrimitiveTypes);
     }
     if (!types)
     {
@@ -430,10 +423,16 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     }
     else if (this->Role == FromPrimitive)
     {
-      role = roleOfPrimitive(static_cast<int>(types->GetComponent(this->PrimitiveId, 0)));
-      if (role < 0)
+      // the detector's code: a value of mlsdeform::PrimitiveType (Plane first, Cone last)
+      const double code = types->GetComponent(this->PrimitiveId, 0);
+      const int type = static_cast<int>(code);
+      if (type != code || type < static_cast<int>(mlsdeform::PrimitiveType::Plane) || type > static_cast<int>(mlsdeform::PrimitiveType::Cone))
       {
-        problem = "Primitive " + std::to_string(this->PrimitiveId) + " has an unknown type.";
+        problem = "Primitive " + std::to_string(this->PrimitiveId) + " has an unknown type " + std::to_string(code) + ".";
+      }
+      else
+      {
+        role = mlsvtk::roleOfPrimitive(static_cast<mlsdeform::PrimitiveType>(type));
       }
     }
   }
@@ -443,10 +442,20 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     vtkErrorMacro(<< problem);
     return 0;
   }
-  if (this->CellSets && (role < Planarity || role > Rigid))
+  // a shape constraint per cell: the constraint roles other than Slip (a place, not a shape)
+  const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && r != Slip; };
+  if (this->CellSets && !perCell(role))
   {
-    vtkErrorMacro(<< "CellSets makes a constraint set of every cell: it applies to the roles Planarity, Circularity, Cylinder, "
-                     "FeatureLine and Rigid, not to " << GetRoleName(role) << ".");
+    std::string roles;
+    for (int r = 0; r < static_cast<int>(mlsvtk::roles::Table.size()); ++r)
+    {
+      if (perCell(r))
+      {
+        roles += (roles.empty() ? "" : ", ") + std::string(GetRoleName(r));
+      }
+    }
+    vtkErrorMacro(<< "CellSets makes a constraint set of every cell: it applies to the roles " << roles << ", not to "
+                  << GetRoleName(role) << ".");
     return 0;
   }
   // Select positions, unless only the motion or the weight changed since the last selection.
@@ -484,7 +493,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     SelectedPositions chosen = selectPositions(sets, values, rule, this->CellSets, surface, this->NumberOfLayers, group);
     selection.positions = std::move(chosen.positions);
     selection.sets = std::move(chosen.sets);
-    selection.cloud = this->CellSets ? mlsvtk::pointCloud(selection.positions, { { "ConstraintSet", &selection.sets } })
+    selection.cloud = this->CellSets ? mlsvtk::pointCloud(selection.positions, { { mlsvtk::fields::ConstraintSet, &selection.sets } })
                                      : mlsvtk::pointCloud(selection.positions, {});
     // the centroid of the selected positions of all processes, each position once
     const mlsdeform::PointList all = mlsdeform::gatherPositions(selection.positions, {}, group).positions;
@@ -520,7 +529,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     selection.displacement = vtkSmartPointer<vtkDoubleArray>::New(); // the last one is still in use downstream
   }
   vtkDoubleArray* displacement = selection.displacement;
-  displacement->SetName("PrescribedDisplacement");
+  displacement->SetName(mlsvtk::fields::PrescribedDisplacement);
   displacement->SetNumberOfComponents(3);
   displacement->SetNumberOfTuples(static_cast<vtkIdType>(selected.size()));
   double* d = displacement->GetPointer(0);
@@ -538,13 +547,13 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   output->GetPointData()->AddArray(displacement);
 
   vtkNew<vtkIntArray> roleArray;
-  roleArray->SetName("Role");
+  roleArray->SetName(mlsvtk::fields::Role);
   roleArray->InsertNextValue(role);
   vtkNew<vtkStringArray> roleName;
-  roleName->SetName("RoleName");
+  roleName->SetName(mlsvtk::fields::RoleName);
   roleName->InsertNextValue(GetRoleName(role));
   vtkNew<vtkDoubleArray> weight;
-  weight->SetName("Weight");
+  weight->SetName(mlsvtk::fields::Weight);
   weight->InsertNextValue(this->Weight);
   output->GetFieldData()->AddArray(roleArray);
   output->GetFieldData()->AddArray(roleName);

@@ -46,6 +46,8 @@ public:
   vtkTypeMacro(vtkConstraintRegion, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// The values of the table of roles (Vocabulary/RegionRoles.h; the .cxx static_asserts it),
+  /// here for the Python wrapping.
   enum Roles
   {
     Handle = 0,
@@ -120,7 +122,7 @@ public:
 
   ///@{
   /// A constraint set per cell instead of one for the region (default off): for the constraint
-  /// roles Planarity to Rigid.
+  /// roles other than Slip (Planarity, Circularity, Cylinder, FeatureLine, Rigid).
   vtkSetMacro(CellSets, bool);
   vtkGetMacro(CellSets, bool);
   vtkBooleanMacro(CellSets, bool);

@@ -1,0 +1,178 @@
+// The table of region roles (Filters/Vocabulary/RegionRoles.h) and what must follow it: the
+// plugin's XML enumerations of roles (which cannot include C++), the core's constraint types and
+// vtkConstraintRegion's role names.
+#include "../TestHarness.h"
+#include "Common/CoreTypes.h"
+#include "Vocabulary/RegionRoles.h"
+#include "vtkConstraintRegion.h"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace
+{
+using Enumeration = std::map<std::string, int>; // entry text -> value
+
+// The value of attribute `name` in the tag text, or "" without it.
+std::string attribute(const std::string& tag, const std::string& name)
+{
+  const std::string key = " " + name + "=\"";
+  const std::size_t begin = tag.find(key);
+  if (begin == std::string::npos)
+  {
+    return "";
+  }
+  const std::size_t first = begin + key.size();
+  return tag.substr(first, tag.find('"', first) - first);
+}
+
+// Every <EnumerationDomain> of the XML text: its entries' texts and values (a text twice counts
+// as a failure).
+std::vector<Enumeration> enumerations(const std::string& xml)
+{
+  std::vector<Enumeration> found;
+  for (std::size_t at = xml.find("<EnumerationDomain"); at != std::string::npos; at = xml.find("<EnumerationDomain", at + 1))
+  {
+    const std::size_t end = xml.find("</EnumerationDomain>", at);
+    CHECK(end != std::string::npos);
+    const std::string body = xml.substr(at, end - at);
+    Enumeration entries;
+    for (std::size_t e = body.find("<Entry"); e != std::string::npos; e = body.find("<Entry", e + 1))
+    {
+      const std::string tag = body.substr(e, body.find('>', e) - e);
+      const std::string text = attribute(tag, "text"), value = attribute(tag, "value");
+      CHECK(!text.empty() && !value.empty());
+      CHECK(entries.count(text) == 0);
+      entries[text] = std::stoi(value);
+    }
+    found.push_back(entries);
+  }
+  return found;
+}
+
+// Whether an enumeration names roles: an entry named like the first target or constraint role.
+bool namesRoles(const Enumeration& entries)
+{
+  return entries.count(mlsvtk::roles::Table[mlsvtk::roles::Handle].name) ||
+    entries.count(mlsvtk::roles::Table[mlsvtk::roles::Planarity].name);
+}
+
+// The table as an enumeration: name -> value.
+Enumeration tableEnumeration()
+{
+  Enumeration table;
+  for (std::size_t r = 0; r < mlsvtk::roles::Table.size(); ++r)
+  {
+    table[mlsvtk::roles::Table[r].name] = static_cast<int>(r);
+  }
+  return table;
+}
+
+// Prints the differences of an XML enumeration from the table; true when there is none.
+bool sameAsTable(const Enumeration& xml)
+{
+  const Enumeration table = tableEnumeration();
+  for (const auto& [name, value] : table)
+  {
+    if (!xml.count(name) || xml.at(name) != value)
+    {
+      std::printf("role %s (value %d): %s in the XML\n", name.c_str(), value,
+        xml.count(name) ? ("value " + std::to_string(xml.at(name))).c_str() : "missing");
+    }
+  }
+  for (const auto& [name, value] : xml)
+  {
+    if (!table.count(name))
+    {
+      std::printf("XML entry %s (value %d) is no role of the table\n", name.c_str(), value);
+    }
+  }
+  return xml == table;
+}
+}
+
+// Every XML enumeration of roles has the table's names and values, no more and no fewer.
+TEST(MatchesXML)
+{
+  std::ifstream file(MLSDEFORM_PLUGIN_XML);
+  CHECK(file.good());
+  std::stringstream xml;
+  xml << file.rdbuf();
+  int roleEnumerations = 0;
+  for (const Enumeration& entries : enumerations(xml.str()))
+  {
+    if (namesRoles(entries))
+    {
+      ++roleEnumerations;
+      CHECK(sameAsTable(entries));
+    }
+  }
+  CHECK(roleEnumerations >= 1);
+  // the comparison fails on a wrong value, a missing and an extra role
+  std::printf("expected differences:\n");
+  Enumeration wrong = tableEnumeration(), missing = wrong, extra = wrong;
+  wrong["Slip"] = 9;
+  missing.erase("Rigid");
+  extra["Bend"] = 9;
+  CHECK(!sameAsTable(wrong) && !sameAsTable(missing) && !sameAsTable(extra));
+}
+
+// An unknown value is an error, not a default row.
+TEST(UnknownRoleThrows)
+{
+  CHECK_THROWS(mlsvtk::regionRole(-1), mlsdeform::InvalidInputException);
+  CHECK_THROWS(mlsvtk::regionRole(9), mlsdeform::InvalidInputException);
+  CHECK_THROWS(mlsvtk::isConstraint(9), mlsdeform::InvalidInputException);
+  CHECK_THROWS(mlsvtk::fewestPoints(-1), mlsdeform::InvalidInputException);
+}
+
+// Geometric constraints are the rows with a core constraint; the targets and FromPrimitive
+// (which stands for its primitive's constraint) are none. The fewest points are the core's.
+TEST(ConstraintsAndFewestPoints)
+{
+  using namespace mlsvtk::roles;
+  using mlsdeform::ConstraintType;
+  const std::map<int, ConstraintType> constraints{ { Planarity, ConstraintType::Planarity },
+    { Circularity, ConstraintType::Circularity }, { Cylinder, ConstraintType::Cylinder },
+    { FeatureLine, ConstraintType::FeatureLine }, { Rigid, ConstraintType::Rigid }, { Slip, ConstraintType::Slip } };
+  for (int role = 0; role < static_cast<int>(Table.size()); ++role)
+  {
+    const bool constraint = constraints.count(role) > 0;
+    CHECK(mlsvtk::isConstraint(role) == constraint);
+    CHECK(mlsvtk::regionRole(role).constraint.has_value() == constraint);
+    if (constraint)
+    {
+      CHECK(*mlsvtk::regionRole(role).constraint == constraints.at(role));
+      CHECK(mlsvtk::fewestPoints(role) == mlsdeform::fewestPoints(constraints.at(role)));
+      CHECK(std::string(mlsdeform::constraintName(constraints.at(role))) == Table[role].name);
+    }
+  }
+  CHECK(mlsvtk::fewestPoints(Handle) == 1);
+  CHECK(mlsvtk::fewestPoints(Fixed) == 1);
+}
+
+// Section 6.3: a plane keeps its planarity, a cylinder stays a cylinder, a sphere and a cone
+// keep their shape by a similarity (FeatureLine).
+TEST(RoleOfPrimitive)
+{
+  using mlsdeform::PrimitiveType;
+  CHECK(mlsvtk::roleOfPrimitive(PrimitiveType::Plane) == mlsvtk::roles::Planarity);
+  CHECK(mlsvtk::roleOfPrimitive(PrimitiveType::Cylinder) == mlsvtk::roles::Cylinder);
+  CHECK(mlsvtk::roleOfPrimitive(PrimitiveType::Sphere) == mlsvtk::roles::FeatureLine);
+  CHECK(mlsvtk::roleOfPrimitive(PrimitiveType::Cone) == mlsvtk::roles::FeatureLine);
+}
+
+// vtkConstraintRegion names every role as the table does, and an unknown value "Unknown".
+TEST(ConstraintRegionNames)
+{
+  for (int role = 0; role < static_cast<int>(mlsvtk::roles::Table.size()); ++role)
+  {
+    CHECK(std::string(vtkConstraintRegion::GetRoleName(role)) == mlsvtk::roles::Table[role].name);
+  }
+  CHECK(std::string(vtkConstraintRegion::GetRoleName(-1)) == "Unknown");
+  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Slip + 1)) == "Unknown");
+}
+
+TEST_MAIN
