@@ -5,6 +5,7 @@
 #include "Adapters/MeshCells.h"
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/ProcessCollective.h"
+#include "Vocabulary/FieldNames.h"
 
 #include <vtkDataObject.h>
 #include <vtkInformation.h>
@@ -60,8 +61,8 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
     }
     std::vector<double> onSurface(samples.centers.size(), 0.0);
     std::fill(onSurface.begin(), onSurface.begin() + samples.numberOfSurfaceCenters, 1.0);
-    centersOut->ShallowCopy(mlsvtk::pointCloud(samples.centers, { { "SupportRadius", &samples.supportRadius }, { "OnSurface", &onSurface } }));
-    integrationOut->ShallowCopy(mlsvtk::pointCloud(samples.integrationPoints, { { "Volume", &samples.volume } }));
+    centersOut->ShallowCopy(mlsvtk::pointCloud(samples.centers, { { mlsvtk::fields::SupportRadius, &samples.supportRadius }, { mlsvtk::fields::OnSurface, &onSurface } }));
+    integrationOut->ShallowCopy(mlsvtk::pointCloud(samples.integrationPoints, { { mlsvtk::fields::Volume, &samples.volume } }));
   }
   catch (const std::exception& e)
   {

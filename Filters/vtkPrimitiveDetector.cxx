@@ -4,6 +4,7 @@
 #include "Primitives/FaceSamples.h"
 #include "Adapters/AlgorithmProgress.h"
 #include "Sampling/Sampling.h"
+#include "Vocabulary/FieldNames.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -204,10 +205,10 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
 
   // faces -> cells (polygons come after vertices and lines), vertices -> every primitive of their faces
   const vtkIdType firstPolygon = output->GetNumberOfVerts() + output->GetNumberOfLines();
-  auto primitiveId = intArray("PrimitiveId", output->GetNumberOfCells(), 1, -1);
-  auto primitiveType = intArray("PrimitiveType", output->GetNumberOfCells(), 1, -1);
+  auto primitiveId = intArray(mlsvtk::fields::PrimitiveId, output->GetNumberOfCells(), 1, -1);
+  auto primitiveType = intArray(mlsvtk::fields::PrimitiveType, output->GetNumberOfCells(), 1, -1);
   std::vector<std::vector<int>> membership(vertices.size());
-  auto types = intArray("PrimitiveTypes", static_cast<vtkIdType>(found.size()), 1, 0);
+  auto types = intArray(mlsvtk::fields::PrimitiveTypes, static_cast<vtkIdType>(found.size()), 1, 0);
   for (std::size_t p = 0; p < found.size(); ++p)
   {
     types->SetValue(static_cast<vtkIdType>(p), static_cast<int>(found[p].shape.type));
@@ -231,8 +232,8 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     most = std::max(most, ids.size());
   }
-  auto count = intArray("PrimitiveCount", static_cast<vtkIdType>(vertices.size()), 1, 0);
-  auto ids = intArray("PrimitiveIds", static_cast<vtkIdType>(vertices.size()), static_cast<int>(most), -1);
+  auto count = intArray(mlsvtk::fields::PrimitiveCount, static_cast<vtkIdType>(vertices.size()), 1, 0);
+  auto ids = intArray(mlsvtk::fields::PrimitiveIds, static_cast<vtkIdType>(vertices.size()), static_cast<int>(most), -1);
   for (std::size_t v = 0; v < vertices.size(); ++v)
   {
     count->SetValue(static_cast<vtkIdType>(v), static_cast<int>(membership[v].size()));

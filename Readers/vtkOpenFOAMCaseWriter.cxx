@@ -2,6 +2,7 @@
 
 #include "FoamPointsFile.h"
 #include "Adapters/ProcessCollective.h"
+#include "Vocabulary/FieldNames.h"
 
 #include <vtkCharArray.h>
 #include <vtkCompositeDataIterator.h>
@@ -415,12 +416,12 @@ void vtkOpenFOAMCaseWriter::WriteData()
         throw std::runtime_error("no FileName: give the new case's .foam file, e.g. variant/case.foam");
       }
       vtkDataObject* data = this->GetInput();
-      if (auto* failure = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("DeformationError")))
+      if (auto* failure = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(mlsvtk::fields::Error)))
       {
         throw std::runtime_error("the deformation failed (" + failure->GetValue(0) + ")");
       }
       input.mesh = internalMesh(data);
-      input.displacement = input.mesh->GetPointData()->GetArray("Displacement");
+      input.displacement = input.mesh->GetPointData()->GetArray(mlsvtk::fields::Displacement);
       if (input.size() > 0 && (!input.displacement || input.displacement->GetNumberOfComponents() != 3))
       {
         throw std::runtime_error("the internal mesh has no point array Displacement: write MLS Deform's output");
