@@ -1,5 +1,8 @@
 #include "pqOutputColoring.h"
 
+#include "Common/CoreTypes.h"
+#include "Vocabulary/RegionRoles.h"
+
 #include <pqApplicationCore.h>
 #include <pqRepresentation.h>
 #include <pqServerManagerModel.h>
@@ -10,20 +13,6 @@
 #include <vtkSMSourceProxy.h>
 
 #include <cstring>
-
-namespace
-{
-// per Role of vtkConstraintRegion: Handle, Fixed, the constraints (Planarity .. FromPrimitive), Slip
-const double Handle[3] = { 0.9, 0.1, 0.1 };
-const double Fixed[3] = { 0.15, 0.35, 1.0 };
-const double Constraint[3] = { 0.1, 0.75, 0.2 };
-const double Slip[3] = { 1.0, 0.6, 0.0 };
-
-const double* roleColour(int role)
-{
-  return role == 0 ? Handle : role == 1 ? Fixed : role == 8 ? Slip : Constraint;
-}
-}
 
 pqOutputColoring::pqOutputColoring(QObject* parent)
   : QObject(parent)
@@ -57,7 +46,16 @@ void pqOutputColoring::representationAdded(pqRepresentation* representation)
   {
     return;
   }
-  const double* colour = roleColour(vtkSMPropertyHelper(producer, "Role").GetAsInt());
+  // the role's colour from the table of roles; a value it does not know keeps ParaView's defaults
+  const double* colour = nullptr;
+  try
+  {
+    colour = mlsvtk::regionRole(vtkSMPropertyHelper(producer, "Role").GetAsInt()).colour.data();
+  }
+  catch (const mlsdeform::InvalidInputException&)
+  {
+    return;
+  }
   vtkSMPVRepresentationProxy::SetScalarColoring(proxy, nullptr, vtkDataObject::POINT);
   vtkSMPropertyHelper(proxy, "DiffuseColor").Set(colour, 3);
   vtkSMPropertyHelper(proxy, "AmbientColor").Set(colour, 3);
