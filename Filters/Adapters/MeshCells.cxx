@@ -1,5 +1,6 @@
 #include "Adapters/MeshCells.h"
 
+#include "Adapters/CellFaces.h"
 #include "Adapters/PointSets.h"
 #include "Common/PositionHash.h"
 #include <vtkCell.h>
@@ -97,35 +98,6 @@ void starTetrahedra(Faces faces, const PositionOrder& before, Add add)
   });
 }
 
-// The faces of a linear 3D cell type of fixed topology (hexahedron, voxel, wedge, pyramid,
-// pentagonal and hexagonal prism) as cycles of positions in the cell's point list
-// (setLocalCell), asked of VTK once per type; empty for other types. A vtkGenericCell per cell
-// took most of the sampling domain's time on a 1M-cell mesh.
-const std::vector<std::vector<vtkIdType>>& localFaces(int type)
-{
-  static const std::array<std::vector<std::vector<vtkIdType>>, VTK_NUMBER_OF_CELL_TYPES> faces = [] {
-    std::array<std::vector<std::vector<vtkIdType>>, VTK_NUMBER_OF_CELL_TYPES> out;
-    vtkNew<vtkGenericCell> cell;
-    for (int fixed : { VTK_HEXAHEDRON, VTK_VOXEL, VTK_WEDGE, VTK_PYRAMID, VTK_PENTAGONAL_PRISM, VTK_HEXAGONAL_PRISM })
-    {
-      setLocalCell(cell, fixed);
-      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
-      {
-        vtkCell* face = cell->GetFace(f);
-        vtkIdList* ids = face->GetPointIds();
-        std::vector<vtkIdType> cycle(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
-        if (face->GetCellType() == VTK_PIXEL)
-        {
-          std::swap(cycle[2], cycle[3]); // a pixel's points in raster order, not around it
-        }
-        out[fixed].push_back(cycle);
-      }
-    }
-    return out;
-  }();
-  return type >= 0 && type < VTK_NUMBER_OF_CELL_TYPES ? faces[type] : faces[VTK_EMPTY_CELL];
-}
-
 // Splits every cell of the given dimension into simplices (triangles or tetrahedra), whatever
 // the numbering of its points: simplices are taken as they are, polygons (quads, pixels) become
 // fans and 3D cells of fixed topology and polyhedra tetrahedra about a point (chosen by position
@@ -207,11 +179,14 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
             starTetrahedra([&](auto visit) { visitPolyhedronFaces(grid, c, visit); }, before, add);
             continue;
           }
-          if (const std::vector<std::vector<vtkIdType>>& local = localFaces(type); !local.empty())
+          // the linear types of fixed topology (hexahedron, voxel, wedge, pyramid, pentagonal and
+          // hexagonal prism): their faces as positions in the point list, asked of VTK once per type
+          // (a vtkGenericCell per cell took most of the sampling domain's time on a 1M-cell mesh)
+          if (const LocalFaces& local = cellTypeFaces(type); vtkCellTypes::IsLinear(type) && !local.empty())
           {
             starTetrahedra(
               [&](auto visit) {
-                for (const std::vector<vtkIdType>& face : local)
+                for (const std::vector<int>& face : local)
                 {
                   std::array<vtkIdType, 6> global; // a hexagonal prism's faces have 6 points at most
                   for (std::size_t k = 0; k < face.size(); ++k)
@@ -250,15 +225,6 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     std::vector<std::array<int, N>>().swap(part);
   }
 }
-}
-
-void setLocalCell(vtkGenericCell* cell, int type)
-{
-  cell->SetCellType(type);
-  for (vtkIdType i = 0; i < cell->GetPointIds()->GetNumberOfIds(); ++i)
-  {
-    cell->GetPointIds()->SetId(i, i);
-  }
 }
 
 int cellDimension(int type)

@@ -26,11 +26,6 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, 
 /// once per type.
 int cellDimension(int type);
 
-/// Makes cell a cell of the type whose point ids are 0 .. n-1, so that what VTK derives from it (its
-/// faces, its simplices) comes as positions in the point list of any cell of that type: asked once
-/// per type and mapped through each cell's point ids, instead of a vtkGenericCell per cell.
-void setLocalCell(vtkGenericCell* cell, int type);
-
 /// Calls visit(points, n) for every face of a polyhedron cell as its face stream stores it (no
 /// vtkPolyhedron object, whose construction costs more than what is done with it).
 template <typename Visit>

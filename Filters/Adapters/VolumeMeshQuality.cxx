@@ -1,5 +1,6 @@
 #include "Adapters/VolumeMeshQuality.h"
 
+#include "Adapters/CellFaces.h"
 #include "Adapters/MeshCells.h"
 #include "Common/BoundingBox.h"
 
@@ -7,9 +8,7 @@
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkMeshQuality.h>
-#include <vtkNew.h>
 #include <vtkSmartPointer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
@@ -20,28 +19,6 @@ namespace mlsvtk
 {
 mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
 {
-  // The faces of each fixed cell type present as positions in its point list (setLocalCell),
-  // made before the cells are listed in parallel.
-  std::vector<mlsdeform::CellFaces> faceTemplates(VTK_NUMBER_OF_CELL_TYPES);
-  std::vector<bool> present(VTK_NUMBER_OF_CELL_TYPES, false);
-  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
-  for (vtkIdType c = 0; types && c < types->GetNumberOfValues(); ++c)
-  {
-    present[types->GetValue(c)] = true;
-  }
-  vtkNew<vtkGenericCell> cell;
-  for (int type = 0; type < VTK_NUMBER_OF_CELL_TYPES; ++type)
-  {
-    if (present[type] && type != VTK_POLYHEDRON && cellDimension(type) == 3)
-    {
-      setLocalCell(cell, type);
-      for (int f = 0; f < cell->GetNumberOfFaces(); ++f)
-      {
-        vtkIdList* ids = cell->GetFace(f)->GetPointIds();
-        faceTemplates[type].emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
-      }
-    }
-  }
   return mlsdeform::CellFaceList::build(static_cast<int>(grid->GetNumberOfCells()), [&]() {
     // per thread: GetCellPoints' thread-safe variant's list, a face's points
     return [&, scratch = vtkSmartPointer<vtkIdList>::New(), polygon = std::vector<vtkIdType>()](int c, auto add) mutable {
@@ -51,13 +28,14 @@ mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
         visitPolyhedronFaces(grid, c, [&](const vtkIdType* face, vtkIdType n) { add(face, static_cast<std::size_t>(n)); });
         return;
       }
+      const LocalFaces& local = cellTypeFaces(type);
       vtkIdType n = 0;
       const vtkIdType* points = nullptr;
-      if (!faceTemplates[type].empty())
+      if (!local.empty())
       {
         grid->GetCellPoints(c, n, points, scratch);
       }
-      for (const std::vector<int>& face : faceTemplates[type])
+      for (const std::vector<int>& face : local)
       {
         polygon.resize(face.size());
         for (std::size_t i = 0; i < face.size(); ++i)

@@ -8,8 +8,10 @@
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace
 {
@@ -76,6 +78,42 @@ double summaryValue(vtkDeformationQuality* quality, const std::string& measure, 
     if (names->GetValue(r) == measure)
       return values->GetTuple1(r);
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// The points of a block of cells^3 unit cubes, each moved along each axis by up to jitter (a fixed
+/// pseudo-random pattern: std::mt19937's sequence is the same on every platform).
+vtkSmartPointer<vtkPoints> blockPoints(int cells, double jitter)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  std::mt19937 random(1);
+  auto offset = [&] { return jitter * (2.0 * random() / std::mt19937::max() - 1); };
+  for (int k = 0; k <= cells; ++k)
+    for (int j = 0; j <= cells; ++j)
+      for (int i = 0; i <= cells; ++i)
+      {
+        const double x = i + offset(), y = j + offset(), z = k + offset();
+        points->InsertNextPoint(x, y, z);
+      }
+  return points;
+}
+
+/// The cells of blockPoints(cells, ...) on points, as VTK_VOXEL or as VTK_HEXAHEDRON cells (the
+/// voxel's points 0, 1, 3, 2, 4, 5, 7, 6 in a hexahedron's order).
+vtkSmartPointer<vtkUnstructuredGrid> block(vtkPoints* points, int cells, int type)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  const vtkIdType row = cells + 1;
+  for (vtkIdType k = 0; k < cells; ++k)
+    for (vtkIdType j = 0; j < cells; ++j)
+      for (vtkIdType i = 0; i < cells; ++i)
+      {
+        auto v = [&](int a, int b, int c) { return i + a + row * (j + b) + row * row * (k + c); };
+        const vtkIdType voxel[8] = { v(0, 0, 0), v(1, 0, 0), v(0, 1, 0), v(1, 1, 0), v(0, 0, 1), v(1, 0, 1), v(0, 1, 1), v(1, 1, 1) };
+        const vtkIdType hex[8] = { voxel[0], voxel[1], voxel[3], voxel[2], voxel[4], voxel[5], voxel[7], voxel[6] };
+        grid->InsertNextCell(type, 8, type == VTK_VOXEL ? voxel : hex);
+      }
+  return grid;
 }
 }
 
@@ -205,6 +243,60 @@ TEST(BadInputIsReported)
   quality->Update();
   CHECK(messages->errorContains("same mesh before and after"));
   CHECK(quality->GetOutput()->GetNumberOfCells() == 2); // the input passes through
+}
+
+TEST(VoxelsAreMeasuredAsHexahedra)
+{
+  // A jittered 3 x 3 x 3 block, then the same with an interior point pushed out through the far
+  // side (4 cells inverted), as voxels and as hexahedra: the same faces, so the same measures. A
+  // voxel's faces are pixels, whose points VTK lists in raster order, not around the face: measured
+  // as such (self-crossing polygons) the rest block had 25 inverted cells of 27.
+  const int cells = 3;
+  vtkSmartPointer<vtkPoints> rest = blockPoints(cells, 0.15), folded = blockPoints(cells, 0.15);
+  const vtkIdType interior = 1 + (cells + 1) + (cells + 1) * (cells + 1); // the point (1, 1, 1)
+  double p[3];
+  folded->GetPoint(interior, p);
+  folded->SetPoint(interior, p[0] + 2.5, p[1], p[2]);
+  vtkNew<vtkDeformationQuality> voxels, hexahedra;
+  voxels->SetInputData(block(folded, cells, VTK_VOXEL));
+  voxels->SetOriginalData(block(rest, cells, VTK_VOXEL));
+  voxels->Update();
+  hexahedra->SetInputData(block(folded, cells, VTK_HEXAHEDRON));
+  hexahedra->SetOriginalData(block(rest, cells, VTK_HEXAHEDRON));
+  hexahedra->Update();
+  auto* voxelFaces = vtkPolyData::SafeDownCast(voxels->GetOutputDataObject(1));
+  auto* hexFaces = vtkPolyData::SafeDownCast(hexahedra->GetOutputDataObject(1));
+  CHECK(voxelFaces->GetNumberOfCells() == 3 * cells * cells * (cells - 1));
+  CHECK(hexFaces->GetNumberOfCells() == voxelFaces->GetNumberOfCells());
+  // The same polygons from another first point: their centres and areas are sums in another order,
+  // equal up to round-off, which acos magnifies for small angles: the largest difference is 4.5e-13
+  // degrees (1e-15 in skewness), 1e-11 leaves a margin of 20.
+  for (const char* name : { "NonOrthogonality", "Skewness", "OriginalNonOrthogonality", "OriginalSkewness" })
+  {
+    double largest = 0;
+    for (vtkIdType f = 0; f < hexFaces->GetNumberOfCells(); ++f)
+    {
+      largest = std::max(largest, std::abs(cellValue(voxelFaces, name, f) - cellValue(hexFaces, name, f)));
+      CHECK(cellValue(voxelFaces, "Owner", f) == cellValue(hexFaces, "Owner", f));
+      CHECK(cellValue(voxelFaces, "Neighbour", f) == cellValue(hexFaces, "Neighbour", f));
+    }
+    std::printf("%s: largest difference voxel - hexahedron %.3g\n", name, largest);
+    CHECK(largest < 1e-11);
+  }
+  for (const char* measure : { "NonOrthogonality", "Skewness" })
+    for (const char* column : { "Max", "OriginalMax" })
+    {
+      std::printf("%s %s: voxels %.15g, hexahedra %.15g\n", measure, column, summaryValue(voxels, measure, column),
+        summaryValue(hexahedra, measure, column));
+      CHECK_NEAR(summaryValue(voxels, measure, column), summaryValue(hexahedra, measure, column), 1e-11);
+    }
+  const double inverted = summaryValue(hexahedra, "InvertedCells", "Max");
+  std::printf("inverted cells: voxels %g (before %g), hexahedra %g (before %g)\n", summaryValue(voxels, "InvertedCells", "Max"),
+    summaryValue(voxels, "InvertedCells", "OriginalMax"), inverted, summaryValue(hexahedra, "InvertedCells", "OriginalMax"));
+  CHECK(inverted > 0);
+  CHECK(summaryValue(voxels, "InvertedCells", "Max") == inverted);
+  CHECK(summaryValue(voxels, "InvertedCells", "OriginalMax") == 0);
+  CHECK(summaryValue(hexahedra, "InvertedCells", "OriginalMax") == 0);
 }
 
 TEST_MAIN
