@@ -1,6 +1,8 @@
 #include "vtkDeformationQuality.h"
 
 #include "Quality/FaceQuality.h"
+#include "Adapters/AlgorithmProgress.h"
+#include "Adapters/FailurePolicy.h"
 #include "Adapters/VolumeMeshQuality.h"
 #include "Sampling/Sampling.h"
 
@@ -8,6 +10,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkFieldData.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
@@ -23,7 +26,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 vtkStandardNewMacro(vtkDeformationQuality);
@@ -43,7 +45,7 @@ void requireSameCells(vtkUnstructuredGrid* deformed, vtkUnstructuredGrid* origin
   if (original->GetNumberOfPoints() != deformed->GetNumberOfPoints() ||
     original->GetNumberOfCells() != deformed->GetNumberOfCells())
   {
-    throw std::invalid_argument("the original mesh has " + std::to_string(original->GetNumberOfPoints()) +
+    throw mlsdeform::InvalidInputException("the original mesh has " + std::to_string(original->GetNumberOfPoints()) +
       " points and " + std::to_string(original->GetNumberOfCells()) + " cells, the input " +
       std::to_string(deformed->GetNumberOfPoints()) + " and " + std::to_string(deformed->GetNumberOfCells()) +
       ": they must be the same mesh before and after deformation");
@@ -60,7 +62,7 @@ void requireSameCells(vtkUnstructuredGrid* deformed, vtkUnstructuredGrid* origin
     }
     if (!same)
     {
-      throw std::invalid_argument("cell " + std::to_string(c) +
+      throw mlsdeform::InvalidInputException("cell " + std::to_string(c) +
         " differs between the original and the input: they must be the same mesh before and after deformation");
     }
   }
@@ -182,6 +184,45 @@ int vtkDeformationQuality::FillOutputPortInformation(int port, vtkInformation* i
   return 1;
 }
 
+namespace
+{
+// The interior faces as polygons on the mesh's points, with their owner and neighbour cells.
+void writeFaces(vtkPolyData* faceOutput, vtkPoints* points, const mlsvtk::VolumeMeshQuality& topology)
+{
+  const CellFaceList& cells = topology.cells();
+  vtkNew<vtkCellArray> polygons;
+  vtkNew<vtkIdTypeArray> owners, neighbours;
+  owners->SetName("Owner");
+  neighbours->SetName("Neighbour");
+  for (const InteriorFace& f : topology.faces())
+  {
+    polygons->InsertNextCell(static_cast<vtkIdType>(cells.faceSize(f.face)));
+    for (std::size_t i = 0; i < cells.faceSize(f.face); ++i)
+    {
+      polygons->InsertCellPoint(cells.face(f.face)[i]);
+    }
+    owners->InsertNextValue(f.owner);
+    neighbours->InsertNextValue(f.neighbour);
+  }
+  faceOutput->SetPoints(points);
+  faceOutput->SetPolys(polygons);
+  faceOutput->GetCellData()->AddArray(owners);
+  faceOutput->GetCellData()->AddArray(neighbours);
+}
+
+// The summary table's first column: the measures' names.
+void addMeasureNames(vtkTable* summary)
+{
+  vtkNew<vtkStringArray> names;
+  names->SetName("Measure");
+  for (const char* name : { "ScaledJacobian", "NonOrthogonality", "Skewness", "InvertedCells" })
+  {
+    names->InsertNextValue(name);
+  }
+  summary->AddColumn(names);
+}
+}
+
 int vtkDeformationQuality::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -191,11 +232,12 @@ int vtkDeformationQuality::RequestData(
   vtkPolyData* faceOutput = vtkPolyData::GetData(outputVector, 1);
   vtkTable* summary = vtkTable::GetData(outputVector, 2);
   output->ShallowCopy(input);
+  this->SetErrorCode(vtkErrorCode::NoError);
   try
   {
     if (input->GetNumberOfCells() == 0)
     {
-      throw std::invalid_argument("the input has no cells");
+      throw mlsdeform::InvalidInputException("the input has no cells");
     }
     const PointList points = mlsvtk::gridPoints(input, "the input mesh's points");
     PointList originalPoints;
@@ -207,45 +249,18 @@ int vtkDeformationQuality::RequestData(
     this->UpdateProgress(0.1);
     // OpenFOAM's face order: out of the owner in the undeformed mesh
     const mlsvtk::VolumeMeshQuality topology(original ? original : input);
-    const CellFaceList& cells = topology.cells();
-    const std::vector<InteriorFace>& faces = topology.faces();
-    const std::vector<int>& orientation = topology.orientation();
     this->UpdateProgress(0.4);
-
-    vtkNew<vtkCellArray> polygons;
-    vtkNew<vtkIdTypeArray> owners, neighbours;
-    owners->SetName("Owner");
-    neighbours->SetName("Neighbour");
-    for (const InteriorFace& f : faces)
-    {
-      polygons->InsertNextCell(static_cast<vtkIdType>(cells.faceSize(f.face)));
-      for (std::size_t i = 0; i < cells.faceSize(f.face); ++i)
-      {
-        polygons->InsertCellPoint(cells.face(f.face)[i]);
-      }
-      owners->InsertNextValue(f.owner);
-      neighbours->InsertNextValue(f.neighbour);
-    }
-    faceOutput->SetPoints(input->GetPoints());
-    faceOutput->SetPolys(polygons);
-    faceOutput->GetCellData()->AddArray(owners);
-    faceOutput->GetCellData()->AddArray(neighbours);
-
-    vtkNew<vtkStringArray> names;
-    names->SetName("Measure");
-    for (const char* name : { "ScaledJacobian", "NonOrthogonality", "Skewness", "InvertedCells" })
-    {
-      names->InsertNextValue(name);
-    }
-    summary->AddColumn(names);
-
-    const Measures after = measure(input, points, cells, faces, orientation);
+    mlsvtk::checkAbort(this);
+    writeFaces(faceOutput, input->GetPoints(), topology);
+    addMeasureNames(summary);
+    const Measures after = measure(input, points, topology.cells(), topology.faces(), topology.orientation());
     addMeasures(output, faceOutput, after, "");
     addSummaryColumns(summary, after, "");
     this->UpdateProgress(0.7);
+    mlsvtk::checkAbort(this);
     if (original)
     {
-      const Measures before = measure(original, originalPoints, cells, faces, orientation);
+      const Measures before = measure(original, originalPoints, topology.cells(), topology.faces(), topology.orientation());
       addMeasures(output, faceOutput, before, "Original");
       addSummaryColumns(summary, before, "Original");
     }
@@ -255,8 +270,8 @@ int vtkDeformationQuality::RequestData(
     output->ShallowCopy(input);
     faceOutput->Initialize();
     summary->Initialize();
-    vtkErrorMacro(<< this->GetClassName() << " failed: " << e.what() << ".");
-    return 0;
+    this->SetErrorCode(vtkErrorCode::UserError);
+    return mlsvtk::reportFailure(this, outputVector, e.what(), "The mesh output is the unchanged input, the faces and summary are empty.");
   }
   return 1;
 }

@@ -8,4 +8,12 @@ void reportProgress(void* algorithm, double fraction)
 {
   static_cast<vtkAlgorithm*>(algorithm)->UpdateProgress(fraction);
 }
+
+void checkAbort(vtkAlgorithm* algorithm, const mlsdeform::Collective& group)
+{
+  if (group.any(algorithm->CheckAbort()))
+  {
+    throw mlsdeform::AbortedException("cancelled; what finished before is kept for the next update");
+  }
+}
 } // namespace mlsvtk

@@ -35,14 +35,6 @@ DeformationSession::DeformationSession(vtkAlgorithm* owner)
 {
 }
 
-void DeformationSession::checkAbort(const Collective& group) const
-{
-  if (group.any(Owner->CheckAbort()))
-  {
-    throw AbortedException("cancelled; the next update continues the set-up from the last finished step");
-  }
-}
-
 void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, const Collective& group)
 {
   agree(group, [&] {
@@ -101,7 +93,7 @@ bool DeformationSession::updateSubspace(const SubspaceDependencies& dependencies
   Model = build();
   Subspace.built(std::move(key));
   ++Counts.subspace;
-  checkAbort(group);
+  checkAbort(Owner, group);
   return true;
 }
 
@@ -122,7 +114,7 @@ void DeformationSession::updatePointRows(const Collective& group)
       ++Counts.pointRows;
     }
   });
-  checkAbort(group);
+  checkAbort(Owner, group);
 }
 
 void DeformationSession::updateTargets()
@@ -200,6 +192,6 @@ void DeformationSession::reportQuality(const std::vector<vtkPointSet*>& inSets, 
   vtkFieldData* field, const Collective& group)
 {
   Quality.report(inSets, outSets, field, group, Owner);
-  checkAbort(group);
+  checkAbort(Owner, group);
 }
 } // namespace mlsvtk

@@ -150,9 +150,6 @@ public:
   void setSetupTime(double seconds) { SetupTime = seconds; }
 
 private:
-  /// Throws AbortedException when the owner's AbortExecute is set on any process.
-  void checkAbort(const mlsdeform::Collective& group) const;
-
   vtkAlgorithm* Owner;
   Runs Counts;
   long NextVersion = 0;
