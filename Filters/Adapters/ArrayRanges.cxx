@@ -1,7 +1,7 @@
 #include "Adapters/ArrayRanges.h"
 
-#include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
+#include "Adapters/TypedPoints.h"
+
 #include <vtkInformation.h>
 #include <vtkInformationDoubleVectorKey.h>
 #include <vtkInformationInformationVectorKey.h>
@@ -37,17 +37,10 @@ struct Ranges
   }
 };
 
-template <typename Array>
-bool storeRanges(vtkDataArray* data)
+// The ranges of n tuples of 3 values, in one parallel pass.
+template <typename T>
+Ranges rangesOf(const T* values, long n)
 {
-  auto* array = Array::SafeDownCast(data);
-  if (!array)
-  {
-    return false;
-  }
-  using T = typename Array::ValueType;
-  const T* values = array->GetPointer(0);
-  const long n = array->GetNumberOfTuples();
   Ranges all;
 #pragma omp parallel
   {
@@ -70,10 +63,12 @@ bool storeRanges(vtkDataArray* data)
 #pragma omp critical
     all.merge(mine); // min, max and 'and' are exact in any order: the same for any thread count
   }
-  if (!all.finite || n == 0)
-  {
-    return true;
-  }
+  return all;
+}
+
+// The ranges into the array's range cache, where vtkDataArray looks for them.
+void store(vtkDataArray* array, const Ranges& all)
+{
   vtkInformation* info = array->GetInformation();
   const double norm[2] = { std::sqrt(all.low[3]), std::sqrt(all.high[3]) };
   info->Set(vtkDataArray::L2_NORM_RANGE(), norm, 2);
@@ -89,14 +84,16 @@ bool storeRanges(vtkDataArray* data)
     }
     info->Set(key, components);
   }
-  return true;
 }
 }
 
 void mlsvtk::storeRanges(vtkDataArray* array)
 {
-  if (array->GetNumberOfComponents() == 3)
+  const long n = array->GetNumberOfTuples();
+  Ranges all;
+  const bool typed = array->GetNumberOfComponents() == 3 && withTypedPoints(array, [&](const auto* values) { all = rangesOf(values, n); });
+  if (typed && all.finite && n > 0)
   {
-    ::storeRanges<vtkFloatArray>(array) || ::storeRanges<vtkDoubleArray>(array);
+    store(array, all);
   }
 }

@@ -2,14 +2,13 @@
 
 #include "Adapters/CellFaces.h"
 #include "Adapters/PointSets.h"
+#include "Adapters/TypedPoints.h"
 #include "Common/PositionHash.h"
 #include <vtkCell.h>
 #include <vtkCellArray.h>
 #include <vtkCellType.h>
 #include <vtkCellTypes.h>
 #include <vtkDataSetAttributes.h>
-#include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
 #include <vtkGenericCell.h>
 #include <vtkGeometryFilter.h>
 #include <vtkIdList.h>
@@ -36,10 +35,7 @@ public:
   explicit PositionOrder(vtkPoints* points)
     : Points(points)
   {
-    auto* floats = vtkFloatArray::SafeDownCast(points->GetData());
-    auto* doubles = vtkDoubleArray::SafeDownCast(points->GetData());
-    Floats = floats ? floats->GetPointer(0) : nullptr;
-    Doubles = doubles ? doubles->GetPointer(0) : nullptr;
+    withTypedPoints(points->GetData(), [this](const auto* values) { keep(values); });
   }
   bool operator()(vtkIdType a, vtkIdType b) const
   {
@@ -58,9 +54,12 @@ public:
   }
 
 private:
+  void keep(const float* values) { Floats = values; }
+  void keep(const double* values) { Doubles = values; }
+
   vtkPoints* Points;
-  const float* Floats;
-  const double* Doubles;
+  const float* Floats = nullptr;
+  const double* Doubles = nullptr;
 };
 
 // The triangles of a polygon (a cycle of point ids): a fan from its first point in position

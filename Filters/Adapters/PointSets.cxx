@@ -1,10 +1,11 @@
 #include "Adapters/PointSets.h"
 
+#include "Adapters/TypedPoints.h"
+
 #include <vtkCellArray.h>
 #include <vtkCompositeDataIterator.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
@@ -47,24 +48,22 @@ std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped)
   return sets;
 }
 
-namespace
+void copyPoints(vtkPointSet* set, mlsdeform::Vec3* out)
 {
-// Copies the coordinates of a float or double array (false for other types).
-template <typename Array>
-bool copyCoordinates(vtkDataArray* data, mlsdeform::Vec3* out)
-{
-  auto* array = Array::SafeDownCast(data);
-  if (!array)
+  const vtkIdType n = set->GetNumberOfPoints();
+  auto copy = [&](const auto* in) {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      out[i] = mlsdeform::Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]);
+    }
+  };
+  if (n > 0 && !withTypedPoints(set->GetPoints()->GetData(), copy))
   {
-    return false;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      set->GetPoint(i, out[i].data());
+    }
   }
-  const auto* in = array->GetPointer(0);
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-  {
-    out[i] = mlsdeform::Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]);
-  }
-  return true;
-}
 }
 
 mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
@@ -72,17 +71,9 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
   mlsdeform::PointList out;
   for (vtkPointSet* set : sets)
   {
-    const vtkIdType n = set->GetNumberOfPoints();
     const std::size_t offset = out.size();
-    out.resize(offset + n);
-    vtkDataArray* data = n > 0 ? set->GetPoints()->GetData() : nullptr;
-    if (n > 0 && !copyCoordinates<vtkFloatArray>(data, &out[offset]) && !copyCoordinates<vtkDoubleArray>(data, &out[offset]))
-    {
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        set->GetPoint(i, out[offset + i].data());
-      }
-    }
+    out.resize(offset + set->GetNumberOfPoints());
+    copyPoints(set, out.data() + offset);
   }
   return out;
 }

@@ -18,6 +18,10 @@ namespace mlsvtk
 /// (image data, ...) are skipped and counted in skipped.
 std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped = nullptr);
 
+/// The set's points into out (GetNumberOfPoints() of them), from a float or double array without a
+/// virtual call per point.
+void copyPoints(vtkPointSet* set, mlsdeform::Vec3* out);
+
 /// All points of the point sets, concatenated.
 mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
 

@@ -2,6 +2,7 @@
 
 #include "Adapters/CellFaces.h"
 #include "Adapters/MeshCells.h"
+#include "Adapters/PointSets.h"
 #include "Common/BoundingBox.h"
 
 #include <vtkCell.h>
@@ -80,10 +81,7 @@ std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
 void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out)
 {
   out.resize(grid->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
-  {
-    grid->GetPoint(i, out[i].data());
-  }
+  copyPoints(grid, out.data());
   mlsdeform::requireFinite(out, what);
 }
 
