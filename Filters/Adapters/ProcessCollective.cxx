@@ -3,25 +3,31 @@
 #include <vtkCommunicator.h>
 #include <vtkMultiProcessController.h>
 
+#include <numeric>
+
 namespace mlsvtk
 {
 namespace
 {
+// Where each process's values start in the concatenation of all (a gather's displacements: the sum
+// of the lengths before it), then the total length.
+std::vector<vtkIdType> gatherOffsets(const std::vector<vtkIdType>& lengths)
+{
+  std::vector<vtkIdType> starts(lengths.size() + 1, 0);
+  std::partial_sum(lengths.begin(), lengths.end(), starts.begin() + 1);
+  return starts;
+}
+
 // Every process's values concatenated in process order (AllGatherV with the lengths gathered first).
 template <typename T>
 std::vector<T> gatherValues(vtkMultiProcessController* controller, const std::vector<T>& local)
 {
   const int n = controller->GetNumberOfProcesses();
   vtkIdType length = static_cast<vtkIdType>(local.size());
-  std::vector<vtkIdType> lengths(n), offsets(n);
+  std::vector<vtkIdType> lengths(n);
   controller->AllGather(&length, lengths.data(), 1);
-  vtkIdType total = 0;
-  for (int p = 0; p < n; ++p)
-  {
-    offsets[p] = total;
-    total += lengths[p];
-  }
-  std::vector<T> all(static_cast<std::size_t>(total));
+  std::vector<vtkIdType> offsets = gatherOffsets(lengths); // not const: VTK asks for vtkIdType*
+  std::vector<T> all(static_cast<std::size_t>(offsets.back()));
   // AllGatherV reads the send buffer even for zero length: give it a valid address
   T none{};
   controller->AllGatherV(local.empty() ? &none : local.data(), all.empty() ? &none : all.data(), length, lengths.data(), offsets.data());
@@ -72,15 +78,10 @@ std::vector<double> ProcessCollective::gatherOnFirst(const std::vector<double>& 
   }
   const int n = this->Controller->GetNumberOfProcesses();
   vtkIdType length = static_cast<vtkIdType>(local.size());
-  std::vector<vtkIdType> lengths(n), offsets(n);
+  std::vector<vtkIdType> lengths(n);
   this->Controller->Gather(&length, lengths.data(), 1, 0);
-  vtkIdType total = 0;
-  for (int p = 0; p < n; ++p)
-  {
-    offsets[p] = total;
-    total += lengths[p];
-  }
-  std::vector<double> all(this->rank() == 0 ? static_cast<std::size_t>(total) : 0);
+  std::vector<vtkIdType> offsets = gatherOffsets(lengths); // meaningful on the first process only, which gathered the lengths
+  std::vector<double> all(this->rank() == 0 ? static_cast<std::size_t>(offsets.back()) : 0);
   double none = 0; // GatherV reads the buffers even for zero length: give them valid addresses
   this->Controller->GatherV(local.empty() ? &none : local.data(), all.empty() ? &none : all.data(), length, lengths.data(), offsets.data(), 0);
   return all;
