@@ -1,6 +1,6 @@
 // The table of region roles (Filters/Vocabulary/RegionRoles.h) and what must follow it: the
-// plugin's XML enumerations of roles (which cannot include C++), the core's constraint types and
-// vtkConstraintRegion's role names.
+// plugin's XML (which cannot include C++: its enumerations of roles and its panel rules by Role),
+// the core's constraint types and vtkConstraintRegion's role names.
 #include "../TestHarness.h"
 #include "Common/CoreTypes.h"
 #include "Vocabulary/RegionRoles.h"
@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -117,6 +118,57 @@ TEST(MatchesXML)
   missing.erase("Rigid");
   extra["Bend"] = 9;
   CHECK(!sameAsTable(wrong) && !sameAsTable(missing) && !sameAsTable(extra));
+}
+
+// The panel's visibility rules by Role hold the table's values: CellSets for the roles whose
+// regions it splits per cell (the constraints other than Slip, and FromPrimitive, which stands for
+// one of them), the Handle Motion group for Handle. A new rule by Role must be added here.
+TEST(XMLDecoratorsByRole)
+{
+  std::ifstream file(MLSDEFORM_PLUGIN_XML);
+  std::stringstream stream;
+  stream << file.rdbuf();
+  const std::string xml = stream.str();
+  std::map<std::string, std::set<int>> shownFor; // the element a decorator is in -> its Role values
+  const std::string decorator = "<PropertyWidgetDecorator";
+  for (std::size_t at = xml.find(decorator); at != std::string::npos; at = xml.find(decorator, at + 1))
+  {
+    const std::string tag = xml.substr(at, xml.find('>', at) - at);
+    if (attribute(tag, "property") != "Role")
+    {
+      continue;
+    }
+    // the enclosing property (an ...Property tag, not a group's <Property> member) or group
+    std::size_t property = xml.rfind("Property name=\"", at);
+    while (property != std::string::npos && property > 0 && xml[property - 1] == '<')
+    {
+      property = xml.rfind("Property name=\"", property - 1);
+    }
+    const std::size_t group = xml.rfind("<PropertyGroup label=\"", at);
+    const std::size_t owner = property == std::string::npos || (group != std::string::npos && group > property) ? group : property;
+    CHECK(owner != std::string::npos);
+    const std::string ownerTag = xml.substr(owner, xml.find('>', owner) - owner);
+    const std::string name = ownerTag.find("<PropertyGroup") == 0 ? attribute(ownerTag, "label") : attribute(" " + ownerTag, "name");
+    std::stringstream values(attribute(tag, "values") + " " + attribute(tag, "value"));
+    for (int v; values >> v;)
+    {
+      shownFor[name].insert(v);
+    }
+  }
+  std::set<int> cellSets{ mlsvtk::roles::FromPrimitive };
+  for (int role = 0; role < static_cast<int>(mlsvtk::roles::Table.size()); ++role)
+  {
+    if (mlsvtk::isConstraint(role) && role != mlsvtk::roles::Slip)
+    {
+      cellSets.insert(role);
+    }
+  }
+  const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } } };
+  for (const auto& [name, roles] : shownFor)
+  {
+    std::printf("shown by Role: %s\n", name.c_str());
+  }
+  CHECK(shownFor == expected);
 }
 
 // An unknown value is an error, not a default row.
