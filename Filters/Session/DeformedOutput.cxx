@@ -1,15 +1,17 @@
 #include "Session/DeformedOutput.h"
 
 #include "Adapters/ArrayRanges.h"
+#include "Adapters/TypedPoints.h"
 #include "Vocabulary/FieldNames.h"
 
 #include <vtkCompositeDataIterator.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
+
+#include <type_traits>
 
 using namespace mlsdeform;
 
@@ -40,27 +42,6 @@ void copyInput(vtkDataObject* input, vtkDataObject* output)
 
 namespace
 {
-// x + d written straight into a float or double points array (false for other types).
-template <typename Array>
-bool writeMoved(vtkDataArray* data, const PointList& points, long offset, const double* d, vtkIdType n)
-{
-  auto* array = Array::SafeDownCast(data);
-  if (!array)
-  {
-    return false;
-  }
-  auto* out = array->GetPointer(0);
-#pragma omp parallel for schedule(static)
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      out[3 * i + c] = static_cast<typename Array::ValueType>(points[offset + i][c] + d[3 * i + c]);
-    }
-  }
-  return true;
-}
-
 // An output array of the previous update, to be written again, when it fits and no one but this
 // object holds it (the output released it when it was reset to the input); else a new one.
 template <typename Object>
@@ -98,8 +79,19 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
     vtkPoints* moved = reusable(Moved[s], Moved[s] && Moved[s]->GetNumberOfPoints() == n && Moved[s]->GetDataType() == type);
     moved->SetDataType(type);
     moved->SetNumberOfPoints(n);
-    if (!writeMoved<vtkFloatArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n) &&
-      !writeMoved<vtkDoubleArray>(moved->GetData(), points, offset, displacement->GetPointer(0), n))
+    const double* d = displacement->GetPointer(0);
+    const bool written = withTypedPoints(moved->GetData(), [&](auto* out) {
+      using Value = std::remove_pointer_t<decltype(out)>;
+#pragma omp parallel for schedule(static)
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          out[3 * i + c] = static_cast<Value>(points[offset + i][c] + d[3 * i + c]);
+        }
+      }
+    });
+    if (!written)
     {
       for (vtkIdType i = 0; i < n; ++i)
       {
