@@ -3,7 +3,8 @@
 #include "Primitives/EfficientRansac.h"
 #include "Primitives/FaceSamples.h"
 #include "Adapters/AlgorithmProgress.h"
-#include "Sampling/Sampling.h"
+#include "Adapters/FailurePolicy.h"
+#include "Common/BoundingBox.h"
 #include "Vocabulary/FieldNames.h"
 
 #include <vtkCellArray.h>
@@ -11,6 +12,7 @@
 #include <vtkCellData.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -131,11 +133,11 @@ int vtkPrimitiveDetector::FillOutputPortInformation(int port, vtkInformation* in
   return 1;
 }
 
-int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+namespace
 {
-  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkTable* table = vtkTable::GetData(outputVector, 1);
+// The surface to detect on: the input's polygons, or a volume's boundary faces.
+void surfaceOf(vtkDataSet* input, vtkPolyData* output)
+{
   if (auto* surface = vtkPolyData::SafeDownCast(input))
   {
     output->ShallowCopy(surface);
@@ -147,24 +149,19 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
     boundary->Update();
     output->ShallowCopy(boundary->GetOutput());
   }
-  vtkCellArray* polys = output->GetPolys();
-  if (!polys || polys->GetNumberOfCells() == 0)
+  if (!output->GetPolys() || output->GetPolys()->GetNumberOfCells() == 0)
   {
-    vtkErrorMacro(<< "The input has no faces (polygons): primitives are detected on face barycenters and face normals, so a "
-                     "point cloud or a line set cannot be used.");
-    output->Initialize();
-    return 0;
+    throw mlsdeform::InvalidInputException("the input has no faces (polygons): primitives are detected on face barycenters and "
+                                           "face normals, so a point cloud or a line set cannot be used");
   }
+}
 
-  // one oriented sample per polygon (Fig. 7)
-  mlsdeform::PointList vertices(output->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
-  {
-    output->GetPoint(i, vertices[i].data());
-  }
+// The surface's polygons as lists of point ids.
+std::vector<std::vector<int>> polygonsOf(vtkPolyData* surface)
+{
   std::vector<std::vector<int>> faces;
-  faces.reserve(polys->GetNumberOfCells());
-  auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
+  faces.reserve(surface->GetPolys()->GetNumberOfCells());
+  auto iterator = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
   for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
   {
     vtkIdType size;
@@ -172,38 +169,14 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
     iterator->GetCurrentCell(size, ids);
     faces.emplace_back(ids, ids + size);
   }
-  std::vector<DetectedPrimitive> found;
-  mlsdeform::FaceSamples samples;
-  try
-  {
-    mlsdeform::requireFinite(vertices, "surface points");
-    samples = mlsdeform::faceSamples(vertices, faces);
-    const double diagonal = mlsdeform::boundingBox(vertices).size().norm();
-    if (!(diagonal > 0))
-    {
-      throw mlsdeform::InvalidInputException("the surface has zero extent");
-    }
-    mlsdeform::RansacParameters p;
-    p.planes = this->DetectPlanes;
-    p.cylinders = this->DetectCylinders;
-    p.spheres = this->DetectSpheres;
-    p.cones = this->DetectCones;
-    p.epsilon = this->Epsilon * diagonal;
-    p.clusterEpsilon = this->ClusterEpsilon * diagonal;
-    p.normalThreshold = this->NormalThreshold * M_PI / 180;
-    p.minimumSupport = this->MinimumSupport;
-    p.probability = this->Probability;
-    p.seed = static_cast<std::uint64_t>(this->RandomSeed);
-    found = mlsdeform::detectPrimitives(samples.barycenters, samples.normals, p, &faces, { &mlsvtk::reportProgress, this });
-  }
-  catch (const mlsdeform::InvalidInputException& e)
-  {
-    vtkErrorMacro(<< "Primitive detection: " << e.what());
-    output->Initialize();
-    return 0;
-  }
+  return faces;
+}
 
-  // faces -> cells (polygons come after vertices and lines), vertices -> every primitive of their faces
+// The primitives as cell arrays (faces -> cells: polygons come after vertices and lines), point
+// arrays (a vertex belongs to every primitive of its faces) and the field data of their types.
+void addPrimitiveArrays(vtkPolyData* output, const std::vector<DetectedPrimitive>& found, const std::vector<std::vector<int>>& faces,
+  const mlsdeform::PointList& vertices)
+{
   const vtkIdType firstPolygon = output->GetNumberOfVerts() + output->GetNumberOfLines();
   auto primitiveId = intArray(mlsvtk::fields::PrimitiveId, output->GetNumberOfCells(), 1, -1);
   auto primitiveType = intArray(mlsvtk::fields::PrimitiveType, output->GetNumberOfCells(), 1, -1);
@@ -247,9 +220,64 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
   output->GetPointData()->AddArray(count);
   output->GetPointData()->AddArray(ids);
   output->GetFieldData()->AddArray(types);
-  table->ShallowCopy(primitiveTable(found, samples.areas));
+}
+
+// The detector's properties as RANSAC's parameters for a surface of that diagonal.
+mlsdeform::RansacParameters ransacParameters(vtkPrimitiveDetector* detector, double diagonal)
+{
+  mlsdeform::RansacParameters p;
+  p.planes = detector->GetDetectPlanes();
+  p.cylinders = detector->GetDetectCylinders();
+  p.spheres = detector->GetDetectSpheres();
+  p.cones = detector->GetDetectCones();
+  p.epsilon = detector->GetEpsilon() * diagonal;
+  p.clusterEpsilon = detector->GetClusterEpsilon() * diagonal;
+  p.normalThreshold = detector->GetNormalThreshold() * M_PI / 180;
+  p.minimumSupport = detector->GetMinimumSupport();
+  p.probability = detector->GetProbability();
+  p.seed = static_cast<std::uint64_t>(detector->GetRandomSeed());
+  return p;
+}
+}
+
+int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  this->SetErrorCode(vtkErrorCode::NoError);
+  try
+  {
+    surfaceOf(input, output);
+    mlsdeform::PointList vertices(output->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+    {
+      output->GetPoint(i, vertices[i].data());
+    }
+    mlsdeform::requireFinite(vertices, "surface points");
+    const std::vector<std::vector<int>> faces = polygonsOf(output);
+    const mlsdeform::FaceSamples samples = mlsdeform::faceSamples(vertices, faces); // one oriented sample per polygon (Fig. 7)
+    const double diagonal = mlsdeform::boundingBox(vertices).size().norm();
+    if (!(diagonal > 0))
+    {
+      throw mlsdeform::InvalidInputException("the surface has zero extent");
+    }
+    const std::vector<DetectedPrimitive> found =
+      mlsdeform::detectPrimitives(samples.barycenters, samples.normals, ransacParameters(this, diagonal), &faces, { &mlsvtk::reportProgress, this });
+    mlsvtk::checkAbort(this);
+    addPrimitiveArrays(output, found, faces, vertices);
+    table->ShallowCopy(primitiveTable(found, samples.areas));
+  }
+  catch (const std::exception& e)
+  {
+    output->Initialize();
+    table->Initialize();
+    this->SetErrorCode(vtkErrorCode::UserError);
+    return mlsvtk::reportFailure(this, outputVector, e.what(), "The outputs are empty.");
+  }
   return 1;
 }
+
 
 void vtkPrimitiveDetector::PrintSelf(ostream& os, vtkIndent indent)
 {
