@@ -4,10 +4,12 @@
 #include "Adapters/PointSets.h"
 #include "Adapters/MeshCells.h"
 #include "Adapters/AlgorithmProgress.h"
+#include "Adapters/FailurePolicy.h"
 #include "Adapters/ProcessCollective.h"
 #include "Vocabulary/FieldNames.h"
 
 #include <vtkDataObject.h>
+#include <vtkErrorCode.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
@@ -32,7 +34,7 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* centersOut = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* integrationOut = vtkPolyData::GetData(outputVector, 1);
-
+  this->SetErrorCode(vtkErrorCode::NoError);
   mlsdeform::SamplingParameters parameters;
   parameters.numberOfSurfaceSamples = this->NumberOfSurfaceSamples;
   parameters.numberOfVolumeSamples = this->NumberOfVolumeSamples;
@@ -51,6 +53,7 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
     const mlsvtk::ProcessCollective group;
     const mlsdeform::SamplingDomain domain = mlsvtk::samplingDomain(mlsvtk::pointSets(input), group);
     const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsvtk::reportProgress, this }, group);
+    mlsvtk::checkAbort(this, group);
     if (group.rank() > 0)
     {
       return 1;
@@ -66,8 +69,10 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< "Cannot sample the input: " << e.what());
-    return 0;
+    centersOut->Initialize();
+    integrationOut->Initialize();
+    this->SetErrorCode(vtkErrorCode::UserError);
+    return mlsvtk::reportFailure(this, outputVector, std::string("cannot sample the input: ") + e.what(), "The outputs are empty.");
   }
   return 1;
 }

@@ -31,7 +31,8 @@ int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const 
     error->InsertNextValue(message);
     output->GetFieldData()->AddArray(error);
   }
-  vtkErrorWithObjectMacro(algorithm, << algorithm->GetClassName() << " failed: " << message << ". " << outcome);
+  const bool sentence = !message.empty() && message.back() == '.';
+  vtkErrorWithObjectMacro(algorithm, << algorithm->GetClassName() << " failed: " << message << (sentence ? " " : ". ") << outcome);
   return 1;
 }
 } // namespace mlsvtk
