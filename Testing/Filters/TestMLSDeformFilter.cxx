@@ -332,9 +332,9 @@ TEST(CancelledSetUpResumes)
   CHECK(expected != nullptr);
 
   PlaneScene scene(plane);
-  vtkNew<vtkCallbackCommand> cancel; // cancels once the sampling is done (progress 0.6: Phi at the points starts)
+  vtkNew<vtkCallbackCommand> cancel; // cancels during the sampling (progress 0 to 0.4)
   cancel->SetCallback([](vtkObject* caller, unsigned long, void*, void* progress) {
-    if (*static_cast<double*>(progress) >= 0.6)
+    if (*static_cast<double*>(progress) >= 0.1)
     {
       static_cast<vtkAlgorithm*>(caller)->SetAbortExecuteAndUpdateTime();
     }
