@@ -320,7 +320,7 @@ struct vtkConstraintRegion::Selection
 };
 
 vtkConstraintRegion::vtkConstraintRegion()
-  : Selected(new Selection)
+  : Selected(std::make_unique<Selection>())
 {
   this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
@@ -330,7 +330,6 @@ vtkConstraintRegion::vtkConstraintRegion()
 vtkConstraintRegion::~vtkConstraintRegion()
 {
   this->SetRegion(nullptr);
-  delete this->Selected;
 }
 
 const char* vtkConstraintRegion::GetRoleName(int role)
@@ -364,200 +363,41 @@ int vtkConstraintRegion::FillInputPortInformation(int port, vtkInformation* info
   return 1;
 }
 
+// What a selection reads: the input's point sets, the Surface input's (mode CellLayers) and the
+// selection array of each set (modes ArrayRange and Primitive).
+struct vtkConstraintRegion::Inputs
+{
+  std::vector<vtkPointSet*> sets, surfaceSets;
+  std::vector<vtkDataArray*> values;
+};
+
 int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  const std::vector<vtkPointSet*> sets = mlsvtk::pointSets(input);
   // Split over processes, each selects from its own piece; what depends on the whole selection
   // (the pivot, the layers around a surface) is computed over all of them.
   const mlsvtk::ProcessCollective group;
   this->SetErrorCode(vtkErrorCode::NoError);
   try
   {
-    if (this->SelectionMode == ImplicitFunction && !this->Region)
-    {
-      throw mlsdeform::InvalidInputException("SelectionMode is ImplicitFunction but no Region function is set");
-    }
-
-    if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
-    {
-      throw mlsdeform::InvalidInputException("Role FromPrimitive needs SelectionMode Primitive (a Primitive Detector's output as input)");
-    }
+    Inputs in;
+    in.sets = mlsvtk::pointSets(input);
     vtkDataObject* surfaceInput = this->GetNumberOfInputConnections(1) > 0 ? vtkDataObject::GetData(inputVector[1], 0) : nullptr;
-    const std::vector<vtkPointSet*> surfaceSets = surfaceInput ? mlsvtk::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
-    std::vector<std::int64_t> surfacePoints{ 0 };
-    for (vtkPointSet* set : surfaceSets)
+    in.surfaceSets = surfaceInput ? mlsvtk::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
+    for (vtkPointSet* set : in.sets)
     {
-      surfacePoints[0] += set->GetNumberOfPoints();
-    }
-    group.sum(surfacePoints);
-    if (this->SelectionMode == CellLayers && surfacePoints[0] == 0)
-    {
-      throw mlsdeform::InvalidInputException("SelectionMode CellLayers needs a Surface input with points (e.g. the wall patch whose layer cells are selected)");
-    }
-    int role = this->Role;
-    std::vector<vtkDataArray*> values;
-    for (vtkPointSet* set : sets)
-    {
-      values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set)
+      in.values.push_back(this->SelectionMode == ArrayRange ? this->GetInputArrayToProcess(0, set)
           : this->SelectionMode == Primitive           ? set->GetPointData()->GetArray(mlsvtk::fields::PrimitiveIds)
                                                        : nullptr);
     }
-    std::string problem; // a check on this process's data: every process stops if one fails
-    if (this->SelectionMode == Primitive)
-    {
-      // the primitive must exist in the detector's output; its type gives the FromPrimitive role
-      vtkDataArray* types = nullptr;
-      for (vtkPointSet* set : sets)
-      {
-        types = types ? types : set->GetFieldData()->GetArray(mlsvtk::fields::PrimitiveTypes);
-      }
-      if (!types)
-      {
-        problem = "SelectionMode Primitive needs a Primitive Detector's output as input (field data PrimitiveTypes and "
-                  "point array PrimitiveIds are missing).";
-      }
-      else if (this->PrimitiveId >= types->GetNumberOfTuples())
-      {
-        problem = "There is no primitive " + std::to_string(this->PrimitiveId) + ": the detector found " +
-          std::to_string(types->GetNumberOfTuples()) + " (ids 0 to " + std::to_string(types->GetNumberOfTuples() - 1) + ").";
-      }
-      else if (this->Role == FromPrimitive)
-      {
-        // the detector's code: a value of mlsdeform::PrimitiveType (Plane first, Cone last)
-        const double code = types->GetComponent(this->PrimitiveId, 0);
-        const int type = static_cast<int>(code);
-        if (type != code || type < static_cast<int>(mlsdeform::PrimitiveType::Plane) || type > static_cast<int>(mlsdeform::PrimitiveType::Cone))
-        {
-          problem = "Primitive " + std::to_string(this->PrimitiveId) + " has an unknown type " + std::to_string(code) + ".";
-        }
-        else
-        {
-          role = mlsvtk::roleOfPrimitive(static_cast<mlsdeform::PrimitiveType>(type));
-        }
-      }
-    }
-    problem = group.firstError(problem);
-    if (!problem.empty())
-    {
-      throw mlsdeform::InvalidInputException(problem);
-    }
-    // a shape constraint per cell: the constraint roles other than Slip (a place, not a shape)
-    const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && r != Slip; };
-    if (this->CellSets && !perCell(role))
-    {
-      std::string roles;
-      for (int r = 0; r < static_cast<int>(mlsvtk::roles::Table.size()); ++r)
-      {
-        if (perCell(r))
-        {
-          roles += (roles.empty() ? "" : ", ") + std::string(GetRoleName(r));
-        }
-      }
-      throw mlsdeform::InvalidInputException(
-        "CellSets makes a constraint set of every cell: it applies to the roles " + roles + ", not to " + GetRoleName(role));
-    }
-    // Select positions, unless only the motion or the weight changed since the last selection.
-    SelectionInputs inputs;
-    inputs.mode = this->SelectionMode;
-    inputs.insideOut = this->InsideOut;
-    inputs.range[0] = this->Range[0];
-    inputs.range[1] = this->Range[1];
-    inputs.primitive = this->PrimitiveId;
-    const bool byCells = this->CellSets || this->SelectionMode == CellLayers;
-    inputs.layers = this->SelectionMode == CellLayers ? this->NumberOfLayers : 0;
-    inputs.cellSets = this->CellSets;
-    inputs.stamp = mlsvtk::pointsStamp(sets);
-    if (byCells)
-    {
-      for (const mlsvtk::Stamp& more : { mlsvtk::cellsStamp(sets), mlsvtk::pointsStamp(surfaceSets) })
-      {
-        inputs.stamp.objects.insert(inputs.stamp.objects.end(), more.objects.begin(), more.objects.end());
-      }
-    }
-    inputs.stamp.add(this->Region);
-    for (vtkDataArray* array : values)
-    {
-      inputs.stamp.add(array);
-    }
-    Selection& selection = *this->Selected;
-    if (group.any(!selection.valid || !(inputs == selection.inputs)))
-    {
-      selection.valid = false;
-      const PointRule rule{ this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId };
-      // the surface's points of all processes
-      const mlsdeform::PointList surface = this->SelectionMode == CellLayers
-        ? mlsdeform::gatherPositions(mlsvtk::points(surfaceSets), {}, group).positions
-        : mlsdeform::PointList();
-      SelectedPositions chosen = selectPositions(sets, values, rule, this->CellSets, surface, this->NumberOfLayers, group);
-      selection.positions = std::move(chosen.positions);
-      selection.sets = std::move(chosen.sets);
-      selection.cloud = this->CellSets ? mlsvtk::pointCloud(selection.positions, { { mlsvtk::fields::ConstraintSet, &selection.sets } })
-                                       : mlsvtk::pointCloud(selection.positions, {});
-      // the centroid of the selected positions of all processes, each position once
-      const mlsdeform::PointList all = mlsdeform::gatherPositions(selection.positions, {}, group).positions;
-      selection.selectedAnywhere = !all.empty();
-      selection.centroid.setZero();
-      for (const auto& x : all)
-      {
-        selection.centroid += x / static_cast<double>(all.size());
-      }
-      selection.inputs = std::move(inputs);
-      selection.valid = true;
-      ++this->NumberOfSelections;
-    }
-    const mlsdeform::PointList& selected = selection.positions;
-    if (!selection.selectedAnywhere && group.any(input->GetNumberOfElements(vtkDataObject::POINT) > 0) && group.rank() == 0)
+    const int role = this->CheckedRole(in, group);
+    this->UpdateSelection(in, group); // unless only the motion or the weight changed since the last selection
+    if (!this->Selected->selectedAnywhere && group.any(input->GetNumberOfElements(vtkDataObject::POINT) > 0) && group.rank() == 0)
     {
       vtkWarningMacro(<< GetRoleName(role) << " region selects no point.");
     }
-
-    // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
-    const mlsdeform::Vec3 pivot = this->UseCentroid && selection.selectedAnywhere ? selection.centroid : mlsdeform::Vec3(this->Center);
-    std::copy(pivot.data(), pivot.data() + 3, this->Pivot);
-    mlsvtk::HandleMotion motion;
-    std::copy(this->Translation, this->Translation + 3, motion.translation);
-    std::copy(this->Rotation, this->Rotation + 3, motion.rotation);
-    std::copy(this->Scale, this->Scale + 3, motion.scale);
-    double matrix[16];
-    mlsvtk::handleMotionMatrix(motion, this->Pivot, matrix);
-
-    output->ShallowCopy(selection.cloud);
-    if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)
-    {
-      selection.displacement = vtkSmartPointer<vtkDoubleArray>::New(); // the last one is still in use downstream
-    }
-    vtkDoubleArray* displacement = selection.displacement;
-    displacement->SetName(mlsvtk::fields::PrescribedDisplacement);
-    displacement->SetNumberOfComponents(3);
-    displacement->SetNumberOfTuples(static_cast<vtkIdType>(selected.size()));
-    double* d = displacement->GetPointer(0);
-    const bool moves = role == Handle;
-    for (std::size_t i = 0; i < selected.size(); ++i)
-    {
-      const mlsdeform::Vec3& x = selected[i];
-      for (int c = 0; c < 3; ++c)
-      {
-        // (M x + t) - x for the handle; zero for the other roles
-        d[3 * i + c] = moves ? matrix[4 * c] * x[0] + matrix[4 * c + 1] * x[1] + matrix[4 * c + 2] * x[2] + matrix[4 * c + 3] - x[c] : 0.0;
-      }
-    }
-    displacement->Modified();
-    output->GetPointData()->AddArray(displacement);
-
-    vtkNew<vtkIntArray> roleArray;
-    roleArray->SetName(mlsvtk::fields::Role);
-    roleArray->InsertNextValue(role);
-    vtkNew<vtkStringArray> roleName;
-    roleName->SetName(mlsvtk::fields::RoleName);
-    roleName->InsertNextValue(GetRoleName(role));
-    vtkNew<vtkDoubleArray> weight;
-    weight->SetName(mlsvtk::fields::Weight);
-    weight->InsertNextValue(this->Weight);
-    output->GetFieldData()->AddArray(roleArray);
-    output->GetFieldData()->AddArray(roleName);
-    output->GetFieldData()->AddArray(weight);
+    this->WriteOutput(output, role);
   }
   catch (const std::exception& e)
   {
@@ -566,6 +406,188 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     return mlsvtk::reportFailure(this, outputVector, e.what(), "The output is empty.");
   }
   return 1;
+}
+
+int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collective& group)
+{
+  if (this->SelectionMode == ImplicitFunction && !this->Region)
+  {
+    throw mlsdeform::InvalidInputException("SelectionMode is ImplicitFunction but no Region function is set");
+  }
+
+  if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
+  {
+    throw mlsdeform::InvalidInputException("Role FromPrimitive needs SelectionMode Primitive (a Primitive Detector's output as input)");
+  }
+  std::vector<std::int64_t> surfacePoints{ 0 };
+  for (vtkPointSet* set : in.surfaceSets)
+  {
+    surfacePoints[0] += set->GetNumberOfPoints();
+  }
+  group.sum(surfacePoints);
+  if (this->SelectionMode == CellLayers && surfacePoints[0] == 0)
+  {
+    throw mlsdeform::InvalidInputException("SelectionMode CellLayers needs a Surface input with points (e.g. the wall patch whose layer cells are selected)");
+  }
+  int role = this->Role;
+  std::string problem; // a check on this process's data: every process stops if one fails
+  if (this->SelectionMode == Primitive)
+  {
+    // the primitive must exist in the detector's output; its type gives the FromPrimitive role
+    vtkDataArray* types = nullptr;
+    for (vtkPointSet* set : in.sets)
+    {
+      types = types ? types : set->GetFieldData()->GetArray(mlsvtk::fields::PrimitiveTypes);
+    }
+    if (!types)
+    {
+      problem = "SelectionMode Primitive needs a Primitive Detector's output as input (field data PrimitiveTypes and "
+                "point array PrimitiveIds are missing).";
+    }
+    else if (this->PrimitiveId >= types->GetNumberOfTuples())
+    {
+      problem = "There is no primitive " + std::to_string(this->PrimitiveId) + ": the detector found " +
+        std::to_string(types->GetNumberOfTuples()) + " (ids 0 to " + std::to_string(types->GetNumberOfTuples() - 1) + ").";
+    }
+    else if (this->Role == FromPrimitive)
+    {
+      // the detector's code: a value of mlsdeform::PrimitiveType (Plane first, Cone last)
+      const double code = types->GetComponent(this->PrimitiveId, 0);
+      const int type = static_cast<int>(code);
+      if (type != code || type < static_cast<int>(mlsdeform::PrimitiveType::Plane) || type > static_cast<int>(mlsdeform::PrimitiveType::Cone))
+      {
+        problem = "Primitive " + std::to_string(this->PrimitiveId) + " has an unknown type " + std::to_string(code) + ".";
+      }
+      else
+      {
+        role = mlsvtk::roleOfPrimitive(static_cast<mlsdeform::PrimitiveType>(type));
+      }
+    }
+  }
+  problem = group.firstError(problem);
+  if (!problem.empty())
+  {
+    throw mlsdeform::InvalidInputException(problem);
+  }
+  // a shape constraint per cell: the constraint roles other than Slip (a place, not a shape)
+  const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && r != Slip; };
+  if (this->CellSets && !perCell(role))
+  {
+    std::string roles;
+    for (int r = 0; r < static_cast<int>(mlsvtk::roles::Table.size()); ++r)
+    {
+      if (perCell(r))
+      {
+        roles += (roles.empty() ? "" : ", ") + std::string(GetRoleName(r));
+      }
+    }
+    throw mlsdeform::InvalidInputException(
+      "CellSets makes a constraint set of every cell: it applies to the roles " + roles + ", not to " + GetRoleName(role));
+  }
+  return role;
+}
+
+void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Collective& group)
+{
+  SelectionInputs inputs;
+  inputs.mode = this->SelectionMode;
+  inputs.insideOut = this->InsideOut;
+  inputs.range[0] = this->Range[0];
+  inputs.range[1] = this->Range[1];
+  inputs.primitive = this->PrimitiveId;
+  const bool byCells = this->CellSets || this->SelectionMode == CellLayers;
+  inputs.layers = this->SelectionMode == CellLayers ? this->NumberOfLayers : 0;
+  inputs.cellSets = this->CellSets;
+  inputs.stamp = mlsvtk::pointsStamp(in.sets);
+  if (byCells)
+  {
+    for (const mlsvtk::Stamp& more : { mlsvtk::cellsStamp(in.sets), mlsvtk::pointsStamp(in.surfaceSets) })
+    {
+      inputs.stamp.objects.insert(inputs.stamp.objects.end(), more.objects.begin(), more.objects.end());
+    }
+  }
+  inputs.stamp.add(this->Region);
+  for (vtkDataArray* array : in.values)
+  {
+    inputs.stamp.add(array);
+  }
+  Selection& selection = *this->Selected;
+  if (group.any(!selection.valid || !(inputs == selection.inputs)))
+  {
+    selection.valid = false;
+    const PointRule rule{ this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId };
+    // the surface's points of all processes
+    const mlsdeform::PointList surface = this->SelectionMode == CellLayers
+      ? mlsdeform::gatherPositions(mlsvtk::points(in.surfaceSets), {}, group).positions
+      : mlsdeform::PointList();
+    SelectedPositions chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers, group);
+    selection.positions = std::move(chosen.positions);
+    selection.sets = std::move(chosen.sets);
+    selection.cloud = this->CellSets ? mlsvtk::pointCloud(selection.positions, { { mlsvtk::fields::ConstraintSet, &selection.sets } })
+                                     : mlsvtk::pointCloud(selection.positions, {});
+    // the centroid of the selected positions of all processes, each position once
+    const mlsdeform::PointList all = mlsdeform::gatherPositions(selection.positions, {}, group).positions;
+    selection.selectedAnywhere = !all.empty();
+    selection.centroid.setZero();
+    for (const auto& x : all)
+    {
+      selection.centroid += x / static_cast<double>(all.size());
+    }
+    selection.inputs = std::move(inputs);
+    selection.valid = true;
+    ++this->NumberOfSelections;
+  }
+}
+
+void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
+{
+  Selection& selection = *this->Selected;
+  const mlsdeform::PointList& selected = selection.positions;
+  // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
+  const mlsdeform::Vec3 pivot = this->UseCentroid && selection.selectedAnywhere ? selection.centroid : mlsdeform::Vec3(this->Center);
+  std::copy(pivot.data(), pivot.data() + 3, this->Pivot);
+  mlsvtk::HandleMotion motion;
+  std::copy(this->Translation, this->Translation + 3, motion.translation);
+  std::copy(this->Rotation, this->Rotation + 3, motion.rotation);
+  std::copy(this->Scale, this->Scale + 3, motion.scale);
+  double matrix[16];
+  mlsvtk::handleMotionMatrix(motion, this->Pivot, matrix);
+
+  output->ShallowCopy(selection.cloud);
+  if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)
+  {
+    selection.displacement = vtkSmartPointer<vtkDoubleArray>::New(); // the last one is still in use downstream
+  }
+  vtkDoubleArray* displacement = selection.displacement;
+  displacement->SetName(mlsvtk::fields::PrescribedDisplacement);
+  displacement->SetNumberOfComponents(3);
+  displacement->SetNumberOfTuples(static_cast<vtkIdType>(selected.size()));
+  double* d = displacement->GetPointer(0);
+  const bool moves = role == Handle;
+  for (std::size_t i = 0; i < selected.size(); ++i)
+  {
+    const mlsdeform::Vec3& x = selected[i];
+    for (int c = 0; c < 3; ++c)
+    {
+      // (M x + t) - x for the handle; zero for the other roles
+      d[3 * i + c] = moves ? matrix[4 * c] * x[0] + matrix[4 * c + 1] * x[1] + matrix[4 * c + 2] * x[2] + matrix[4 * c + 3] - x[c] : 0.0;
+    }
+  }
+  displacement->Modified();
+  output->GetPointData()->AddArray(displacement);
+
+  vtkNew<vtkIntArray> roleArray;
+  roleArray->SetName(mlsvtk::fields::Role);
+  roleArray->InsertNextValue(role);
+  vtkNew<vtkStringArray> roleName;
+  roleName->SetName(mlsvtk::fields::RoleName);
+  roleName->InsertNextValue(GetRoleName(role));
+  vtkNew<vtkDoubleArray> weight;
+  weight->SetName(mlsvtk::fields::Weight);
+  weight->InsertNextValue(this->Weight);
+  output->GetFieldData()->AddArray(roleArray);
+  output->GetFieldData()->AddArray(roleName);
+  output->GetFieldData()->AddArray(weight);
 }
 
 void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)

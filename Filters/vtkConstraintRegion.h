@@ -37,7 +37,13 @@
 #include "MLSDeformFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+#include <memory>
+
 class vtkImplicitFunction;
+namespace mlsdeform
+{
+class Collective;
+}
 
 class MLSDEFORMFILTERS_EXPORT vtkConstraintRegion : public vtkPolyDataAlgorithm
 {
@@ -194,8 +200,18 @@ private:
   vtkConstraintRegion(const vtkConstraintRegion&) = delete;
   void operator=(const vtkConstraintRegion&) = delete;
 
+  struct Inputs;
+  /// The role the output stands for (FromPrimitive: its primitive's), once the settings were
+  /// checked against the inputs; throws mlsdeform::InvalidInputException.
+  int CheckedRole(const Inputs& in, const mlsdeform::Collective& group);
+  /// Selects the positions again when what they depend on changed (SelectionInputs).
+  void UpdateSelection(const Inputs& in, const mlsdeform::Collective& group);
+  /// The selected positions with their prescribed displacements (the handle motion about the
+  /// pivot) and the role's field data.
+  void WriteOutput(vtkPolyData* output, int role);
+
   struct Selection;
-  Selection* Selected;
+  std::unique_ptr<Selection> Selected;
 };
 
 #endif
