@@ -7,6 +7,7 @@
 // its projection (ARCHITECTURE.md).
 #pragma once
 
+#include "MLSDeformFiltersModule.h"
 #include "Primitives/Primitives.h"
 #include "Solver/ShapeConstraints.h"
 
@@ -48,7 +49,7 @@ static_assert(Table.size() == Slip + 1, "one row per role");
 }
 
 /// The row of a role value; throws mlsdeform::InvalidInputException for an unknown value.
-const RegionRole& regionRole(int role);
+MLSDEFORMFILTERS_EXPORT const RegionRole& regionRole(int role);
 
 /// Whether the role is a geometric constraint (its points kept by a projection, section 6).
 inline bool isConstraint(int role)
@@ -57,10 +58,10 @@ inline bool isConstraint(int role)
 }
 
 /// The fewest points a region of the role needs: the constraint's, or one for a target.
-std::size_t fewestPoints(int role);
+MLSDEFORMFILTERS_EXPORT std::size_t fewestPoints(int role);
 
 /// The role that keeps a detected primitive of the type (section 6.3): Planarity for a plane,
 /// Cylinder for a cylinder, FeatureLine (a similarity keeps a sphere a sphere and a cone's angle)
 /// for a sphere or a cone.
-int roleOfPrimitive(mlsdeform::PrimitiveType type);
+MLSDEFORMFILTERS_EXPORT int roleOfPrimitive(mlsdeform::PrimitiveType type);
 } // namespace mlsvtk
