@@ -13,6 +13,7 @@ void checkAbort(vtkAlgorithm* algorithm, const mlsdeform::Collective& group)
 {
   if (group.any(algorithm->CheckAbort()))
   {
+    algorithm->SetAbortExecute(0); // the request stops this update only: the next one runs
     throw mlsdeform::AbortedException("cancelled; what finished before is kept for the next update");
   }
 }

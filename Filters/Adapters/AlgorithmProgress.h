@@ -13,5 +13,6 @@ void reportProgress(void* algorithm, double fraction);
 
 /// Throws mlsdeform::AbortedException when the algorithm was asked to stop
 /// (vtkAlgorithm::CheckAbort) on any process of group; every process must call it at the same step.
+/// The request is consumed (AbortExecute cleared): it stops this update, and the next one runs.
 void checkAbort(vtkAlgorithm* algorithm, const mlsdeform::Collective& group = mlsdeform::serial());
 } // namespace mlsvtk
