@@ -2,6 +2,7 @@
 
 #include "Common/BoundingBox.h"
 #include "Adapters/FailurePolicy.h"
+#include "Adapters/DesignVariables.h"
 #include "Adapters/HandleMotion.h"
 #include "Common/KdTree.h"
 #include "Common/GatheredPositions.h"
@@ -319,8 +320,14 @@ struct vtkConstraintRegion::Selection
   vtkSmartPointer<vtkDoubleArray> displacement;
 };
 
+struct vtkConstraintRegion::DesignVariableList
+{
+  std::vector<mlsvtk::DesignVariable> variables;
+};
+
 vtkConstraintRegion::vtkConstraintRegion()
   : Selected(std::make_unique<Selection>())
+  , Designs(std::make_unique<DesignVariableList>())
 {
   this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
@@ -341,6 +348,34 @@ const char* vtkConstraintRegion::GetRoleName(int role)
 void vtkConstraintRegion::SetSelectionArray(const char* name)
 {
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name);
+}
+
+void vtkConstraintRegion::AddDesignVariable(
+  const char* name, int kind, double ax, double ay, double az, double value, double lower, double upper)
+{
+  mlsvtk::DesignVariable variable;
+  variable.name = name ? name : "";
+  variable.kind = kind;
+  variable.axis = mlsdeform::Vec3(ax, ay, az);
+  variable.value = value;
+  variable.lower = lower;
+  variable.upper = upper;
+  this->Designs->variables.push_back(variable); // checked by RequestData: a bad one is reported there
+  this->Modified();
+}
+
+void vtkConstraintRegion::RemoveAllDesignVariables()
+{
+  if (!this->Designs->variables.empty())
+  {
+    this->Designs->variables.clear();
+    this->Modified();
+  }
+}
+
+int vtkConstraintRegion::GetNumberOfDesignVariables()
+{
+  return static_cast<int>(this->Designs->variables.size());
 }
 
 vtkMTimeType vtkConstraintRegion::GetMTime()
@@ -469,6 +504,12 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
   {
     throw mlsdeform::InvalidInputException(problem);
   }
+  if (!this->Designs->variables.empty() && role != Handle)
+  {
+    throw mlsdeform::InvalidInputException(std::string("design variables act on a Handle region's motion; this region is ") +
+      GetRoleName(role) + " (remove its design variables or make it a Handle)");
+  }
+  mlsvtk::checkDesignVariables(this->Designs->variables);
   // a shape constraint per cell: the constraint roles other than Slip (a place, not a shape)
   const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && r != Slip; };
   if (this->CellSets && !perCell(role))
@@ -550,8 +591,8 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
   std::copy(this->Translation, this->Translation + 3, motion.translation);
   std::copy(this->Rotation, this->Rotation + 3, motion.rotation);
   std::copy(this->Scale, this->Scale + 3, motion.scale);
-  double matrix[16];
-  mlsvtk::handleMotionMatrix(motion, this->Pivot, matrix);
+  const std::vector<mlsvtk::DesignVariable>& variables = this->Designs->variables;
+  const mlsvtk::DesignedMotion map(motion, pivot, variables);
 
   output->ShallowCopy(selection.cloud);
   if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)
@@ -563,14 +604,20 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
   displacement->SetNumberOfComponents(3);
   displacement->SetNumberOfTuples(static_cast<vtkIdType>(selected.size()));
   double* d = displacement->GetPointer(0);
+  vtkNew<vtkDoubleArray> derivatives; // d(dbar)/dp, 3 per design variable
+  derivatives->SetName(mlsvtk::fields::PrescribedDerivatives);
+  derivatives->SetNumberOfComponents(3 * static_cast<int>(std::max<std::size_t>(1, variables.size())));
+  derivatives->SetNumberOfTuples(variables.empty() ? 0 : static_cast<vtkIdType>(selected.size()));
   const bool moves = role == Handle;
   for (std::size_t i = 0; i < selected.size(); ++i)
   {
-    const mlsdeform::Vec3& x = selected[i];
-    for (int c = 0; c < 3; ++c)
+    if (moves)
     {
-      // (M x + t) - x for the handle; zero for the other roles
-      d[3 * i + c] = moves ? matrix[4 * c] * x[0] + matrix[4 * c + 1] * x[1] + matrix[4 * c + 2] * x[2] + matrix[4 * c + 3] - x[c] : 0.0;
+      map.displace(selected[i], d + 3 * i, variables.empty() ? nullptr : derivatives->GetPointer(3 * variables.size() * i));
+    }
+    else
+    {
+      std::fill_n(d + 3 * i, 3, 0.0);
     }
   }
   displacement->Modified();
@@ -588,6 +635,25 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
   output->GetFieldData()->AddArray(roleArray);
   output->GetFieldData()->AddArray(roleName);
   output->GetFieldData()->AddArray(weight);
+  if (!variables.empty())
+  {
+    output->GetPointData()->AddArray(derivatives);
+    vtkNew<vtkStringArray> names;
+    names->SetName(mlsvtk::fields::DesignVariableNames);
+    vtkNew<vtkDoubleArray> values, bounds;
+    values->SetName(mlsvtk::fields::DesignVariableValues);
+    bounds->SetName(mlsvtk::fields::DesignVariableBounds);
+    bounds->SetNumberOfComponents(2);
+    for (const mlsvtk::DesignVariable& v : variables)
+    {
+      names->InsertNextValue(v.name);
+      values->InsertNextValue(v.value);
+      bounds->InsertNextTuple2(v.lower, v.upper);
+    }
+    output->GetFieldData()->AddArray(names);
+    output->GetFieldData()->AddArray(values);
+    output->GetFieldData()->AddArray(bounds);
+  }
 }
 
 void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
@@ -606,5 +672,6 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Scale: " << this->Scale[0] << " " << this->Scale[1] << " " << this->Scale[2] << "\n"
      << indent << "Center: " << this->Center[0] << " " << this->Center[1] << " " << this->Center[2] << "\n"
      << indent << "UseCentroid: " << this->UseCentroid << "\n"
-     << indent << "Weight: " << this->Weight << "\n";
+     << indent << "Weight: " << this->Weight << "\n"
+     << indent << "DesignVariables: " << this->Designs->variables.size() << "\n";
 }

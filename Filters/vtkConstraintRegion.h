@@ -159,6 +159,21 @@ public:
   vtkGetVector3Macro(Pivot, double);
 
   ///@{
+  /// Design variables on a Handle region's motion (Adapters/DesignVariables.h), for design
+  /// optimization: each a name, a kind (0 Translate, 1 Rotate, 2 Scale), an axis vector (its
+  /// direction times its coefficient: model units, degrees or change of the scale factor per
+  /// unit of p), the value p and its bounds. A value adds to the typed motion (p = 0 leaves it as
+  /// typed); the output carries the prescribed displacements' derivative per variable (point
+  /// array PrescribedDisplacementDerivatives) and the variables in field data, for MLS Deform's
+  /// sensitivities. One name may appear on several regions (one variable moving a pair of
+  /// handles): MLS Deform needs the same value and bounds on each. Like the motion, the variables
+  /// keep the selection.
+  void AddDesignVariable(const char* name, int kind, double ax, double ay, double az, double value, double lower, double upper);
+  void RemoveAllDesignVariables();
+  int GetNumberOfDesignVariables();
+  ///@}
+
+  ///@{
   /// Relative weight of this region among the regions of its role (default 1).
   vtkSetClampMacro(Weight, double, 0.0, 1e6);
   vtkGetMacro(Weight, double);
@@ -207,11 +222,13 @@ private:
   /// Selects the positions again when what they depend on changed (SelectionInputs).
   void UpdateSelection(const Inputs& in, const mlsdeform::Collective& group);
   /// The selected positions with their prescribed displacements (the handle motion about the
-  /// pivot) and the role's field data.
+  /// pivot, with the design variables) and their derivatives, and the role's field data.
   void WriteOutput(vtkPolyData* output, int role);
 
   struct Selection;
   std::unique_ptr<Selection> Selected;
+  struct DesignVariableList;
+  std::unique_ptr<DesignVariableList> Designs;
 };
 
 #endif

@@ -7,17 +7,90 @@
 #include "Session/SolutionReport.h"
 
 #include <vtkDataObject.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkStringArray.h>
+#include "Common/BoundingBox.h"
+#include "Vocabulary/FieldNames.h"
 #include <vtkErrorCode.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 
 #include <chrono>
+#include <cmath>
 
 using namespace mlsdeform;
 using namespace mlsvtk;
 
 namespace
 {
+// Throws InvalidInputException for a value that is not finite.
+void requireFiniteValues(const std::vector<double>& values, const std::string& what)
+{
+  for (double v : values)
+  {
+    if (!std::isfinite(v))
+    {
+      throw InvalidInputException(what + " has a value that is not finite (NaN or infinity)");
+    }
+  }
+}
+
+// A gradient dJ/dX given per point (n x 3, finite) as doubles; throws InvalidInputException.
+std::vector<double> gradientValues(vtkDataArray* gradient, std::size_t n, const std::string& what)
+{
+  if (!gradient || gradient->GetNumberOfComponents() != 3 || gradient->GetNumberOfTuples() != static_cast<vtkIdType>(n))
+  {
+    throw InvalidInputException(what + " needs 3 components per output point (" + std::to_string(n) + " points here), not " +
+      (gradient ? std::to_string(gradient->GetNumberOfTuples()) + " x " + std::to_string(gradient->GetNumberOfComponents()) : "none"));
+  }
+  std::vector<double> g(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    gradient->GetTuple(static_cast<vtkIdType>(i), &g[3 * i]);
+  }
+  requireFiniteValues(g, what);
+  return g;
+}
+
+// The input's point array `name` over the point sets (zero on a set without it); throws
+// InvalidInputException when no process has it or it is not 3 finite components.
+std::vector<double> objectiveGradient(const std::vector<vtkPointSet*>& sets, const char* name, std::size_t n, const Collective& group)
+{
+  std::vector<double> g(3 * n, 0.0);
+  bool found = false;
+  agree(group, [&] {
+    std::size_t offset = 0;
+    for (vtkPointSet* set : sets)
+    {
+      const std::size_t count = static_cast<std::size_t>(set->GetNumberOfPoints());
+      if (vtkDataArray* array = set->GetPointData()->GetArray(name))
+      {
+        const std::vector<double> values = gradientValues(array, count, std::string("ObjectiveGradientArray '") + name + "'");
+        std::copy(values.begin(), values.end(), g.begin() + 3 * offset);
+        found = true;
+      }
+      offset += count;
+    }
+  });
+  if (!group.any(found))
+  {
+    throw InvalidInputException(std::string("ObjectiveGradientArray '") + name + "' is no point array of the input");
+  }
+  return g;
+}
+
+// values (3 per point) into out as an n x 3 array.
+void setTuples(vtkDoubleArray* out, const std::vector<double>& values)
+{
+  out->SetNumberOfComponents(3);
+  out->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / 3));
+  std::copy(values.begin(), values.end(), out->GetPointer(0));
+}
+
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start)
 {
@@ -31,7 +104,10 @@ vtkSubspaceDeformFilter::vtkSubspaceDeformFilter(int numberOfInputPorts)
   this->SetNumberOfInputPorts(numberOfInputPorts);
 }
 
-vtkSubspaceDeformFilter::~vtkSubspaceDeformFilter() = default;
+vtkSubspaceDeformFilter::~vtkSubspaceDeformFilter()
+{
+  this->SetObjectiveGradientArray(nullptr);
+}
 
 int vtkSubspaceDeformFilter::FillInputPortInformation(int port, vtkInformation* info)
 {
@@ -66,6 +142,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   // deforms its own points; what one process finds wrong stops all of them at the same step.
   const ProcessCollective group;
   DeformationSession& session = *this->Session;
+  this->SessionSolved = false;
   try
   {
     SolutionFigures figures;
@@ -91,6 +168,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     const SpaceDeformation::Solution solution = session.solve(settings, group);
     session.writeOutput(inSets, outSets, solution);
     figures.solveTime = secondsSince(solveStart);
+    this->WriteSensitivities(inSets, outSets, output->GetFieldData(), group);
     figures.setupTime = session.setupTime();
     figures.diagonal = session.diagonal();
 
@@ -106,6 +184,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
                       << " of the bounding-box diagonal): they may conflict with each other or with the targets. "
                          "The output is the last iterate.");
     }
+    this->SessionSolved = true;
   }
   catch (const std::exception& e)
   {
@@ -114,6 +193,120 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     return reportFailure(this, outputVector, e.what(), "The output is the unchanged input.");
   }
   return 1;
+}
+
+void vtkSubspaceDeformFilter::WriteSensitivities(
+  const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field, const Collective& group)
+{
+  DeformationSession& session = *this->Session;
+  if (session.design().size() == 0)
+  {
+    return;
+  }
+  writeDesignTable(session.design(), field);
+  std::string method = session.model().isLinear() ? "exact: back-substitutions of the factorized system"
+                                                  : "implicit differentiation of the constraint iteration's fixed point";
+  if (this->ComputeSensitivities)
+  {
+    session.writeSensitivities(outSets);
+  }
+  const std::string gradientName = this->ObjectiveGradientArray ? this->ObjectiveGradientArray : "";
+  if (!gradientName.empty() && gradientName != "None") // "None": ParaView's choice of no array
+  {
+    const std::vector<double> gradient = objectiveGradient(inSets, this->ObjectiveGradientArray, session.inputPoints().size(), group);
+    vtkNew<vtkDoubleArray> dJdp;
+    dJdp->SetName(fields::ObjectiveSensitivity);
+    for (double value : session.objectiveSensitivity(gradient, group, method))
+    {
+      dJdp->InsertNextValue(value);
+    }
+    field->AddArray(dJdp);
+  }
+  vtkNew<vtkStringArray> methodName;
+  methodName->SetName(fields::SensitivityMethod);
+  methodName->InsertNextValue(method);
+  field->AddArray(methodName);
+}
+
+template <typename Request>
+bool vtkSubspaceDeformFilter::RunSensitivityRequest(Request request)
+{
+  const ProcessCollective group;
+  this->SensitivityError.clear();
+  try
+  {
+    agree(group, [&] {
+      if (!this->SessionSolved)
+      {
+        throw InvalidInputException("no successful update to differentiate: update the filter first");
+      }
+    });
+    request(group);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    this->SensitivityError = e.what();
+    vtkErrorMacro(<< this->SensitivityError);
+    return false;
+  }
+}
+
+bool vtkSubspaceDeformFilter::GetDeformedPoints(vtkDoubleArray* out)
+{
+  return this->RunSensitivityRequest([&](const Collective&) {
+    if (!out)
+    {
+      throw InvalidInputException("GetDeformedPoints needs an output array");
+    }
+    std::vector<double> X(3 * this->Session->inputPoints().size());
+    this->Session->deformedPoints(X.data());
+    setTuples(out, X);
+  });
+}
+
+bool vtkSubspaceDeformFilter::ComputeSensitivityProduct(vtkDoubleArray* seeds, vtkDoubleArray* out)
+{
+  return this->RunSensitivityRequest([&](const Collective& group) {
+    DeformationSession& session = *this->Session;
+    std::vector<double> values;
+    agree(group, [&] {
+      const std::size_t m = session.design().size();
+      if (!seeds || !out || seeds->GetNumberOfComponents() != 1 || seeds->GetNumberOfTuples() != static_cast<vtkIdType>(m))
+      {
+        throw InvalidInputException("ComputeSensitivityProduct needs one seed per design variable (" + std::to_string(m) + ") and an output array");
+      }
+      for (vtkIdType v = 0; v < seeds->GetNumberOfTuples(); ++v)
+      {
+        values.push_back(seeds->GetValue(v));
+      }
+      requireFiniteValues(values, "the seeds");
+    });
+    const Displacements dw = session.tangent(values);
+    std::vector<double> dX(3 * session.inputPoints().size());
+    session.pointDerivative(dw, 0, static_cast<long>(session.inputPoints().size()), dX.data());
+    setTuples(out, dX);
+  });
+}
+
+bool vtkSubspaceDeformFilter::ComputeObjectiveSensitivity(vtkDataArray* gradient, vtkDoubleArray* out)
+{
+  return this->RunSensitivityRequest([&](const Collective& group) {
+    DeformationSession& session = *this->Session;
+    std::vector<double> g;
+    agree(group, [&] {
+      if (!out)
+      {
+        throw InvalidInputException("ComputeObjectiveSensitivity needs an output array");
+      }
+      g = gradientValues(gradient, session.inputPoints().size(), "the gradient dJ/dX");
+    });
+    std::string method;
+    const std::vector<double> dJdp = session.objectiveSensitivity(g, group, method);
+    out->SetNumberOfComponents(1);
+    out->SetNumberOfTuples(static_cast<vtkIdType>(dJdp.size()));
+    std::copy(dJdp.begin(), dJdp.end(), out->GetPointer(0));
+  });
 }
 
 int vtkSubspaceDeformFilter::GetNumberOfSamplings()
@@ -157,5 +350,7 @@ void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "MaxIterations: " << this->MaxIterations << "\n"
      << indent << "Tolerance: " << this->Tolerance << "\n"
      << indent << "Acceleration: " << this->Acceleration << "\n"
-     << indent << "MeshQuality: " << this->MeshQuality << "\n";
+     << indent << "MeshQuality: " << this->MeshQuality << "\n"
+     << indent << "ComputeSensitivities: " << this->ComputeSensitivities << "\n"
+     << indent << "ObjectiveGradientArray: " << (this->ObjectiveGradientArray ? this->ObjectiveGradientArray : "(none)") << "\n";
 }

@@ -38,6 +38,17 @@
  * every process with the message. Shell Deform and the SurfaceVertices energies need the whole
  * mesh and run on one process only.
  *
+ * Design sensitivities (for gradient-based design optimization): the Handle regions' design
+ * variables (vtkConstraintRegion::AddDesignVariable) are listed in field data
+ * DesignVariableNames, DesignVariableValues and DesignVariableBounds. With ComputeSensitivities
+ * on, the output carries per variable p the point array "dX/d<p>", the exact derivative of the
+ * output points; with ObjectiveGradientArray naming a 3-component point array dJ/dX of the input,
+ * field data ObjectiveSensitivity holds dJ/dp per variable (reverse mode) and SensitivityMethod
+ * says how both were computed (Session/DesignSensitivities.h). The same from a script, on the
+ * last update's state without running the pipeline: GetDeformedPoints,
+ * ComputeSensitivityProduct and ComputeObjectiveSensitivity (the Python package mlsdeform wraps
+ * them). Under MPI these are collective: call them on every process (pvbatch --symmetric).
+ *
  * Errors (bad input, a singular system, a cancelled set-up) follow the plugin's one convention
  * (Adapters/FailurePolicy.h): the output is the unchanged input with the field data string
  * "DeformationError" holding the message, the message is in the output window, GetErrorCode() is
@@ -53,11 +64,16 @@
 #include "vtkPassInputTypeAlgorithm.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
+class vtkDataArray;
+class vtkDoubleArray;
 class vtkPointSet;
+class vtkFieldData;
 namespace mlsdeform
 {
+class Collective;
 class SpaceDeformation;
 }
 namespace mlsvtk
@@ -140,6 +156,38 @@ public:
   vtkBooleanMacro(MeshQuality, vtkTypeBool);
   ///@}
 
+  ///@{
+  /// Add the point array dX/d<p> of every design variable p to the output (default off: each
+  /// costs 3 doubles per point and a tangent solve per update).
+  vtkSetMacro(ComputeSensitivities, vtkTypeBool);
+  vtkGetMacro(ComputeSensitivities, vtkTypeBool);
+  vtkBooleanMacro(ComputeSensitivities, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// The input's 3-component point array dJ/dX of an objective J (none by default; zero where J
+  /// does not depend on a point, a block without it counts as zero): the output's field data
+  /// ObjectiveSensitivity holds dJ/dp per design variable. "None" (ParaView's entry for no
+  /// array) is none.
+  vtkSetStringMacro(ObjectiveGradientArray);
+  vtkGetStringMacro(ObjectiveGradientArray);
+  ///@}
+
+  ///@{
+  /// Design sensitivities of the last successful update, without running the pipeline (for
+  /// scripts in optimization loops). Points are this process's output points in output order
+  /// (over the blocks as a composite iterator visits them). Each returns false, with the reason in
+  /// GetSensitivityError() and the output window, when there is no successful update or the
+  /// arguments do not fit; out is then left as it was.
+  /// The output points x + d(x) in double precision (n x 3).
+  bool GetDeformedPoints(vtkDoubleArray* out);
+  /// Forward mode: sum_p seeds[p] dX/dp (seeds: one value per design variable; out: n x 3).
+  bool ComputeSensitivityProduct(vtkDoubleArray* seeds, vtkDoubleArray* out);
+  /// Reverse mode: dJ/dp per design variable (out) from gradient = dJ/dX (n x 3).
+  bool ComputeObjectiveSensitivity(vtkDataArray* gradient, vtkDoubleArray* out);
+  const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
+  ///@}
+
   /// Connections of the regions.
   void AddRegionConnection(vtkAlgorithmOutput* region) { this->AddInputConnection(1, region); }
   void RemoveAllRegions() { this->SetInputConnection(1, nullptr); }
@@ -180,12 +228,22 @@ protected:
   double Tolerance = 1e-7;
   int Acceleration = Anderson;
   vtkTypeBool MeshQuality = 1;
+  vtkTypeBool ComputeSensitivities = 0;
+  char* ObjectiveGradientArray = nullptr;
 
 private:
   vtkSubspaceDeformFilter(const vtkSubspaceDeformFilter&) = delete;
   void operator=(const vtkSubspaceDeformFilter&) = delete;
 
   std::unique_ptr<mlsvtk::DeformationSession> Session;
+  /// The design table, the dX/dp arrays and dJ/dp of this update into the output.
+  void WriteSensitivities(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
+    const mlsdeform::Collective& group);
+  bool SessionSolved = false; // the last update succeeded: the session's state is the output's
+  std::string SensitivityError;
+  /// Runs a sensitivity request: false with the message on a failure or without a solved session.
+  template <typename Request>
+  bool RunSensitivityRequest(Request request);
 };
 
 #endif

@@ -3,9 +3,14 @@
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/PointSets.h"
 #include "Common/BoundingBox.h"
+#include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
 
 #include <string>
 
@@ -62,6 +67,7 @@ void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkIn
     Diagonal = boundingBox(Points, group).size().norm();
   }
   gatherRegions(Regions, NextVersion, group);
+  Design = designTable(Regions);
   std::vector<RegionKey> slipKey;
   for (const RegionInput& r : Regions)
   {
@@ -176,9 +182,102 @@ bool DeformationSession::updateFactorization(const EnergyWeights& weights)
 
 SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& settings, const Collective& group)
 {
-  SpaceDeformation::Solution solution = Model->solve(gatherPrescribed(Regions, Prescribed, group), settings);
+  Last = SpaceDeformation::Solution();
+  Last = Model->solve(gatherPrescribed(Regions, Prescribed, group), settings);
+  if (Design.size() > 0)
+  {
+    Derivatives.gather(Regions, Design, group);
+  }
   ++Counts.solve;
-  return solution;
+  return Last;
+}
+
+Displacements DeformationSession::tangent(const std::vector<double>& seeds) const
+{
+  const std::vector<PointDisplacements> along = Derivatives.along(seeds);
+  std::vector<PointDisplacementsView> views;
+  for (const PointDisplacements& d : along)
+  {
+    views.emplace_back(d.data(), d.rows(), 3);
+  }
+  return Model->tangent(views, Last);
+}
+
+void DeformationSession::pointDerivative(const Displacements& dw, long offset, long n, double* out) const
+{
+  const PointDisplacements rows = dw; // row-major, as writeOutput's w
+  multiplyRows(PointRows, rows, offset, offset + n, out);
+  slideOnPlanes(Slips, Points, offset, n, out);
+}
+
+void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& outSets) const
+{
+  for (std::size_t v = 0; v < Design.size(); ++v)
+  {
+    std::vector<double> seeds(Design.size(), 0.0);
+    seeds[v] = 1;
+    const Displacements dw = tangent(seeds);
+    long offset = 0;
+    for (vtkPointSet* set : outSets)
+    {
+      const vtkIdType n = set->GetNumberOfPoints();
+      vtkNew<vtkDoubleArray> derivative;
+      derivative->SetName((fields::SensitivityPrefix + Design.names[v]).c_str());
+      derivative->SetNumberOfComponents(3);
+      derivative->SetNumberOfTuples(n);
+      if (n > 0)
+      {
+        pointDerivative(dw, offset, n, derivative->GetPointer(0));
+      }
+      set->GetPointData()->AddArray(derivative);
+      offset += n;
+    }
+  }
+}
+
+std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double> gradient, const Collective& group, std::string& method) const
+{
+  // g -> S^T g (the slide's transpose), then H = Phi^T S^T g over the canonical positions
+  slideOnPlanes(Slips, Points, 0, static_cast<long>(Points.size()), gradient.data(), true);
+  const GatheredGradient g = gatherGradient(Points, gradient, group);
+  std::vector<int> outside;
+  const SparseRowMatrix phi = subspaceMatrix(Model->basis(), g.positions, &outside);
+  const Displacements H = phi.transpose() * g.values;
+  if (Model->isLinear())
+  {
+    method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";
+    return Derivatives.contract(Model->prescribedGradient(H));
+  }
+  method = "implicit differentiation of the constraint iteration's fixed point (GMRES, the projections' derivatives by central "
+           "differences): one tangent per variable";
+  std::vector<double> dJdp(Design.size(), 0.0);
+  for (std::size_t v = 0; v < Design.size(); ++v)
+  {
+    std::vector<double> seeds(Design.size(), 0.0);
+    seeds[v] = 1;
+    const Displacements dw = tangent(seeds);
+    for (long j = 0; j < dw.rows(); ++j)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        dJdp[v] += H(j, c) * dw(j, c);
+      }
+    }
+  }
+  return dJdp;
+}
+
+void DeformationSession::deformedPoints(double* out) const
+{
+  const long n = static_cast<long>(Points.size());
+  pointDerivative(Last.w, 0, n, out); // d(x), as writeOutput computes it
+  for (long i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out[3 * i + c] += Points[i][c];
+    }
+  }
 }
 
 void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,

@@ -27,6 +27,7 @@
 #include "Basis/SubspaceOperators.h"
 #include "Common/Collective.h"
 #include "Session/DeformedOutput.h"
+#include "Session/DesignSensitivities.h"
 #include "Session/MeshQualityReport.h"
 #include "Session/RegionInputs.h"
 #include "Session/SlipPlanes.h"
@@ -130,7 +131,8 @@ public:
   /// "Refactorized"). Throws SolverException for a singular system.
   bool updateFactorization(const mlsdeform::EnergyWeights& weights);
 
-  /// Stage 6: the solve for the targets' prescribed displacements of this update.
+  /// Stage 6: the solve for the targets' prescribed displacements of this update (kept: the
+  /// design sensitivities below are those of the last solve).
   mlsdeform::SpaceDeformation::Solution solve(const mlsdeform::IterationSettings& settings, const mlsdeform::Collective& group);
 
   /// x + d(x) and Displacement into the output point sets (d = Phi w, slid onto the slip planes).
@@ -140,6 +142,24 @@ public:
   /// The volume mesh's quality before and after, into field (MeshQualityReport.h).
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
     const mlsdeform::Collective& group);
+
+  /// Design sensitivities of the last solve (DesignSensitivities.h). The design variables of this
+  /// update's Handle regions:
+  const DesignTable& design() const { return Design; }
+  /// Forward mode: the coefficients' derivative dw along seeds (one per design variable).
+  mlsdeform::Displacements tangent(const std::vector<double>& seeds) const;
+  /// S Phi dw (slid like the displacement) at this process's points [offset, offset + n), into out.
+  void pointDerivative(const mlsdeform::Displacements& dw, long offset, long n, double* out) const;
+  /// The point arrays dX/d<variable> of every design variable into the output point sets.
+  void writeSensitivities(const std::vector<vtkPointSet*>& outSets) const;
+  /// Reverse mode: dJ/dp per design variable from g = dJ/dX at this process's points (3 values
+  /// per point, in order; a collective operation under MPI); method says how it was computed.
+  std::vector<double> objectiveSensitivity(std::vector<double> gradient, const mlsdeform::Collective& group, std::string& method) const;
+  /// x + d(x) in double precision at this process's points (the output's points before they are
+  /// stored in the input's precision).
+  void deformedPoints(double* out) const;
+  /// This process's input points, concatenated over the point sets.
+  const mlsdeform::PointList& inputPoints() const { return Points; }
 
   const mlsdeform::SpaceDeformation& model() const { return *Model; }
   const std::vector<RegionInput>& regions() const { return Regions; }
@@ -174,6 +194,9 @@ private:
 
   // stage 6
   std::vector<std::vector<double>> Prescribed; // the targets' displacements of all processes, gathered
+  DesignTable Design;
+  PrescribedDerivatives Derivatives;
+  mlsdeform::SpaceDeformation::Solution Last;
   DeformedOutput Output;
   MeshQualityReport Quality;
 };

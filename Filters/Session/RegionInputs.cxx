@@ -12,6 +12,7 @@
 #include <vtkIntArray.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 
 #include <map>
 #include <string>
@@ -20,6 +21,43 @@ using namespace mlsdeform;
 
 namespace mlsvtk
 {
+namespace
+{
+// The design variables of a region's output (vtkConstraintRegion::AddDesignVariable), if any.
+void readDesignVariables(vtkPolyData* data, const std::string& which, RegionInput& region)
+{
+  region.variables.clear();
+  region.values.clear();
+  region.lower.clear();
+  region.upper.clear();
+  region.derivatives = nullptr;
+  auto* names = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(fields::DesignVariableNames));
+  if (!names || names->GetNumberOfValues() == 0)
+  {
+    return;
+  }
+  const vtkIdType m = names->GetNumberOfValues();
+  vtkDataArray* values = data->GetFieldData()->GetArray(fields::DesignVariableValues);
+  vtkDataArray* bounds = data->GetFieldData()->GetArray(fields::DesignVariableBounds);
+  vtkDataArray* derivatives = data->GetPointData()->GetArray(fields::PrescribedDerivatives);
+  if (!values || values->GetNumberOfTuples() != m || !bounds || bounds->GetNumberOfTuples() != m || bounds->GetNumberOfComponents() != 2 ||
+    !derivatives || derivatives->GetNumberOfComponents() != 3 * m ||
+    derivatives->GetNumberOfTuples() != static_cast<vtkIdType>(region.localPositions.size()))
+  {
+    throw InvalidInputException(which + ": its design variables come without their values, bounds or derivatives (" +
+      fields::PrescribedDerivatives + ", 3 per variable and point)");
+  }
+  for (vtkIdType v = 0; v < m; ++v)
+  {
+    region.variables.push_back(names->GetValue(v));
+    region.values.push_back(values->GetTuple1(v));
+    region.lower.push_back(bounds->GetComponent(v, 0));
+    region.upper.push_back(bounds->GetComponent(v, 1));
+  }
+  region.derivatives = derivatives;
+}
+}
+
 void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& regions)
 {
   regions.resize(connections->GetNumberOfInformationObjects());
@@ -71,6 +109,7 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     {
       throw InvalidInputException(which + ": one PrescribedDisplacement per point is needed");
     }
+    readDesignVariables(data, which, region);
   }
 }
 

@@ -9,6 +9,7 @@
 #include "Common/GatheredPositions.h"
 #include "Solver/ShapeConstraints.h"
 
+#include <string>
 #include <vector>
 
 class vtkDataArray;
@@ -25,6 +26,10 @@ struct RegionInput
   std::vector<int> localSets;           // a ConstraintSet per local position (CellSets), or empty
   bool localChanged = true;             // since the last gathering
   vtkDataArray* displacement = nullptr; // this update's local PrescribedDisplacement
+  // the region's design variables (a Handle's; Adapters/DesignVariables.h) this update
+  std::vector<std::string> variables;
+  std::vector<double> values, lower, upper;
+  vtkDataArray* derivatives = nullptr;  // local PrescribedDisplacementDerivatives, 3 per variable
 
   mlsdeform::GatheredPositions gathered; // the positions of all processes, in canonical order
   long version = -1;                     // of the gathered positions and sets (-1: none yet)

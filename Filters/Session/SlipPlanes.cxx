@@ -34,7 +34,7 @@ std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions)
   return planes;
 }
 
-void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points, long offset, long n, double* d)
+void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points, long offset, long n, double* d, bool transposed)
 {
   if (planes.empty())
   {
@@ -43,8 +43,10 @@ void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i)
   {
-    for (const SlipPlane& slip : planes)
+    for (std::size_t k = 0; k < planes.size(); ++k)
     {
+      // each slide is the projection I - n n^T (symmetric): the transposed map is their product reversed
+      const SlipPlane& slip = planes[transposed ? planes.size() - 1 - k : k];
       if (slip.holds(points[offset + i]))
       {
         Eigen::Map<Vec3> displacement(d + 3 * i);

@@ -31,6 +31,8 @@ std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions);
 
 /// The displacement d of the points [offset, offset + n) on a slip plane loses its normal
 /// component: the constraint iteration leaves them within its tolerance of the plane, this puts
-/// them on it (as OpenFOAM's slip does).
-void slideOnPlanes(const std::vector<SlipPlane>& planes, const mlsdeform::PointList& points, long offset, long n, double* d);
+/// them on it (as OpenFOAM's slip does). transposed: the transposed map (the planes in reverse
+/// order), for the reverse mode of design sensitivities.
+void slideOnPlanes(const std::vector<SlipPlane>& planes, const mlsdeform::PointList& points, long offset, long n, double* d,
+  bool transposed = false);
 } // namespace mlsvtk

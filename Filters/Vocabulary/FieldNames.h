@@ -10,8 +10,17 @@ constexpr const char* RoleName = "RoleName";               // field data, string
 constexpr const char* Weight = "Weight";                   // field data, double
 constexpr const char* PrescribedDisplacement = "PrescribedDisplacement"; // point data, 3 components
 constexpr const char* ConstraintSet = "ConstraintSet";     // point data: the constraint set of a position (CellSets)
+// design variables (Adapters/DesignVariables.h): on a Handle region's output and, for all
+// regions together, on MLS Deform's output
+constexpr const char* DesignVariableNames = "DesignVariableNames";   // field data, string per variable
+constexpr const char* DesignVariableValues = "DesignVariableValues"; // field data, double per variable
+constexpr const char* DesignVariableBounds = "DesignVariableBounds"; // field data, (lower, upper) per variable
+constexpr const char* PrescribedDerivatives = "PrescribedDisplacementDerivatives"; // point data: d(dbar)/dp, 3 per variable
 // MLS Deform / Shell Deform output
 constexpr const char* Displacement = "Displacement";       // point data, 3 components
+constexpr const char* SensitivityPrefix = "dX/d";          // point data "dX/d<variable>", 3 components (ComputeSensitivities)
+constexpr const char* ObjectiveSensitivity = "ObjectiveSensitivity"; // field data: dJ/dp per variable (ObjectiveGradientArray)
+constexpr const char* SensitivityMethod = "SensitivityMethod";       // field data, string: how the derivatives were computed
 /// Field-data string on an output whose filter failed: the message (the output window has it too).
 constexpr const char* Error = "DeformationError";
 // MLS Sampler output -> MLS Deform

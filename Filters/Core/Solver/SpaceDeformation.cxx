@@ -1,6 +1,7 @@
 #include "Solver/SpaceDeformation.h"
 
 #include "Common/BoundingBox.h"
+#include "Solver/LinearizedFixedPoint.h"
 
 #include "Basis/MLSBasis.h"
 #include "Basis/RadialBasis.h"
@@ -220,6 +221,33 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDispla
   return solve(views, settings);
 }
 
+Displacements SpaceDeformation::targetRightHandSide(const std::vector<PointDisplacementsView>& prescribed, std::vector<Displacements>* perRegion) const
+{
+  // b_r = Phi_r^T F_r^2 dbar_r; the right-hand side of eq. 14 is gamma_f sum_r b_r.
+  const long k = static_cast<long>(Basis->size());
+  if (perRegion)
+  {
+    perRegion->assign(prescribed.size(), Displacements::Zero(k, 3));
+  }
+  Displacements b0 = Displacements::Zero(k, 3);
+  for (std::size_t r = 0; r < prescribed.size(); ++r)
+  {
+    if (!prescribed[r].any())
+    {
+      continue; // a fixed region: the product would be zeros, at the cost of a pass over Phi_r
+    }
+    PointDisplacements product(k, 3);
+    multiplyRows(RegionTransposed[r], prescribed[r], 0, k, product.data());
+    const Displacements br = RegionScale[r] * product;
+    b0 += Weights.fix * br;
+    if (perRegion)
+    {
+      (*perRegion)[r] = br;
+    }
+  }
+  return b0;
+}
+
 SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDisplacementsView>& prescribed, const IterationSettings& settings) const
 {
   if (Factors.empty())
@@ -227,22 +255,8 @@ SpaceDeformation::Solution SpaceDeformation::solve(const std::vector<PointDispla
     throw SolverException("solve() before a successful factorize()");
   }
   checkPrescribed(prescribed);
-  // b_r = Phi_r^T F_r^2 dbar_r; the right-hand side of eq. 14 is gamma_f sum_r b_r.
-  const long k = static_cast<long>(Basis->size());
-  std::vector<Displacements> b(prescribed.size(), Displacements(k, 3));
-  Displacements b0 = Displacements::Zero(k, 3);
-  for (std::size_t r = 0; r < prescribed.size(); ++r)
-  {
-    if (!prescribed[r].any())
-    {
-      b[r].setZero(); // a fixed region: the product would be zeros, at the cost of a pass over Phi_r
-      continue;
-    }
-    PointDisplacements product(k, 3);
-    multiplyRows(RegionTransposed[r], prescribed[r], 0, k, product.data());
-    b[r] = RegionScale[r] * product;
-    b0 += Weights.fix * b[r];
-  }
+  std::vector<Displacements> b;
+  const Displacements b0 = targetRightHandSide(prescribed, &b);
   Solution solution;
   if (Constraints && Constraints->iterative())
   {
@@ -373,6 +387,69 @@ void SpaceDeformation::iterateConstraints(const Displacements& b0, const Iterati
     projections = Constraints->project(positions, axes);
   }
   solution.constraintResidual = ShapeConstraints::largestDistances(positions, projections);
+  solution.axes = std::move(axes);
+}
+
+Displacements SpaceDeformation::constraintRightHandSide(const Displacements& w, std::vector<Vec3> axes) const
+{
+  const std::vector<PointList> positions = Constraints->positions(w);
+  return Constraints->rightHandSide(positions, Constraints->project(positions, axes));
+}
+
+Displacements SpaceDeformation::tangent(const std::vector<PointDisplacementsView>& dPrescribed, const Solution& at) const
+{
+  if (Factors.empty())
+  {
+    throw SolverException("tangent() before a successful factorize()");
+  }
+  checkPrescribed(dPrescribed);
+  const Displacements direct = solveSystem(targetRightHandSide(dPrescribed, nullptr)); // A^-1 db0
+  if (isLinear())
+  {
+    return direct;
+  }
+  if (at.w.rows() != static_cast<long>(Basis->size()) || at.axes.size() != Constraints->restAxes().size())
+  {
+    throw SolverException("tangent() needs the solution of solve() it differentiates");
+  }
+  // M v = gamma_c A^-1 dF/dw v, dF/dw v by central differences of F at the fixed point
+  const long k = static_cast<long>(Basis->size());
+  const auto M = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    const Eigen::Map<const Displacements> direction(v.data(), k, 3);
+    const double step = centralDifferenceStep(Length, direction.cwiseAbs().maxCoeff());
+    if (!(step > 0))
+    {
+      return Eigen::VectorXd::Zero(v.size());
+    }
+    const Displacements dF =
+      (constraintRightHandSide(at.w + step * direction, at.axes) - constraintRightHandSide(at.w - step * direction, at.axes)) / (2 * step);
+    const Displacements Mv = solveSystem(Weights.constraint * dF);
+    return Eigen::Map<const Eigen::VectorXd>(Mv.data(), Mv.size());
+  };
+  const Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(direct.data(), direct.size());
+  const Eigen::VectorXd dw = solveIdentityMinus(M, r);
+  return Eigen::Map<const Displacements>(dw.data(), k, 3);
+}
+
+PointDisplacements SpaceDeformation::prescribedGradient(const Displacements& H) const
+{
+  if (Factors.empty())
+  {
+    throw SolverException("prescribedGradient() before a successful factorize()");
+  }
+  if (!isLinear())
+  {
+    throw SolverException("the reverse mode through the constraint iteration is not available: use tangent() per design variable");
+  }
+  // dJ/d(dbar_r) = (d w / d dbar_r)^T H = gamma_f F_r^2 Phi_r A^-T H, A symmetric
+  const Displacements lambda = solveSystem(H);
+  PointDisplacements gradient(RegionSubspace.rows(), 3);
+  multiplyRows(RegionSubspace, lambda, 0, RegionSubspace.rows(), gradient.data());
+  for (std::size_t r = 0; r < RegionScale.size(); ++r)
+  {
+    gradient.middleRows(RegionBegin[r], RegionBegin[r + 1] - RegionBegin[r]) *= Weights.fix * RegionScale[r];
+  }
+  return gradient;
 }
 
 } // namespace mlsdeform

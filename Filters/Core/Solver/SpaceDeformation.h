@@ -114,6 +114,7 @@ public:
     int iterations = 0;                     // local/global iterations (0 without constraints)
     bool converged = true;
     double estimatedError = 0;              // estimated distance of the constrained points from the fixed point
+    std::vector<Vec3> axes;                 // the cylinder fits' axes at the last iterate (the tangent's projections start there)
   };
 
   /// Solves eq. 14 for the prescribed displacements of each region (one row per region
@@ -127,6 +128,26 @@ public:
   Solution solve(const std::vector<PointDisplacementsView>& prescribed, const IterationSettings& settings = {}) const;
   Solution solve(const std::vector<PointDisplacements>& prescribed, const IterationSettings& settings = {}) const;
 
+  /// Whether the solution is linear in the prescribed displacements: no constraint, or slip
+  /// planes normal to an axis only (no local/global iteration).
+  bool isLinear() const { return !Constraints || !Constraints->iterative(); }
+
+  /// The derivative dw of solve()'s coefficients along the prescribed displacements' derivative
+  /// dPrescribed (one set per region, as for solve), at the solution `at` of solve(). Linear: the
+  /// system's solution for dPrescribed's right-hand side, exact. With the iteration of section 6:
+  /// implicit differentiation of its fixed point w = G(w) = A^-1 (b0 + gamma_c F(w)),
+  ///   (I - gamma_c A^-1 dF/dw) dw = A^-1 db0,
+  /// solved by GMRES on the same factorization, with dF/dw v, the projections' derivative along
+  /// v, by central differences (LinearizedFixedPoint.h). Throws SolverException when GMRES does
+  /// not reach its tolerance.
+  Displacements tangent(const std::vector<PointDisplacementsView>& dPrescribed, const Solution& at) const;
+
+  /// Reverse mode of a linear solution: for H = dJ/dw (k x 3, the objective's gradient with
+  /// respect to the coefficients), dJ/d(dbar) at every region position (stacked in the order of
+  /// setRegions): gamma_f F_r^2 Phi_r A^-1 H (eq. 14 is symmetric). Throws SolverException when
+  /// the solution is not linear (isLinear()).
+  PointDisplacements prescribedGradient(const Displacements& H) const;
+
   /// The model's length l (for MLS samples, the largest side of the sampled box).
   double lengthScale() const { return Length; }
 
@@ -137,6 +158,11 @@ public:
 
 private:
   void checkPrescribed(const std::vector<PointDisplacementsView>& prescribed) const;
+  /// The right-hand side of eq. 14, gamma_f sum_r b_r, and each region's b_r = Phi_r^T F_r^2 dbar_r.
+  Displacements targetRightHandSide(const std::vector<PointDisplacementsView>& prescribed, std::vector<Displacements>* perRegion) const;
+  /// F(w): the constraints' right-hand side for the projections of the positions of w (the
+  /// projections start from the cylinder axes given).
+  Displacements constraintRightHandSide(const Displacements& w, std::vector<Vec3> axes) const;
   /// The system's solution for the right-hand sides b (one column per coordinate).
   Displacements solveSystem(const Displacements& b) const;
   /// Section 6's local/global iteration from w = 0 for the right-hand side b0 of eq. 14.

@@ -1,0 +1,192 @@
+#include "Session/DesignSensitivities.h"
+
+#include "Common/GatheredPositions.h"
+#include "Vocabulary/FieldNames.h"
+#include "Vocabulary/RegionRoles.h"
+
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkStringArray.h>
+
+#include <algorithm>
+#include <numeric>
+
+using namespace mlsdeform;
+
+namespace mlsvtk
+{
+int DesignTable::column(const std::string& name) const
+{
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+DesignTable designTable(const std::vector<RegionInput>& regions)
+{
+  DesignTable table;
+  for (std::size_t c = 0; c < regions.size(); ++c)
+  {
+    const RegionInput& region = regions[c];
+    for (std::size_t v = 0; v < region.variables.size(); ++v)
+    {
+      const int column = table.column(region.variables[v]);
+      if (column < 0)
+      {
+        table.names.push_back(region.variables[v]);
+        table.values.push_back(region.values[v]);
+        table.lower.push_back(region.lower[v]);
+        table.upper.push_back(region.upper[v]);
+      }
+      else if (table.values[column] != region.values[v] || table.lower[column] != region.lower[v] || table.upper[column] != region.upper[v])
+      {
+        throw InvalidInputException("design variable '" + region.variables[v] + "' has the value " + std::to_string(region.values[v]) +
+          " and bounds [" + std::to_string(region.lower[v]) + ", " + std::to_string(region.upper[v]) + "] on Regions input #" +
+          std::to_string(c) + " but " + std::to_string(table.values[column]) + " and [" + std::to_string(table.lower[column]) + ", " +
+          std::to_string(table.upper[column]) + "] on an earlier one: one variable has one value");
+      }
+    }
+  }
+  return table;
+}
+
+void writeDesignTable(const DesignTable& table, vtkFieldData* field)
+{
+  vtkNew<vtkStringArray> names;
+  names->SetName(fields::DesignVariableNames);
+  vtkNew<vtkDoubleArray> values, bounds;
+  values->SetName(fields::DesignVariableValues);
+  bounds->SetName(fields::DesignVariableBounds);
+  bounds->SetNumberOfComponents(2);
+  for (std::size_t v = 0; v < table.size(); ++v)
+  {
+    names->InsertNextValue(table.names[v]);
+    values->InsertNextValue(table.values[v]);
+    bounds->InsertNextTuple2(table.lower[v], table.upper[v]);
+  }
+  field->AddArray(names);
+  field->AddArray(values);
+  field->AddArray(bounds);
+}
+
+void PrescribedDerivatives::gather(const std::vector<RegionInput>& regions, const DesignTable& table, const Collective& group)
+{
+  Variables = table.size();
+  Counts.clear();
+  Columns.clear();
+  Values.clear();
+  for (const RegionInput& region : regions)
+  {
+    if (isConstraint(region.role))
+    {
+      continue;
+    }
+    Counts.push_back(static_cast<long>(region.gathered.positions.size()));
+    std::vector<int> columns;
+    for (const std::string& name : region.variables)
+    {
+      columns.push_back(table.column(name));
+    }
+    std::vector<double> values;
+    if (!columns.empty())
+    {
+      const int components = 3 * static_cast<int>(columns.size());
+      vtkDataArray* d = region.derivatives;
+      std::vector<double> local(static_cast<std::size_t>(d->GetNumberOfTuples()) * components);
+      for (vtkIdType i = 0; i < d->GetNumberOfTuples(); ++i)
+      {
+        d->GetTuple(i, &local[static_cast<std::size_t>(i) * components]);
+      }
+      values = gatherValues(local.data(), d->GetNumberOfTuples(), components, region.gathered, group);
+    }
+    Columns.push_back(std::move(columns));
+    Values.push_back(std::move(values));
+  }
+}
+
+std::vector<PointDisplacements> PrescribedDerivatives::along(const std::vector<double>& seeds) const
+{
+  std::vector<PointDisplacements> out;
+  for (std::size_t r = 0; r < Counts.size(); ++r)
+  {
+    PointDisplacements d = PointDisplacements::Zero(Counts[r], 3);
+    const std::size_t m = Columns[r].size();
+    for (long i = 0; i < Counts[r]; ++i)
+    {
+      for (std::size_t v = 0; v < m; ++v)
+      {
+        const double seed = seeds[Columns[r][v]];
+        if (seed != 0)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            d(i, c) += seed * Values[r][(i * m + v) * 3 + c];
+          }
+        }
+      }
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+std::vector<double> PrescribedDerivatives::contract(const PointDisplacements& gradient) const
+{
+  std::vector<double> dJdp(Variables, 0.0);
+  long row = 0;
+  for (std::size_t r = 0; r < Counts.size(); ++r)
+  {
+    const std::size_t m = Columns[r].size();
+    for (long i = 0; i < Counts[r]; ++i, ++row)
+    {
+      for (std::size_t v = 0; v < m; ++v)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          dJdp[Columns[r][v]] += gradient(row, c) * Values[r][(i * m + v) * 3 + c];
+        }
+      }
+    }
+  }
+  return dJdp;
+}
+
+GatheredGradient gatherGradient(const PointList& points, const std::vector<double>& gradient, const Collective& group)
+{
+  // this process's points with a non-zero g, equal positions together (in their order)
+  std::vector<long> carrying;
+  for (long i = 0; i < static_cast<long>(points.size()); ++i)
+  {
+    if (gradient[3 * i] != 0 || gradient[3 * i + 1] != 0 || gradient[3 * i + 2] != 0)
+    {
+      carrying.push_back(i);
+    }
+  }
+  const auto less = [&](long a, long b) {
+    return std::lexicographical_compare(points[a].data(), points[a].data() + 3, points[b].data(), points[b].data() + 3);
+  };
+  std::stable_sort(carrying.begin(), carrying.end(), less);
+  PointList local;
+  std::vector<double> sums;
+  for (std::size_t j = 0; j < carrying.size(); ++j)
+  {
+    const long i = carrying[j];
+    if (j == 0 || points[i] != points[carrying[j - 1]])
+    {
+      local.push_back(points[i]);
+      sums.insert(sums.end(), { 0.0, 0.0, 0.0 });
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      sums[sums.size() - 3 + c] += gradient[3 * i + c];
+    }
+  }
+  const GatheredPositions order = gatherPositions(local, {}, group);
+  const std::vector<double> values = gatherValues(sums.data(), static_cast<long>(local.size()), 3, order, group);
+  GatheredGradient out;
+  out.positions = order.positions;
+  out.values = Eigen::Map<const PointDisplacements>(values.data(), static_cast<long>(order.positions.size()), 3);
+  return out;
+}
+} // namespace mlsvtk
