@@ -1,0 +1,311 @@
+"""Design variables on an MLS Deform filter's Handle regions, and exact sensitivities.
+
+Output order: the points of every array this module returns or takes (``update()``,
+``totalSensitivityProd``, ``totalSensitivity``) are the MLS Deform output's points, block after
+block in the order a composite iterator visits the leaves (for an OpenFOAM case read with
+*Decompose polyhedra* off: the internal mesh in polyMesh order first, then the patches), and
+within a block in the block's order. Under MPI (``pvbatch --symmetric``: every process runs the
+script) each process sees its own part of the output; ``totalSensitivity`` and
+``checkDerivatives`` return the global values on every process.
+"""
+import math
+
+import numpy as np
+
+# The kinds of design variable, in the order of vtkConstraintRegion's kind numbers
+# (Filters/Adapters/DesignVariables.h: DesignKindNames).
+KINDS = ("translate", "rotate", "scale")
+_ROW = 8            # name, kind, axis x, y, z, value, lower, upper: one DesignVariables row
+_UNBOUNDED = 1e300  # a missing bound (the filter needs finite numbers)
+_HANDLE = 0         # vtkConstraintRegion::Handle
+
+
+def _load_wrapping():
+    """The Python wrapping of the plugin's filters (built next to the plugin): it makes the
+    MLS Deform VTK object's sensitivity methods callable."""
+    import importlib
+    import os
+    import sys
+    try:
+        return importlib.import_module("mlsdeform_wrapping.MLSDeformFilters")
+    except ImportError:
+        pass
+    from paraview.modules.vtkRemotingCore import vtkPVPluginTracker
+    tracker = vtkPVPluginTracker.GetInstance()
+    for i in range(tracker.GetNumberOfPlugins()):
+        if tracker.GetPluginName(i) == "MLSDeform" and tracker.GetPluginLoaded(i):
+            folder = os.path.dirname(tracker.GetPluginFileName(i))
+            if os.path.isdir(os.path.join(folder, "mlsdeform_wrapping")) and folder not in sys.path:
+                sys.path.append(folder)
+            return importlib.import_module("mlsdeform_wrapping.MLSDeformFilters")
+    raise RuntimeError("the MLSDeform plugin is not loaded: LoadPlugin(...) it before using mlsdeform")
+
+
+def _algorithm(proxy):
+    _load_wrapping()
+    algorithm = proxy.GetClientSideObject()
+    if algorithm is None:
+        raise RuntimeError("mlsdeform.DesignVariables needs a builtin session (pvpython or pvbatch without a server "
+                           "connection): the sensitivities are computed on the filter itself")
+    return algorithm
+
+
+def _vector(value, what):
+    try:
+        v = [float(x) for x in value]
+    except TypeError:
+        raise ValueError(f"{what} must be 3 numbers, not {value!r}") from None
+    if len(v) != 3 or not all(math.isfinite(x) for x in v):
+        raise ValueError(f"{what} must be 3 finite numbers, not {value!r}")
+    if not any(v):
+        raise ValueError(f"{what} must not be zero: it is the variable's direction times its coefficient")
+    return v
+
+
+class DesignVariables:
+    """The design variables of one MLS Deform filter (a paraview.simple proxy).
+
+    Variables live on the Handle regions (their DesignVariables property), so they are saved with
+    a ParaView state and found again: ``DesignVariables(deformer)`` reads the ones its regions
+    already have.
+    """
+
+    def __init__(self, deformer):
+        self.deformer = deformer
+        self._algorithm = _algorithm(deformer)
+        # name -> {"kind", "regions": [proxy], "axes": [[x, y, z]], "value", "lower", "upper"}, in definition order
+        self._variables = {}
+        for region in self._regions():
+            rows = list(region.DesignVariables)
+            for r in range(0, len(rows), _ROW):
+                name, kind = str(rows[r]), int(rows[r + 1])
+                axis = [float(x) for x in rows[r + 2:r + 5]]
+                value, lower, upper = (float(x) for x in rows[r + 5:r + 8])
+                entry = self._variables.setdefault(name, {"kind": KINDS[kind], "regions": [], "axes": [], "value": value,
+                                                          "lower": lower, "upper": upper})
+                entry["regions"].append(region)
+                entry["axes"].append(axis)
+
+    # -- definition -------------------------------------------------------------------------
+    def addHandleDV(self, name, regions, translate=None, rotate=None, scale=None, lower=None, upper=None, value=0.0):
+        """A design variable p on one Handle region or several (a list): exactly one of
+        ``translate`` (a direction in model units per unit of p), ``rotate`` (an axis through the
+        region's pivot; its length is degrees per unit of p) or ``scale`` (an axis along which the
+        scale factor grows by p times its length). With several regions give one vector for all,
+        or a list of one per region (e.g. [[0, 1, 0], [0, -1, 0]] for a symmetric pair).
+        ``lower``/``upper`` bound p (None: unbounded); ``value`` is its start (default 0: the
+        motion as typed). Raises ValueError and changes nothing when an argument is wrong."""
+        if not isinstance(name, str) or not name or any(c in name for c in ",\n"):
+            raise ValueError(f"a design variable's name must be a non-empty string without commas, not {name!r}")
+        if name in self._variables:
+            raise ValueError(f"design variable {name!r} is defined already")
+        given = [(k, v) for k, v in zip(KINDS, (translate, rotate, scale)) if v is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of translate=, rotate= or scale=")
+        kind, axes = given[0]
+        regions = list(regions) if isinstance(regions, (list, tuple)) else [regions]
+        if not regions:
+            raise ValueError("a design variable needs at least one Handle region")
+        axes = np.asarray(axes, dtype=float)
+        if axes.ndim == 1:
+            axes = np.tile(axes, (len(regions), 1))
+        if axes.shape != (len(regions), 3):
+            raise ValueError(f"{kind}= needs one 3-vector, or one per region ({len(regions)}), not shape {axes.shape}")
+        axes = [_vector(a, f"the {kind} axis of {name!r}") for a in axes]
+        lower = -_UNBOUNDED if lower is None else float(lower)
+        upper = _UNBOUNDED if upper is None else float(upper)
+        value = float(value)
+        if not (math.isfinite(lower) and math.isfinite(upper)) or lower > upper:
+            raise ValueError(f"design variable {name!r}: lower ({lower}) must not exceed upper ({upper})")
+        if not (lower <= value <= upper):
+            raise ValueError(f"design variable {name!r}: the value {value} is outside its bounds [{lower}, {upper}]")
+        connected = self._regions()
+        for region in regions:
+            if not any(region.SMProxy is c.SMProxy for c in connected):
+                raise ValueError(f"design variable {name!r}: a region is not among this MLS Deform's Regions inputs")
+            role = region.SMProxy.GetProperty("Role").GetElement(0)
+            if role != _HANDLE:
+                raise ValueError(f"design variable {name!r}: it acts on a Handle region's motion, not on a region of role "
+                                 f"{region.GetProperty('Role').GetAvailable()[role] if role < len(region.GetProperty('Role').GetAvailable()) else role}")
+        if len(set(id(r.SMProxy) for r in regions)) != len(regions):
+            raise ValueError(f"design variable {name!r}: a region is named twice")
+        self._variables[name] = {"kind": kind, "regions": regions, "axes": axes, "value": value, "lower": lower, "upper": upper}
+        self._write(regions)
+
+    # -- values -----------------------------------------------------------------------------
+    def getVarNames(self):
+        return list(self._variables)
+
+    def getNDV(self):
+        return len(self._variables)
+
+    def getValues(self):
+        return {name: v["value"] for name, v in self._variables.items()}
+
+    def getBounds(self):
+        """{name: (lower, upper)}, None for an unbounded side (scipy.optimize's convention)."""
+        def bound(x):
+            return None if abs(x) >= _UNBOUNDED else x
+        return {name: (bound(v["lower"]), bound(v["upper"])) for name, v in self._variables.items()}
+
+    def setDesignVars(self, values):
+        """Sets the values of the variables named in ``values`` (a dict; the others keep theirs).
+        Only the handles' motions change: the deformation's set-up stays cached. Raises
+        ValueError and changes nothing for an unknown name or a value outside its bounds."""
+        checked = {}
+        for name, value in dict(values).items():
+            if name not in self._variables:
+                raise ValueError(f"unknown design variable {name!r} (known: {', '.join(self._variables) or 'none'})")
+            value = float(np.asarray(value).reshape(-1)[0]) if np.ndim(value) else float(value)
+            v = self._variables[name]
+            if not (v["lower"] <= value <= v["upper"]):
+                raise ValueError(f"design variable {name!r}: {value} is outside its bounds [{v['lower']}, {v['upper']}]")
+            checked[name] = value
+        touched = []
+        for name, value in checked.items():
+            self._variables[name]["value"] = value
+            touched += self._variables[name]["regions"]
+        self._write(touched)
+
+    # -- evaluation -------------------------------------------------------------------------
+    def update(self):
+        """Runs the deformation; returns the output's points as an (n, 3) float64 array in output
+        order: the deformation's own x + d(x), not the output's stored (possibly float32) copy.
+        Raises RuntimeError with the filter's message when the deformation failed."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        self._updated()
+        points = vtkDoubleArray()
+        self._call(self._algorithm.GetDeformedPoints(points))
+        return self._numpy(points)
+
+    def totalSensitivityProd(self, seeds):
+        """Forward mode: sum_p seeds[p] dX/dp as an (n, 3) array in output order (one tangent
+        solve, whatever the number of variables seeded)."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        names = self._updated()
+        vector = np.zeros(len(names))
+        for name, seed in dict(seeds).items():
+            if name not in names:
+                raise ValueError(f"unknown design variable {name!r}")
+            vector[names.index(name)] = float(seed)
+        if not np.all(np.isfinite(vector)):
+            raise ValueError("the seeds must be finite")
+        array = vtkDoubleArray()
+        for x in vector:
+            array.InsertNextValue(x)
+        out = vtkDoubleArray()
+        self._call(self._algorithm.ComputeSensitivityProduct(array, out))
+        return self._numpy(out)
+
+    def totalSensitivity(self, dJdX):
+        """Reverse mode: dJ/dp = sum_i dJ/dX_i . dX_i/dp for every variable, as a dict, from
+        dJdX, an (n, 3) array in output order (zero where J does not depend on a point). One
+        back-substitution whatever the number of variables (without iterative constraints)."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        names = self._updated()
+        g = np.ascontiguousarray(np.asarray(dJdX, dtype=float))
+        if g.ndim != 2 or g.shape[1] != 3:
+            raise ValueError(f"dJdX must be an (n, 3) array, not shape {g.shape}")
+        n = self._algorithm.GetOutputDataObject(0).GetNumberOfPoints()
+        if g.shape[0] != n:
+            raise ValueError(f"dJdX has {g.shape[0]} rows but the output has {n} points")
+        if not np.all(np.isfinite(g)):
+            raise ValueError("dJdX has values that are not finite (NaN or infinity)")
+        out = vtkDoubleArray()
+        self._call(self._algorithm.ComputeObjectiveSensitivity(numpy_to_vtk(g, deep=1), out))
+        return {name: out.GetValue(i) for i, name in enumerate(names)}
+
+    def checkDerivatives(self, step=1e-6, verbose=True):
+        """Compares each variable's exact dX/dp with the central difference (X(p + h) - X(p - h)) / 2h
+        (one-sided next to a bound), prints a table and returns the largest relative difference
+        max |FD - exact| / max |exact|. Every value is restored afterwards."""
+        start = self.getValues()
+        worst = 0.0
+        rows = []
+        try:
+            for name in self.getVarNames():
+                v = self._variables[name]
+                exact = self.totalSensitivityProd({name: 1.0})
+                p = start[name]
+                up, down = min(p + step, v["upper"]), max(p - step, v["lower"])
+                if up == down:
+                    raise ValueError(f"design variable {name!r}: its bounds leave no room for a step of {step}")
+                self.setDesignVars({name: up})
+                plus = self.update()
+                self.setDesignVars({name: down})
+                minus = self.update()
+                self.setDesignVars({name: p})
+                fd = (plus - minus) / (up - down)
+                scale = self._global_max(np.abs(exact))
+                difference = self._global_max(np.abs(fd - exact))
+                relative = difference / scale if scale > 0 else difference
+                worst = max(worst, relative)
+                rows.append((name, scale, difference, relative))
+        finally:
+            self.setDesignVars(start)
+        if verbose:
+            print(f"{'variable':>16} {'max |dX/dp|':>14} {'max |FD - exact|':>18} {'relative':>10}")
+            for name, scale, difference, relative in rows:
+                print(f"{name:>16} {scale:14.6e} {difference:18.6e} {relative:10.2e}")
+        return worst
+
+    # -- internals --------------------------------------------------------------------------
+    def _regions(self):
+        regions = self.deformer.Regions
+        return list(regions) if isinstance(regions, (list, tuple)) or hasattr(regions, "__len__") else [regions]
+
+    def _write(self, regions):
+        # each touched region's DesignVariables property rewritten from the table, in definition order
+        done = set()
+        for region in regions:
+            if id(region.SMProxy) in done:
+                continue
+            done.add(id(region.SMProxy))
+            rows = []
+            for name, v in self._variables.items():
+                for r, axis in zip(v["regions"], v["axes"]):
+                    if r.SMProxy is region.SMProxy:
+                        rows += [name, str(KINDS.index(v["kind"]))] + [repr(float(a)) for a in axis] + \
+                                [repr(v["value"]), repr(v["lower"]), repr(v["upper"])]
+            region.DesignVariables = rows
+
+    def _updated(self):
+        """Brings the filter up to date; raises RuntimeError on a failure; the variables' names in
+        the filter's column order."""
+        self.deformer.UpdatePipeline()
+        output = self._algorithm.GetOutputDataObject(0)
+        error = output.GetFieldData().GetAbstractArray("DeformationError") if output else None
+        if error is not None and error.GetNumberOfValues() > 0:
+            raise RuntimeError(f"the deformation failed: {error.GetValue(0)}")
+        names = output.GetFieldData().GetAbstractArray("DesignVariableNames")
+        columns = [names.GetValue(i) for i in range(names.GetNumberOfValues())] if names is not None else []
+        if sorted(columns) != sorted(self._variables):
+            raise RuntimeError(f"the filter's design variables {columns} are not this object's {list(self._variables)}")
+        return columns
+
+    def _call(self, succeeded):
+        if not succeeded:
+            raise RuntimeError(self._algorithm.GetSensitivityError())
+
+    @staticmethod
+    def _numpy(array):
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        return np.array(vtk_to_numpy(array), dtype=float).reshape(-1, 3)
+
+    @staticmethod
+    def _global_max(values):
+        local = float(values.max()) if values.size else 0.0
+        try:
+            from vtkmodules.vtkParallelCore import vtkMultiProcessController
+            controller = vtkMultiProcessController.GetGlobalController()
+        except ImportError:
+            controller = None
+        if controller is None or controller.GetNumberOfProcesses() < 2:
+            return local
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        send, receive = vtkDoubleArray(), vtkDoubleArray()
+        send.InsertNextValue(local)
+        receive.SetNumberOfValues(1)
+        controller.AllReduce(send, receive, 0)  # vtkCommunicator.MAX_OP
+        return receive.GetValue(0)
