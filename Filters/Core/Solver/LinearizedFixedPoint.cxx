@@ -12,7 +12,7 @@ namespace mlsdeform
 {
 namespace
 {
-constexpr double RelativeStep = 1e-5;
+constexpr double RelativeStep = 1e-4;
 constexpr double Tolerance = 1e-10;
 constexpr int MaxProducts = 300;
 }
