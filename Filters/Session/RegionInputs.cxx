@@ -67,6 +67,11 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     const std::string which = "Regions input #" + std::to_string(c);
     auto* role = data ? vtkIntArray::SafeDownCast(data->GetFieldData()->GetArray(fields::Role)) : nullptr;
     vtkDataArray* displacement = data ? data->GetPointData()->GetArray(fields::PrescribedDisplacement) : nullptr;
+    auto* failed = data ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(fields::Error)) : nullptr;
+    if (failed && failed->GetNumberOfValues() > 0)
+    {
+      throw InvalidInputException(which + " failed: " + failed->GetValue(0));
+    }
     if (!role || role->GetNumberOfValues() < 1 || !displacement || displacement->GetNumberOfComponents() != 3)
     {
       throw InvalidInputException(which + " is not a ConstraintRegion output (no Role or PrescribedDisplacement)");
