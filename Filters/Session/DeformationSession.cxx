@@ -235,14 +235,20 @@ void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& out
   }
 }
 
-std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double> gradient, const Collective& group, std::string& method) const
+std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double> gradient, const Collective& group, std::string& method)
 {
   // g -> S^T g (the slide's transpose), then H = Phi^T S^T g over the canonical positions
   slideOnPlanes(Slips, Points, 0, static_cast<long>(Points.size()), gradient.data(), true);
   const GatheredGradient g = gatherGradient(Points, gradient, group);
-  std::vector<int> outside;
-  const SparseRowMatrix phi = subspaceMatrix(Model->basis(), g.positions, &outside);
-  const Displacements H = phi.transpose() * g.values;
+  if (Gradient.subspace != Counts.subspace || Gradient.points != PointsVersion || Gradient.positions != g.positions)
+  {
+    // rows at input points are copied from stage 2's (the same bits as evaluating them)
+    Gradient.rows = subspaceMatrix(Model->basis(), g.positions, nullptr, {}, { &PointRows, positionsAmong(Points, g.positions) });
+    Gradient.positions = g.positions;
+    Gradient.subspace = Counts.subspace;
+    Gradient.points = PointsVersion;
+  }
+  const Displacements H = Gradient.rows.transpose() * g.values;
   if (Model->isLinear())
   {
     method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";

@@ -154,7 +154,7 @@ public:
   void writeSensitivities(const std::vector<vtkPointSet*>& outSets) const;
   /// Reverse mode: dJ/dp per design variable from g = dJ/dX at this process's points (3 values
   /// per point, in order; a collective operation under MPI); method says how it was computed.
-  std::vector<double> objectiveSensitivity(std::vector<double> gradient, const mlsdeform::Collective& group, std::string& method) const;
+  std::vector<double> objectiveSensitivity(std::vector<double> gradient, const mlsdeform::Collective& group, std::string& method);
   /// x + d(x) in double precision at this process's points (the output's points before they are
   /// stored in the input's precision).
   void deformedPoints(double* out) const;
@@ -197,6 +197,15 @@ private:
   DesignTable Design;
   PrescribedDerivatives Derivatives;
   mlsdeform::SpaceDeformation::Solution Last;
+  // Phi at the gathered positions of the last gradient (an optimizer's dJ/dX keeps its support
+  // from call to call), for the subspace and points it was evaluated with
+  struct GradientRows
+  {
+    mlsdeform::PointList positions;
+    int subspace = -1;
+    long points = -1;
+    mlsdeform::SparseRowMatrix rows;
+  } Gradient;
   DeformedOutput Output;
   MeshQualityReport Quality;
 };

@@ -6,6 +6,10 @@ gives the deformed points and their exact derivatives, with the interface of pyG
 (``addHandleDV``, ``setDesignVars``, ``update``, ``totalSensitivity``,
 ``totalSensitivityProd``, ``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO.
 """
-from .design import DesignVariables, KINDS
+from .design import DesignVariables, KINDS, _load_wrapping
+
+# The filters' Python wrapping, now: a VTK object handed to Python before it is loaded keeps its
+# plain base class (and lacks the sensitivity methods).
+_load_wrapping()
 
 __all__ = ["DesignVariables", "KINDS"]

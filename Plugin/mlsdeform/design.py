@@ -47,6 +47,9 @@ def _algorithm(proxy):
     if algorithm is None:
         raise RuntimeError("mlsdeform.DesignVariables needs a builtin session (pvpython or pvbatch without a server "
                            "connection): the sensitivities are computed on the filter itself")
+    if not hasattr(algorithm, "ComputeObjectiveSensitivity"):
+        raise RuntimeError("the MLS Deform filter's VTK object was handed to Python (GetClientSideObject) before "
+                           "mlsdeform was imported, as a plain VTK algorithm: import mlsdeform right after LoadPlugin")
     return algorithm
 
 

@@ -163,7 +163,8 @@ TEST(XMLDecoratorsByRole)
       cellSets.insert(role);
     }
   }
-  const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } } };
+  const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } },
+    { "DesignVariables", { mlsvtk::roles::Handle } } };
   for (const auto& [name, roles] : shownFor)
   {
     std::printf("shown by Role: %s\n", name.c_str());

@@ -26,17 +26,20 @@ GROUPS = {
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight', 'EnergyDiscretization']),
         ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
         ('Mesh Quality', ['MeshQuality']),
+        ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray']),
         ('Sampling', ['NumberOfSamples', 'VolumeSampleFraction', 'IntegrationPointRatio', 'LloydIterations', 'Cover',
                       'RandomSeed', 'FollowMeshGrading']),
         ('Basis', ['Basis'])],
     'ShellDeform': [
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight']),
         ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
-        ('Mesh Quality', ['MeshQuality'])],
+        ('Mesh Quality', ['MeshQuality']),
+        ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray'])],
     'ConstraintRegion': [
         ('Role and Weight', ['Role', 'Weight']),
         ('Selection', ['SelectionMode', 'NumberOfLayers', 'CellSets', 'PrimitiveId', 'Region', 'InsideOut',
-                       'SelectionArray', 'Range'])],
+                       'SelectionArray', 'Range']),
+        ('Design Variables', ['DesignVariables'])],
     'MLSSampler': [
         ('Samples', ['NumberOfSurfaceSamples', 'NumberOfVolumeSamples', 'IntegrationPointRatio']),
         ('Placement', ['LloydIterations', 'Cover', 'RandomSeed', 'FollowMeshGrading', 'SurfaceWeight',
@@ -291,7 +294,7 @@ try:
 
     # Constraint Region: CellSets for the roles that make constraint sets, the selection fields
     # of the chosen mode only.
-    panel = check_panel(app, 'ConstraintRegion', handle, {'Role', 'Weight', 'SelectionMode', 'Region', 'InsideOut'},
+    panel = check_panel(app, 'ConstraintRegion', handle, {'Role', 'Weight', 'SelectionMode', 'Region', 'InsideOut', 'DesignVariables'},
                         'Handle, ImplicitFunction')
     if panel is not None:
         choose(app, panel, 'Role', 'Rigid')
