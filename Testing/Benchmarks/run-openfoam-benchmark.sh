@@ -55,16 +55,8 @@ work=$(cd "$work" && pwd)
 motion=(0.25 0 0.1)                  # the hull's translation, both tools [m]
 further=("0.1,0,-0.1" "-0.2,0.05,0.05") # MLS Deform's further variants
 
-# The case, rebuilt when the template (hullBox/) changed.
-case=$work/case-$size
-stamp=$( (cd "$here" && find hullBox -type f | sort | xargs cat) | md5sum | cut -d' ' -f1)
-if [ ! -f "$case/case.foam" ] || [ "$(cat "$case/.template" 2>/dev/null)" != "$stamp" ]; then
-  echo "Building the $size case in $case (snappyHexMesh on ${SNAPPY_RANKS:-1} rank(s); minutes for 1M)"
-  GEOMETRY_CACHE=${GEOMETRY_CACHE:-$work/openfoam-examples} bash "$here/make-hull-case.sh" "$size" "$case" "${SNAPPY_RANKS:-1}"
-  echo "$stamp" > "$case/.template"
-else
-  echo "Using the cached case $case ($(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' '))"
-fi
+# The case, built once (cached in the work folder, shared by the benchmarks).
+case=$(bash "$here/cached-hull-case.sh" "$size" "$work")
 
 set +u
 source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1

@@ -44,17 +44,8 @@ command -v snappyHexMesh > /dev/null || [ -x /usr/bin/snappyHexMesh ] || bash "$
 mkdir -p "$work"
 work=$(cd "$work" && pwd)
 
-# The case, rebuilt when the template (hullBox/) changed: as run-openfoam-benchmark.sh does, with
-# the same folder and stamp, so that the two benchmarks share it.
-case=$work/case-$size
-stamp=$( (cd "$here" && find hullBox -type f | sort | xargs cat) | md5sum | cut -d' ' -f1)
-if [ ! -f "$case/case.foam" ] || [ "$(cat "$case/.template" 2>/dev/null)" != "$stamp" ]; then
-  echo "Building the $size case in $case (snappyHexMesh on ${SNAPPY_RANKS:-1} rank(s); minutes for 1M)"
-  GEOMETRY_CACHE=${GEOMETRY_CACHE:-$work/openfoam-examples} bash "$here/make-hull-case.sh" "$size" "$case" "${SNAPPY_RANKS:-1}"
-  echo "$stamp" > "$case/.template"
-else
-  echo "Using the cached case $case ($(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' '))"
-fi
+# The case, built once (cached in the work folder, shared by the benchmarks).
+case=$(bash "$here/cached-hull-case.sh" "$size" "$work")
 
 run=$work/sensitivity-$size
 rm -rf "$run"

@@ -16,6 +16,9 @@ import numpy as np
 import paraview.simple as pvs
 from paraview.simple import LoadPlugin
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sphere_in_box  # noqa: E402
+
 plugin, work, mode = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
 import mlsdeform  # noqa: E402  (importable once the plugin is loaded)
@@ -39,45 +42,9 @@ def raises(exception, call, what):
     check(False, '%s raises %s' % (what, exception.__name__))
 
 
-def write_scene(path):
-    from vtkmodules.vtkCommonDataModel import vtkImageData, vtkMultiBlockDataSet
-    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
-    from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
-    from vtkmodules.vtkFiltersSources import vtkSphereSource
-    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter
-    sphere = vtkSphereSource()
-    sphere.SetRadius(0.3)
-    sphere.SetThetaResolution(24)
-    sphere.SetPhiResolution(16)
-    sphere.SetOutputPointsPrecision(1)
-    triangles = vtkTriangleFilter()
-    triangles.SetInputConnection(sphere.GetOutputPort())
-    triangles.Update()
-    image = vtkImageData()
-    image.SetDimensions(11, 11, 11)
-    image.SetOrigin(-1, -1, -1)
-    image.SetSpacing(0.2, 0.2, 0.2)
-    tets = vtkDataSetTriangleFilter()
-    tets.SetInputData(image)
-    tets.Update()
-    scene = vtkMultiBlockDataSet()
-    scene.SetBlock(0, triangles.GetOutput())
-    scene.SetBlock(1, tets.GetOutput())
-    writer = vtkXMLMultiBlockDataWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(scene)
-    writer.Write()
-
-
 def box_region(source, role, bounds, **properties):
-    region = ConstraintRegion(Input=source, Role=role)
-    region.Region = 'Box'
-    region.Region.UseReferenceBounds = 0
-    region.Region.Position = bounds[0::2]
-    region.Region.Length = [bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]]
-    for name, value in properties.items():
-        setattr(region, name, value)
-    return region
+    return sphere_in_box.box_region(ConstraintRegion, source, role, bounds, **properties)  # noqa: F821
+
 
 
 def scene(source):
@@ -130,7 +97,7 @@ if mode == 'serial':
     rank = 0
     os.makedirs(work, exist_ok=True)
     path = os.path.join(work, 'scene.vtm')
-    write_scene(path)
+    sphere_in_box.write_scene(path, 10)
     source = pvs.OpenDataFile(path)
     deform, dvs, values, (upper, lower, fixed, floor) = scene(source)
     check(dvs.getVarNames() == ['lift', 'twist', 'stretch', 'spread'] and dvs.getNDV() == 4, 'four variables, in order')

@@ -21,6 +21,9 @@ import numpy as np
 import paraview.simple as pvs
 from paraview import servermanager
 from paraview.simple import LoadPlugin
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sphere_in_box  # noqa: E402
 from vtk.numpy_interface import dataset_adapter as dsa
 
 plugin, work, mode = sys.argv[1:4]
@@ -39,46 +42,9 @@ def check(condition, what):
         failures.append(what)
 
 
-def write_scene(path):
-    """A sphere's surface (polydata) inside a tetrahedralized box [-1, 1]^3 (unstructured grid)."""
-    from vtkmodules.vtkCommonDataModel import vtkImageData, vtkMultiBlockDataSet
-    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
-    from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
-    from vtkmodules.vtkFiltersSources import vtkSphereSource
-    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter
-    sphere = vtkSphereSource()
-    sphere.SetRadius(0.3)
-    sphere.SetThetaResolution(24)
-    sphere.SetPhiResolution(16)
-    sphere.SetOutputPointsPrecision(1)  # double
-    triangles = vtkTriangleFilter()
-    triangles.SetInputConnection(sphere.GetOutputPort())
-    triangles.Update()
-    image = vtkImageData()
-    image.SetDimensions(13, 13, 13)
-    image.SetOrigin(-1, -1, -1)
-    image.SetSpacing(2 / 12, 2 / 12, 2 / 12)
-    tets = vtkDataSetTriangleFilter()
-    tets.SetInputData(image)
-    tets.Update()
-    scene = vtkMultiBlockDataSet()
-    scene.SetBlock(0, triangles.GetOutput())
-    scene.SetBlock(1, tets.GetOutput())
-    writer = vtkXMLMultiBlockDataWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(scene)
-    writer.Write()
-
-
 def box_region(source, role, bounds, **properties):
-    region = ConstraintRegion(Input=source, Role=role)
-    region.Region = 'Box'
-    region.Region.UseReferenceBounds = 0
-    region.Region.Position = bounds[0::2]
-    region.Region.Length = [bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]]
-    for name, value in properties.items():
-        setattr(region, name, value)
-    return region
+    return sphere_in_box.box_region(ConstraintRegion, source, role, bounds, **properties)  # noqa: F821
+
 
 
 def deformed(source):
@@ -130,7 +96,7 @@ def gathered(proxy):
 if mode == 'reference':
     os.makedirs(work, exist_ok=True)
     scene = os.path.join(work, 'scene.vtm')
-    write_scene(scene)
+    sphere_in_box.write_scene(scene, 12)
     rest, moved, field, error = deformed(pvs.OpenDataFile(scene))
     check(error is None, 'the serial deformation succeeds (%s)' % error)
     field.pop('Displacement')
