@@ -34,8 +34,8 @@ namespace
 void setDesign(vtkConstraintRegion* handle, double height, const double p[2])
 {
   handle->RemoveAllDesignVariables();
-  handle->AddDesignVariable("lift", 0 /*Translate*/, 0, 0, 0.1 * height, p[0], -1, 1);
-  handle->AddDesignVariable("tilt", 1 /*Rotate*/, 0, 1, 0, p[1], -15, 15);
+  handle->AddDesignVariable("lift", vtkConstraintRegion::TranslateVariable, 0, 0, 0.1 * height, p[0], -1, 1);
+  handle->AddDesignVariable("tilt", vtkConstraintRegion::RotateVariable, 0, 1, 0, p[1], -15, 15);
 }
 
 // J = the sum of the z coordinates of the given points after the last update.

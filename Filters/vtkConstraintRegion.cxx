@@ -34,6 +34,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <iterator>
 #include <optional>
 #include <unordered_set>
 
@@ -47,6 +48,10 @@ static_assert(vtkConstraintRegion::Handle == mlsvtk::roles::Handle && vtkConstra
     vtkConstraintRegion::Rigid == mlsvtk::roles::Rigid && vtkConstraintRegion::FromPrimitive == mlsvtk::roles::FromPrimitive &&
     vtkConstraintRegion::Slip == mlsvtk::roles::Slip && vtkConstraintRegion::Slip + 1 == mlsvtk::roles::Table.size(),
   "vtkConstraintRegion::Roles follows mlsvtk::roles");
+
+static_assert(vtkConstraintRegion::TranslateVariable == mlsvtk::Translate && vtkConstraintRegion::RotateVariable == mlsvtk::Rotate &&
+    vtkConstraintRegion::ScaleVariable == mlsvtk::Scale && std::size(mlsvtk::DesignKindNames) == 3,
+  "vtkConstraintRegion::DesignVariableKinds follows mlsvtk::DesignKind");
 
 namespace
 {

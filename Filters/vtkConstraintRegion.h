@@ -158,6 +158,14 @@ public:
   /// widget converts between its box and the motion with it.
   vtkGetVector3Macro(Pivot, double);
 
+  /// The kinds of design variable (Adapters/DesignVariables.h; the .cxx static_asserts them).
+  enum DesignVariableKinds
+  {
+    TranslateVariable = 0,
+    RotateVariable,
+    ScaleVariable
+  };
+
   ///@{
   /// Design variables on a Handle region's motion (Adapters/DesignVariables.h), for design
   /// optimization: each a name, a kind (0 Translate, 1 Rotate, 2 Scale), an axis vector (its

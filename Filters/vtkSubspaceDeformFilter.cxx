@@ -83,12 +83,13 @@ std::vector<double> objectiveGradient(const std::vector<vtkPointSet*>& sets, con
   return g;
 }
 
-// values (3 per point) into out as an n x 3 array.
-void setTuples(vtkDoubleArray* out, const std::vector<double>& values)
+// out as an n x 3 array (its memory reused when it has that size already), to be written.
+double* resized(vtkDoubleArray* out, std::size_t n)
 {
   out->SetNumberOfComponents(3);
-  out->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / 3));
-  std::copy(values.begin(), values.end(), out->GetPointer(0));
+  out->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  out->Modified();
+  return out->GetPointer(0);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -259,9 +260,7 @@ bool vtkSubspaceDeformFilter::GetDeformedPoints(vtkDoubleArray* out)
     {
       throw InvalidInputException("GetDeformedPoints needs an output array");
     }
-    std::vector<double> X(3 * this->Session->inputPoints().size());
-    this->Session->deformedPoints(X.data());
-    setTuples(out, X);
+    this->Session->deformedPoints(resized(out, this->Session->inputPoints().size()));
   });
 }
 
@@ -282,10 +281,9 @@ bool vtkSubspaceDeformFilter::ComputeSensitivityProduct(vtkDoubleArray* seeds, v
       }
       requireFiniteValues(values, "the seeds");
     });
-    const Displacements dw = session.tangent(values);
-    std::vector<double> dX(3 * session.inputPoints().size());
-    session.pointDerivative(dw, 0, static_cast<long>(session.inputPoints().size()), dX.data());
-    setTuples(out, dX);
+    const Displacements dw = session.tangent(values); // may throw: out is resized after it
+    const std::size_t n = session.inputPoints().size();
+    session.pointDerivative(dw, 0, static_cast<long>(n), resized(out, n));
   });
 }
 

@@ -2,7 +2,7 @@
 # Sets up a Debian 12 machine for MLSDeform and builds it: installs the Debian packages that are
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
 # Qt's OpenGL module for the plugin's GUI part, Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb and PyQt5 for the GUI tests, and for the paper comparisons gmsh
-# and matplotlib, OpenFOAM for the CFD round-trip tests and examples), then configures and builds into build/ (or
+# and matplotlib, scipy for the optimization example, OpenFOAM for the CFD round-trip tests and examples), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -19,7 +19,7 @@ packages=(
   libxml2-dev libx11-dev zlib1g-dev python3-dev
   libeigen3-dev libsuitesparse-dev libblas-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
-  gmsh python3-matplotlib python3-pyqt5
+  gmsh python3-matplotlib python3-pyqt5 python3-scipy
   openfoam
 )
 missing=()

@@ -293,8 +293,9 @@ class DesignVariables:
 
     @staticmethod
     def _numpy(array):
+        # a view of the VTK array's memory (it keeps the array alive): no copy of n x 3 doubles
         from vtkmodules.util.numpy_support import vtk_to_numpy
-        return np.array(vtk_to_numpy(array), dtype=float).reshape(-1, 3)
+        return vtk_to_numpy(array).reshape(-1, 3)
 
     @staticmethod
     def _global_max(values):
