@@ -108,6 +108,7 @@ void checkSensitivities(vtkMLSDeformFilter* deform, std::vector<Variable> variab
   deform->ComputeSensitivitiesOn();
   const std::vector<double> X = deformedPoints(deform);
   CHECK(deform->GetErrorCode() == vtkErrorCode::NoError);
+  std::printf("constraint iterations %g\n", fieldValue(deform->GetOutputDataObject(0), "ConstraintIterations"));
   const int m = static_cast<int>(variables.size());
   std::vector<std::vector<double>> exact(m);
   for (int v = 0; v < m; ++v)
