@@ -1,11 +1,9 @@
 // The fandisk deformation of deform_fandisk.py as a plain VTK C++ pipeline:
 //   vtkOFFReader -> vtkConstraintRegion (fixed bottom, moved top) -> vtkMLSDeformFilter -> .vtp
 // Usage: DeformFandisk fandisk.off output.vtp
-#include "vtkConstraintRegion.h"
+#include "FandiskScene.h"
 #include "vtkMLSDeformFilter.h"
-#include "vtkOFFReader.h"
 
-#include <vtkBox.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -21,29 +19,16 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "usage: %s input.off output.vtp\n", argv[0]);
     return 2;
   }
-  vtkNew<vtkOFFReader> reader;
-  reader->SetFileName(argv[1]);
-  reader->Update();
-  if (reader->GetOutput()->GetNumberOfPoints() == 0)
+  FandiskScene scene;
+  if (!scene.open(argv[1]))
   {
     return 1;
   }
-  double b[6];
-  reader->GetOutput()->GetBounds(b);
-  const double height = b[5] - b[4], margin = 0.01 * height;
-
-  // Fixed: the bottom 10%. Handle: the top 25%, moved along -x by 15% of the height.
-  vtkNew<vtkBox> bottom, top;
-  bottom->SetBounds(b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin, b[4] - margin, b[4] + 0.1 * height);
-  top->SetBounds(b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin, b[5] - 0.25 * height, b[5] + margin);
-  vtkNew<vtkConstraintRegion> fixed, handle;
-  fixed->SetInputConnection(reader->GetOutputPort());
-  fixed->SetRole(vtkConstraintRegion::Fixed);
-  fixed->SetRegion(bottom);
-  handle->SetInputConnection(reader->GetOutputPort());
-  handle->SetRole(vtkConstraintRegion::Handle);
-  handle->SetRegion(top);
-  handle->SetTranslation(-0.15 * height, 0, 0);
+  // the handle moved along -x by 15% of the height
+  const double height = scene.height;
+  scene.handle->SetTranslation(-0.15 * height, 0, 0);
+  vtkOFFReader* reader = scene.reader;
+  vtkConstraintRegion *fixed = scene.fixed, *handle = scene.handle;
 
   vtkNew<vtkMLSDeformFilter> deform;
   deform->SetInputConnection(reader->GetOutputPort());

@@ -7,11 +7,9 @@
 // over the handle's points) and by a central finite difference of J; the exit code is 1 when
 // they disagree by more than the bounds below.
 // Usage: DesignSensitivities fandisk.off
-#include "vtkConstraintRegion.h"
+#include "FandiskScene.h"
 #include "vtkMLSDeformFilter.h"
-#include "vtkOFFReader.h"
 
-#include <vtkBox.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -59,37 +57,24 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "usage: %s input.off\n", argv[0]);
     return 2;
   }
-  vtkNew<vtkOFFReader> reader;
-  reader->SetFileName(argv[1]);
-  reader->Update();
-  vtkPolyData* input = reader->GetOutput();
-  if (input->GetNumberOfPoints() == 0)
+  FandiskScene scene;
+  if (!scene.open(argv[1]))
   {
     return 1;
   }
-  double b[6];
-  input->GetBounds(b);
-  const double height = b[5] - b[4], margin = 0.01 * height;
-
-  // Fixed: the bottom 10%. Handle: the top 25%, rotated about the bottom's -x edge, so that a tilt
-  // moves the top's centroid (about its own centroid, a rotation would leave J unchanged).
-  vtkNew<vtkBox> bottom, top;
-  bottom->SetBounds(b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin, b[4] - margin, b[4] + 0.1 * height);
-  top->SetBounds(b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin, b[5] - 0.25 * height, b[5] + margin);
-  vtkNew<vtkConstraintRegion> fixed, handle;
-  fixed->SetInputConnection(reader->GetOutputPort());
-  fixed->SetRole(vtkConstraintRegion::Fixed);
-  fixed->SetRegion(bottom);
-  handle->SetInputConnection(reader->GetOutputPort());
-  handle->SetRole(vtkConstraintRegion::Handle);
-  handle->SetRegion(top);
+  const double* b = scene.bounds;
+  const double height = scene.height;
+  vtkPolyData* input = scene.reader->GetOutput();
+  vtkConstraintRegion *fixed = scene.fixed, *handle = scene.handle;
+  // the handle rotated about the bottom's -x edge, so that a tilt moves the top's centroid (about
+  // its own centroid, a rotation would leave J unchanged)
   handle->UseCentroidOff();
   handle->SetCenter(b[0], 0.5 * (b[2] + b[3]), b[4]);
   const double p[2] = { 0.5, 5.0 }; // the design point: lifted by 5% of the height, tilted by 5 degrees
   setDesign(handle, height, p);
 
   vtkNew<vtkMLSDeformFilter> deform;
-  deform->SetInputConnection(reader->GetOutputPort());
+  deform->SetInputConnection(scene.reader->GetOutputPort());
   deform->AddRegionConnection(fixed->GetOutputPort());
   deform->AddRegionConnection(handle->GetOutputPort());
   deform->ComputeSensitivitiesOn();
@@ -107,7 +92,7 @@ int main(int argc, char* argv[])
   dJdX->SetNumberOfTuples(input->GetNumberOfPoints());
   for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
   {
-    const bool inHandle = top->FunctionValue(input->GetPoint(i)) <= 0;
+    const bool inHandle = scene.top->FunctionValue(input->GetPoint(i)) <= 0;
     dJdX->SetTuple3(i, 0, 0, inHandle ? 1 : 0);
     if (inHandle)
     {
