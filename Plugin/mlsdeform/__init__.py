@@ -4,12 +4,15 @@ loaded (``LoadPlugin(...)``, or ``paraview --plugins=MLSDeform``): ``import mlsd
 ``DesignVariables`` puts design variables on the Handle regions of an MLS Deform filter and
 gives the deformed points and their exact derivatives, with the interface of pyGeo's DVGeometry
 (``addHandleDV``, ``setDesignVars``, ``update``, ``totalSensitivity``,
-``totalSensitivityProd``, ``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO.
+``totalSensitivityProd``, ``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO; ``designOfExperiments``
+turns a Latin hypercube or a table of values into OpenFOAM variant cases with a mesh-quality
+verdict each.
 """
 from .design import DesignVariables, KINDS, _load_wrapping
+from .experiments import THRESHOLDS, designOfExperiments, latinHypercube, readTable
 
 # The filters' Python wrapping, now: a VTK object handed to Python before it is loaded keeps its
 # plain base class (and lacks the sensitivity methods).
 _load_wrapping()
 
-__all__ = ["DesignVariables", "KINDS"]
+__all__ = ["DesignVariables", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "readTable"]

@@ -1,0 +1,193 @@
+"""Design of experiments on an OpenFOAM case: a Latin hypercube in the design variables' bounds,
+or a table of values, turned into variant cases with a mesh-quality verdict each.
+
+    report = mlsdeform.designOfExperiments(dvs, 'variants', samples=50, seed=0)
+    report = mlsdeform.designOfExperiments(dvs, 'variants', table='doe.csv')
+
+Every variant is ``<folder>/variant<i>/case.foam``, written by the plugin's OpenFOAM case writer
+from the deformation's source case (the reader's CasePath); ``<folder>/report.csv`` holds a row
+per variant: the variables' values, InvertedCells, MaxNonOrthogonality, MaxSkewness (MLS Deform's
+mesh-quality figures, checkMesh's definitions), ok (the verdict against the thresholds), seconds
+and path (empty for a variant that failed and was not written). ``<folder>/design.json`` records
+the design, so that running the same call again resumes: rows already in the report are kept, a
+variant interrupted while it was written (its ``.writing-*`` folder) is written again, and a
+different design in the same folder is an error.
+"""
+import csv
+import json
+import math
+import os
+import shutil
+import time
+
+import numpy as np
+
+# DAFoam's checkMeshThreshold defaults: a variant passes with at most these figures.
+THRESHOLDS = {'MaxNonOrthogonality': 70.0, 'MaxSkewness': 4.0, 'InvertedCells': 0}
+QUALITY = ('InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness')
+
+
+def latinHypercube(bounds, samples, seed=0):
+    """samples points in the box bounds = [(lower, upper), ...]: each variable's range cut into
+    samples equal strata, one point in each (uniform within it), the strata paired at random."""
+    if int(samples) != samples or samples < 1:
+        raise ValueError(f"samples must be a positive integer, not {samples!r}")
+    rng = np.random.default_rng(seed)
+    points = np.empty((int(samples), len(bounds)))
+    for j, (lower, upper) in enumerate(bounds):
+        if lower is None or upper is None:
+            raise ValueError("a Latin hypercube needs finite bounds on every variable")
+        strata = (rng.permutation(int(samples)) + rng.random(int(samples))) / samples
+        points[:, j] = lower + strata * (upper - lower)
+    return points
+
+
+def readTable(path, names, bounds):
+    """The rows of a CSV table with one column per design variable (a header of their names, in
+    any order; no other column): a list of {name: value}. Raises ValueError naming the row and
+    column of a missing, unknown, non-numeric or out-of-bounds entry."""
+    with open(path, newline='') as f:
+        rows = list(csv.reader(f))
+    if not rows:
+        raise ValueError(f"{path} is empty: a header row of the variables' names is needed")
+    header = [h.strip() for h in rows[0]]
+    if sorted(header) != sorted(names):
+        raise ValueError(f"{path}: the columns {header} are not the design variables {list(names)}")
+    values = []
+    for r, row in enumerate(rows[1:], start=2):
+        if not any(cell.strip() for cell in row):
+            continue
+        if len(row) != len(header):
+            raise ValueError(f"{path}, row {r}: {len(row)} values for {len(header)} columns")
+        entry = {}
+        for name, cell in zip(header, row):
+            try:
+                value = float(cell)
+            except ValueError:
+                raise ValueError(f"{path}, row {r}, column {name}: {cell!r} is not a number") from None
+            lower, upper = bounds[name]
+            if not math.isfinite(value) or (lower is not None and value < lower) or (upper is not None and value > upper):
+                raise ValueError(f"{path}, row {r}, column {name}: {value} is outside the bounds [{lower}, {upper}]")
+            entry[name] = value
+        values.append(entry)
+    if not values:
+        raise ValueError(f"{path} has no rows of values")
+    return values
+
+
+def _write_atomically(path, text):
+    partial = path + '.writing'
+    with open(partial, 'w') as f:
+        f.write(text)
+    os.replace(partial, path)
+
+
+def _report_text(names, rows):
+    columns = ['variant'] + list(names) + list(QUALITY) + ['ok', 'seconds', 'path']
+    lines = [','.join(columns)]
+    for row in rows:
+        lines.append(','.join(repr(row[c]) if isinstance(row[c], float) else str(row[c]) for c in columns))
+    return '\n'.join(lines) + '\n'
+
+
+def _read_report(path, names):
+    if not os.path.exists(path):
+        return {}
+    kept = {}
+    with open(path, newline='') as f:
+        for row in csv.DictReader(f):
+            entry = {n: float(row[n]) for n in names}
+            entry.update(variant=row['variant'], InvertedCells=int(float(row['InvertedCells'])),
+                         MaxNonOrthogonality=float(row['MaxNonOrthogonality']), MaxSkewness=float(row['MaxSkewness']),
+                         ok=row['ok'] == 'True', seconds=float(row['seconds']), path=row['path'])
+            kept[entry['variant']] = entry
+    return kept
+
+
+def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, thresholds=None, writeFailed=False, verbose=True):
+    """Writes the variants of a design (a Latin hypercube of ``samples`` points with ``seed``, or
+    the rows of the CSV ``table``) into ``folder`` and returns the report: one dict per variant.
+    ``thresholds`` overrides THRESHOLDS' entries; a variant over them is reported (ok False) and
+    not written unless ``writeFailed``. Prints a progress line per variant (verbose). The design
+    variables' values are restored at the end. Raises ValueError for a bad design or table and
+    RuntimeError when a deformation or a write fails (what was written stays)."""
+    from paraview import simple as pvs
+    names = dvs.getVarNames()
+    if not names:
+        raise ValueError("the design has no variables: add some with addHandleDV first")
+    bounds = dvs.getBounds()
+    if (samples is None) == (table is None):
+        raise ValueError("give either samples= (a Latin hypercube) or table= (a CSV file), not both or neither")
+    limits = dict(THRESHOLDS)
+    for key, value in (thresholds or {}).items():
+        if key not in THRESHOLDS:
+            raise ValueError(f"unknown threshold {key!r} (known: {', '.join(THRESHOLDS)})")
+        limits[key] = float(value)
+    if samples is not None:
+        points = latinHypercube([bounds[n] for n in names], samples, seed)
+        values = [dict(zip(names, map(float, p))) for p in points]
+        origin = {'samples': int(samples), 'seed': seed}
+    else:
+        values = readTable(table, names, bounds)
+        origin = {'table': os.path.abspath(table)}
+    folder = os.path.abspath(folder)
+    os.makedirs(folder, exist_ok=True)
+    design = {'variables': names, 'bounds': [bounds[n] for n in names], 'values': [[v[n] for n in names] for v in values],
+              'thresholds': limits, 'writeFailed': bool(writeFailed), **origin}
+    record = os.path.join(folder, 'design.json')
+    if os.path.exists(record):
+        with open(record) as f:
+            earlier = json.load(f)
+        if earlier != json.loads(json.dumps(design)):
+            raise ValueError(f"{folder} holds another design (design.json): choose another folder or remove it")
+    else:
+        _write_atomically(record, json.dumps(design, indent=1))
+    # a variant's path is its case folder; variants interrupted while written leave .writing-* folders
+    for entry in os.listdir(folder):
+        if '.writing-' in entry:
+            shutil.rmtree(os.path.join(folder, entry), ignore_errors=True)
+    report_path = os.path.join(folder, 'report.csv')
+    width = len(str(len(values) - 1))
+    variant_names = ['variant%0*d' % (width, i) for i in range(len(values))]
+    kept = _read_report(report_path, names)
+    start = dvs.getValues()
+    rows, timings = [], []
+    try:
+        for i, (variant, point) in enumerate(zip(variant_names, values)):
+            case = os.path.join(folder, variant, 'case.foam')
+            done = kept.get(variant)
+            if done is not None and (not done['path'] or os.path.exists(done['path'])):
+                rows.append(done)  # complete: written, or reported and not written (it failed the thresholds)
+                continue
+            began = time.perf_counter()
+            dvs.setDesignVars(point)
+            dvs.update()
+            output = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
+            figures = {}
+            for key in QUALITY:
+                array = output.GetArray(key)
+                if array is None:
+                    raise RuntimeError(f"MLS Deform reports no {key}: turn its MeshQuality on and give it a volume mesh")
+                figures[key] = array.GetTuple1(0)
+            figures['InvertedCells'] = int(figures['InvertedCells'])
+            ok = all(figures[key] <= limits[key] for key in QUALITY)
+            path = ''
+            if ok or writeFailed:
+                pvs.SaveData(case, proxy=dvs.deformer, Overwrite=1)
+                if not os.path.exists(case):
+                    raise RuntimeError(f"the variant case {os.path.dirname(case)} was not written (see the output window)")
+                path = case
+            seconds = time.perf_counter() - began
+            row = dict(point, **figures, variant=variant, ok=ok, seconds=seconds, path=path)
+            rows.append(row)
+            _write_atomically(report_path, _report_text(names, rows))
+            timings.append(seconds)
+            if verbose:
+                remaining = (len(values) - i - 1) * float(np.mean(timings))
+                print('variant %d of %d: %s, %.2f s (mean %.2f s), about %.0f s left' % (
+                    i + 1, len(values), 'ok' if ok else 'FAILS the thresholds' + ('' if writeFailed else ', not written'),
+                    seconds, float(np.mean(timings)), remaining), flush=True)
+    finally:
+        dvs.setDesignVars(start)
+    _write_atomically(report_path, _report_text(names, rows))
+    return rows

@@ -1,0 +1,122 @@
+"""Issue 30 point 3: mlsdeform.designOfExperiments on the sphereChannel snappyHexMesh case (built
+here): a Latin hypercube and a table into variant cases with a mesh-quality verdict each, the
+report, the thresholds, resuming after an interruption, and bad designs.
+Usage: pvpython test_design_of_experiments.py PLUGIN EXAMPLES_OPENFOAM_DIR WORK_DIR"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+from paraview.simple import LoadPlugin
+
+plugin, examples, work = sys.argv[1:4]
+LoadPlugin(plugin, remote=False)
+sys.path.insert(0, examples)
+import mlsdeform  # noqa: E402
+import openfoam_variant  # noqa: E402
+
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what, flush=True)
+    if not condition:
+        failures.append(what)
+
+
+def raises(call, text, what):
+    try:
+        call()
+    except ValueError as e:
+        check(text in str(e), '%s: %s' % (what, e))
+        return
+    check(False, '%s raises ValueError' % what)
+
+
+def checkmesh(case):
+    """checkMesh's verdict on a case folder."""
+    log = subprocess.run(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc >/dev/null 2>&1; checkMesh -case "%s"' % case],
+                         capture_output=True, text=True).stdout
+    return 'Mesh OK.' in log
+
+
+case = os.path.join(work, 'case')
+subprocess.run(['bash', os.path.join(examples, 'make-case.sh'), case], check=True)
+handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']
+reader = openfoam_variant.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose_polyhedra=False)
+deformed = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip)
+body = deformed.Regions[0]
+dvs = mlsdeform.DesignVariables(deformed)
+dvs.addHandleDV('dx', body, translate=[1, 0, 0], lower=-0.05, upper=0.05)
+dvs.addHandleDV('dz', body, translate=[0, 0, 1], lower=0, upper=0.03)
+dvs.addHandleDV('yaw', body, rotate=[0, 0, 1], lower=-10, upper=10)
+names = dvs.getVarNames()
+
+# A Latin hypercube: one point in each of N strata of every variable's range
+points = mlsdeform.latinHypercube([(-1, 1), (0, 3)], 8, seed=3)
+strata = np.floor((points - [-1, 0]) / [2, 3] * 8).astype(int)
+check(all(sorted(strata[:, j]) == list(range(8)) for j in range(2)), 'a Latin hypercube has one point in each stratum')
+check(np.array_equal(points, mlsdeform.latinHypercube([(-1, 1), (0, 3)], 8, seed=3)), 'the same seed gives the same points')
+
+variants = os.path.join(work, 'lhs')
+report = mlsdeform.designOfExperiments(dvs, variants, samples=4, seed=1)
+check(len(report) == 4 and all(r['ok'] and os.path.exists(r['path']) for r in report),
+      'four variants pass the default thresholds and are written (%s)' % [r['path'] for r in report])
+with open(os.path.join(variants, 'report.csv')) as f:
+    rows = list(csv.DictReader(f))
+check(len(rows) == 4 and set(names + ['InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness', 'ok', 'seconds', 'path']) <= set(rows[0]),
+      'report.csv: a row per variant with the values, the quality, the verdict, seconds and path')
+check(all(float(rows[i][n]) == report[i][n] for i in range(4) for n in names), 'report.csv holds the values exactly')
+check(dvs.getValues() == {'dx': 0.0, 'dz': 0.0, 'yaw': 0.0}, 'the design values are restored afterwards')
+check(checkmesh(os.path.dirname(report[0]['path'])), 'checkMesh passes on a variant')
+moved = open(os.path.join(os.path.dirname(report[0]['path']), 'constant', 'polyMesh', 'points')).read()
+check(moved != open(os.path.join(case, 'constant', 'polyMesh', 'points')).read(), "a variant's points differ from the source's")
+
+# resuming: a variant interrupted while it was written (its .writing- folder) is written again,
+# the complete ones are kept as they are
+second = os.path.dirname(report[2]['path'])
+os.rename(second, second + '.writing-12345')
+first_time = os.path.getmtime(report[0]['path'])
+again = mlsdeform.designOfExperiments(dvs, variants, samples=4, seed=1)
+check(os.path.exists(report[2]['path']) and not os.path.exists(second + '.writing-12345'),
+      'the interrupted variant is written again and its partial folder removed')
+check(os.path.getmtime(report[0]['path']) == first_time and again[0]['seconds'] == report[0]['seconds'],
+      'complete variants are kept (not rewritten)')
+check([r['path'] for r in again] == [r['path'] for r in report], 'the resumed report lists the same variants')
+raises(lambda: mlsdeform.designOfExperiments(dvs, variants, samples=5, seed=1), 'holds another design',
+       'another design in the same folder')
+
+# the thresholds: a variant over them is reported and not written, unless asked
+strict = mlsdeform.designOfExperiments(dvs, os.path.join(work, 'strict'), samples=2, seed=1,
+                                       thresholds={'MaxNonOrthogonality': 1.0}, verbose=False)
+check(all(not r['ok'] and r['path'] == '' and r['MaxNonOrthogonality'] > 1 for r in strict),
+      'variants over a threshold are reported (ok False) and not written')
+check(not any(name.startswith('variant') for name in os.listdir(os.path.join(work, 'strict'))), 'no variant folder was written')
+kept = mlsdeform.designOfExperiments(dvs, os.path.join(work, 'strict-kept'), samples=1, seed=1,
+                                     thresholds={'MaxNonOrthogonality': 1.0}, writeFailed=True, verbose=False)
+check(not kept[0]['ok'] and os.path.exists(kept[0]['path']), 'writeFailed writes a failing variant too')
+
+# a table of values (columns in any order)
+table = os.path.join(work, 'doe.csv')
+with open(table, 'w') as f:
+    f.write('yaw,dx,dz\n5,0.01,0.02\n-5,-0.02,0\n')
+tabled = mlsdeform.designOfExperiments(dvs, os.path.join(work, 'table'), table=table, verbose=False)
+check([(r['dx'], r['dz'], r['yaw']) for r in tabled] == [(0.01, 0.02, 5.0), (-0.02, 0.0, -5.0)], 'a table gives its rows as variants')
+for text, message, what in (('dx,dz\n0,0\n', 'are not the design variables', 'a missing column'),
+                            ('dx,dz,yaw,drag\n0,0,0,1\n', 'are not the design variables', 'an unknown column'),
+                            ('dx,dz,yaw\n0,0.1,0\n', 'row 2, column dz', 'a value outside its bounds'),
+                            ('dx,dz,yaw\n0,zero,0\n', 'is not a number', 'a value that is no number'),
+                            ('dx,dz,yaw\n', 'has no rows', 'no rows')):
+    with open(table, 'w') as f:
+        f.write(text)
+    raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), table=table), message, 'a table with ' + what)
+raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), samples=3, table=table), 'not both', 'samples and a table')
+raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), samples=0), 'positive integer', 'no samples')
+raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), samples=2, thresholds={'Volume': 1}),
+       'unknown threshold', 'an unknown threshold')
+
+if failures:
+    print('%d check(s) failed' % len(failures))
+    sys.exit(1)
