@@ -117,6 +117,27 @@ raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), sam
 raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), samples=2, thresholds={'Volume': 1}),
        'unknown threshold', 'an unknown threshold')
 
+# the command line: a design file (relative case path), a Latin hypercube, a progress line per
+# variant, the report; a bad design file exits with 2 and the message
+import json  # noqa: E402
+design = os.path.join(work, 'design.json')
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip,
+               'variables': [{'name': 'dx', 'translate': [1, 0, 0], 'lower': -0.05, 'upper': 0.05},
+                             {'name': 'yaw', 'rotate': [0, 0, 1], 'lower': -10, 'upper': 10, 'patches': ['body']}],
+               'settings': {'NumberOfSamples': 500}}, f)
+command = [sys.executable if 'pvpython' in sys.executable else 'pvpython',
+           os.path.join(os.path.dirname(plugin), 'mlsdeform-doe.py'), design, os.path.join(work, 'cli'), '--samples', '3', '--seed', '2']
+run = subprocess.run(command, capture_output=True, text=True)
+check(run.returncode == 0 and run.stdout.count('variant ') >= 3 and '3 variants, 3 pass the thresholds' in run.stdout,
+      'the command line writes 3 variants with a progress line each (exit %d: %s)' % (run.returncode, run.stdout[-300:] + run.stderr[-300:]))
+with open(os.path.join(work, 'cli', 'report.csv')) as f:
+    check(len(list(csv.DictReader(f))) == 3, "the command line's report.csv has 3 rows")
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handle': ['hull'], 'variables': []}, f)
+run = subprocess.run(command, capture_output=True, text=True)
+check(run.returncode == 2 and 'has no patch hull' in run.stderr, 'a design naming a patch the case lacks exits with 2 (%s)' % run.stderr.strip()[-200:])
+
 if failures:
     print('%d check(s) failed' % len(failures))
     sys.exit(1)

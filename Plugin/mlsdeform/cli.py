@@ -1,0 +1,91 @@
+"""The command line of a design of experiments on an OpenFOAM case (mlsdeform-doe.py beside the
+plugin runs it in pvpython):
+
+    pvpython .../plugins/MLSDeform/mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV)
+        [--write-failed] [--max-non-orthogonality 70] [--max-skewness 4] [--max-inverted-cells 0]
+
+DESIGN.json names the case, its patches by role and the design variables, e.g.
+
+    {"case": "hull/case.foam", "handle": ["hull"], "fixed": ["inlet", "outlet"],
+     "slip": ["sideYmin", "sideYmax", "bottom", "top"],
+     "variables": [{"name": "dx", "translate": [1, 0, 0], "lower": -0.1, "upper": 0.1},
+                   {"name": "yaw", "rotate": [0, 0, 1], "lower": -5, "upper": 5, "patches": ["hull"]}],
+     "settings": {"NumberOfSamples": 1000}}
+
+A variable acts on the handle patches it names (default: all of them), with one axis for all or
+one per patch; "settings" are MLS Deform properties. A relative "case" is relative to the design
+file. Exit code 0 when every variant was made (whatever their verdicts), 1 on a failure, 2 on a
+bad design or command line, with the message on stderr. Running it again resumes.
+"""
+import argparse
+import json
+import os
+import sys
+
+KEYS = {'case', 'handle', 'fixed', 'slip', 'variables', 'settings'}
+VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'lower', 'upper', 'value', 'patches'}
+
+
+def setUp(design_path):
+    """The MLS Deform of the design file's case with its design variables (mlsdeform.DesignVariables)."""
+    from . import DesignVariables, foam
+    with open(design_path) as f:
+        design = json.load(f)
+    if not isinstance(design, dict) or not {'case', 'handle', 'variables'} <= set(design) or set(design) - KEYS:
+        raise ValueError(f"{design_path}: a design needs 'case', 'handle' and 'variables' (and may have "
+                         f"'fixed', 'slip', 'settings'), not {sorted(design) if isinstance(design, dict) else design!r}")
+    case = os.path.join(os.path.dirname(os.path.abspath(design_path)), design['case'])
+    if not os.path.exists(case):
+        raise ValueError(f"{design_path}: the case {case} does not exist")
+    handle, fixed, slip = list(design['handle']), list(design.get('fixed', [])), list(design.get('slip', []))
+    reader = foam.open_case(case, handle + fixed + slip, decompose_polyhedra=False)
+    missing = [p for p in handle + fixed + slip if 'patch/' + p not in reader.MeshRegions.Available]
+    if missing:
+        raise ValueError(f"{design_path}: the case has no patch {', '.join(missing)}")
+    deformer = foam.morph(reader, handle, (0, 0, 0), fixed, slip, **design.get('settings', {}))
+    dvs = DesignVariables(deformer)
+    for variable in design['variables']:
+        if not isinstance(variable, dict) or set(variable) - VARIABLE_KEYS or 'name' not in variable:
+            raise ValueError(f"{design_path}: a variable has a name, one of translate/rotate/scale, lower, upper and "
+                             f"optionally value and patches, not {variable!r}")
+        patches = variable.get('patches', handle)
+        unknown = [p for p in patches if p not in handle]
+        if unknown:
+            raise ValueError(f"{design_path}: variable {variable['name']!r} names {unknown}, which are no handle patches {handle}")
+        regions = [deformer.Regions[handle.index(p)] for p in patches]  # morph() lists the handles first
+        axes = {k: variable[k] for k in ('translate', 'rotate', 'scale') if k in variable}
+        dvs.addHandleDV(variable['name'], regions, lower=variable.get('lower'), upper=variable.get('upper'),
+                        value=variable.get('value', 0.0), **axes)
+    return dvs
+
+
+def main(argv):
+    from . import designOfExperiments
+    parser = argparse.ArgumentParser(prog='mlsdeform-doe.py', description='Design of experiments on an OpenFOAM case.')
+    parser.add_argument('design', help='the design file (JSON): case, patches by role, variables')
+    parser.add_argument('folder', help='where the variants and report.csv go')
+    choice = parser.add_mutually_exclusive_group(required=True)
+    choice.add_argument('--samples', type=int, help='a Latin hypercube of this many variants in the bounds')
+    choice.add_argument('--table', help='a CSV table of values: one column per variable, one row per variant')
+    parser.add_argument('--seed', type=int, default=0, help="the Latin hypercube's seed (default 0)")
+    parser.add_argument('--write-failed', action='store_true', help='write the variants that fail the thresholds too')
+    parser.add_argument('--max-non-orthogonality', type=float, default=70.0, help='degrees (default 70)')
+    parser.add_argument('--max-skewness', type=float, default=4.0, help='default 4')
+    parser.add_argument('--max-inverted-cells', type=int, default=0, help='default 0')
+    arguments = parser.parse_args(argv)
+    try:
+        dvs = setUp(arguments.design)
+        rows = designOfExperiments(dvs, arguments.folder, samples=arguments.samples, seed=arguments.seed, table=arguments.table,
+                                   thresholds={'MaxNonOrthogonality': arguments.max_non_orthogonality,
+                                               'MaxSkewness': arguments.max_skewness,
+                                               'InvertedCells': arguments.max_inverted_cells},
+                                   writeFailed=arguments.write_failed)
+    except (ValueError, OSError, json.JSONDecodeError) as e:
+        print(f"mlsdeform-doe: {e}", file=sys.stderr)
+        return 2
+    except RuntimeError as e:
+        print(f"mlsdeform-doe: {e}", file=sys.stderr)
+        return 1
+    passed = sum(1 for r in rows if r['ok'])
+    print(f"{len(rows)} variants, {passed} pass the thresholds; report: {os.path.join(os.path.abspath(arguments.folder), 'report.csv')}")
+    return 0
