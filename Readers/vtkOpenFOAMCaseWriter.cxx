@@ -163,7 +163,7 @@ std::vector<std::string> processorFolders(const fs::path& source)
 }
 
 // Copies folder into target, except the points file of constant/polyMesh.
-void copyFolder(const fs::path& folder, const fs::path& target, const fs::path& skipped)
+void copyFolder(const fs::path& folder, const fs::path& target, const fs::path& skipped, bool link)
 {
   fs::create_directory(target);
   for (const fs::directory_entry& entry : fs::directory_iterator(folder))
@@ -171,11 +171,18 @@ void copyFolder(const fs::path& folder, const fs::path& target, const fs::path& 
     const fs::path to = target / entry.path().filename();
     if (entry.is_directory())
     {
-      copyFolder(entry.path(), to, skipped);
+      copyFolder(entry.path(), to, skipped, link);
     }
     else if (entry.path().parent_path() != skipped || (entry.path().filename() != "points" && entry.path().filename() != "points.gz"))
     {
-      fs::copy_file(entry.path(), to);
+      if (link)
+      {
+        fs::create_symlink(fs::canonical(entry.path()), to); // OpenFOAM reads through it
+      }
+      else
+      {
+        fs::copy_file(entry.path(), to);
+      }
     }
   }
 }
@@ -499,14 +506,15 @@ void vtkOpenFOAMCaseWriter::WriteData()
       partialName = partial.string();
       for (const fs::path& folder : caseFolders(source, { "system", "constant" }))
       {
-        copyFolder(folder, partial / folder.filename(), polyMeshOf(source, processors, -1));
+        copyFolder(folder, partial / folder.filename(), polyMeshOf(source, processors, -1), this->LinkUnchangedFiles);
       }
       for (std::size_t p = 0; p < processors.size(); ++p)
       {
         fs::create_directory(partial / processors[p]);
         for (const fs::path& folder : caseFolders(source / processors[p], { "constant" }))
         {
-          copyFolder(folder, partial / processors[p] / folder.filename(), polyMeshOf(source, processors, static_cast<int>(p)));
+          copyFolder(folder, partial / processors[p] / folder.filename(), polyMeshOf(source, processors, static_cast<int>(p)),
+            this->LinkUnchangedFiles);
         }
       }
       if (!std::ofstream(partial / foam.filename()))
@@ -608,5 +616,6 @@ void vtkOpenFOAMCaseWriter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n"
      << indent << "SourceCase: " << this->SourceCase << "\n"
-     << indent << "Overwrite: " << this->Overwrite << "\n";
+     << indent << "Overwrite: " << this->Overwrite << "\n"
+     << indent << "LinkUnchangedFiles: " << this->LinkUnchangedFiles << "\n";
 }

@@ -58,6 +58,17 @@ public:
   vtkBooleanMacro(Overwrite, vtkTypeBool);
   ///@}
 
+  ///@{
+  /// Link the source's unchanged files (symbolic links to their absolute paths; OpenFOAM reads
+  /// through them) instead of copying them: a variant then holds its own points only, and its
+  /// dictionaries and initial fields are the source's (default off: a self-contained copy). A
+  /// solver run on a linked variant writes its own time folders and leaves the source as it is;
+  /// a tool that edits a dictionary in place would edit the source's through the link.
+  vtkSetMacro(LinkUnchangedFiles, vtkTypeBool);
+  vtkGetMacro(LinkUnchangedFiles, vtkTypeBool);
+  vtkBooleanMacro(LinkUnchangedFiles, vtkTypeBool);
+  ///@}
+
 protected:
   vtkOpenFOAMCaseWriter() = default;
   ~vtkOpenFOAMCaseWriter() override = default;
@@ -68,6 +79,7 @@ protected:
   std::string FileName;
   std::string SourceCase;
   vtkTypeBool Overwrite = 0;
+  vtkTypeBool LinkUnchangedFiles = 0;
 
 private:
   vtkOpenFOAMCaseWriter(const vtkOpenFOAMCaseWriter&) = delete;

@@ -2,7 +2,7 @@
 plugin runs it in pvpython):
 
     pvpython .../plugins/MLSDeform/mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV)
-        [--write-failed] [--max-non-orthogonality 70] [--max-skewness 4] [--max-inverted-cells 0]
+        [--write-failed] [--copy] [--max-non-orthogonality 70] [--max-skewness 4] [--max-inverted-cells 0]
 
 DESIGN.json names the case, its patches by role and the design variables, e.g.
 
@@ -69,6 +69,7 @@ def main(argv):
     choice.add_argument('--table', help='a CSV table of values: one column per variable, one row per variant')
     parser.add_argument('--seed', type=int, default=0, help="the Latin hypercube's seed (default 0)")
     parser.add_argument('--write-failed', action='store_true', help='write the variants that fail the thresholds too')
+    parser.add_argument('--copy', action='store_true', help="self-contained variants (default: links to the source's unchanged files)")
     parser.add_argument('--max-non-orthogonality', type=float, default=70.0, help='degrees (default 70)')
     parser.add_argument('--max-skewness', type=float, default=4.0, help='default 4')
     parser.add_argument('--max-inverted-cells', type=int, default=0, help='default 0')
@@ -79,7 +80,7 @@ def main(argv):
                                    thresholds={'MaxNonOrthogonality': arguments.max_non_orthogonality,
                                                'MaxSkewness': arguments.max_skewness,
                                                'InvertedCells': arguments.max_inverted_cells},
-                                   writeFailed=arguments.write_failed)
+                                   writeFailed=arguments.write_failed, copy=arguments.copy)
     except (ValueError, OSError, json.JSONDecodeError) as e:
         print(f"mlsdeform-doe: {e}", file=sys.stderr)
         return 2

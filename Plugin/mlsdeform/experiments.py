@@ -5,7 +5,8 @@ or a table of values, turned into variant cases with a mesh-quality verdict each
     report = mlsdeform.designOfExperiments(dvs, 'variants', table='doe.csv')
 
 Every variant is ``<folder>/variant<i>/case.foam``, written by the plugin's OpenFOAM case writer
-from the deformation's source case (the reader's CasePath); ``<folder>/report.csv`` holds a row
+from the deformation's source case (the reader's CasePath): its own points, and links to the
+source's unchanged files unless copies are asked for; ``<folder>/report.csv`` holds a row
 per variant: the variables' values, InvertedCells, MaxNonOrthogonality, MaxSkewness (MLS Deform's
 mesh-quality figures, checkMesh's definitions), ok (the verdict against the thresholds), seconds
 and path (empty for a variant that failed and was not written). ``<folder>/design.json`` records
@@ -104,11 +105,14 @@ def _read_report(path, names):
     return kept
 
 
-def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, thresholds=None, writeFailed=False, verbose=True):
+def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, thresholds=None, writeFailed=False, copy=False,
+                        verbose=True):
     """Writes the variants of a design (a Latin hypercube of ``samples`` points with ``seed``, or
     the rows of the CSV ``table``) into ``folder`` and returns the report: one dict per variant.
     ``thresholds`` overrides THRESHOLDS' entries; a variant over them is reported (ok False) and
-    not written unless ``writeFailed``. Prints a progress line per variant (verbose). The design
+    not written unless ``writeFailed``. A variant holds its own points and links the source's
+    unchanged files (OpenFOAM reads through symbolic links; ``copy=True``: self-contained copies).
+    Prints a progress line per variant (verbose). The design
     variables' values are restored at the end. Raises ValueError for a bad design or table and
     RuntimeError when a deformation or a write fails (what was written stays)."""
     from paraview import simple as pvs
@@ -133,7 +137,7 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     folder = os.path.abspath(folder)
     os.makedirs(folder, exist_ok=True)
     design = {'variables': names, 'bounds': [bounds[n] for n in names], 'values': [[v[n] for n in names] for v in values],
-              'thresholds': limits, 'writeFailed': bool(writeFailed), **origin}
+              'thresholds': limits, 'writeFailed': bool(writeFailed), 'copy': bool(copy), **origin}
     record = os.path.join(folder, 'design.json')
     if os.path.exists(record):
         with open(record) as f:
@@ -173,7 +177,7 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
             ok = all(figures[key] <= limits[key] for key in QUALITY)
             path = ''
             if ok or writeFailed:
-                pvs.SaveData(case, proxy=dvs.deformer, Overwrite=1)
+                pvs.SaveData(case, proxy=dvs.deformer, Overwrite=1, LinkUnchangedFiles=0 if copy else 1)
                 if not os.path.exists(case):
                     raise RuntimeError(f"the variant case {os.path.dirname(case)} was not written (see the output window)")
                 path = case

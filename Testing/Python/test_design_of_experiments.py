@@ -74,6 +74,34 @@ check(checkmesh(os.path.dirname(report[0]['path'])), 'checkMesh passes on a vari
 moved = open(os.path.join(os.path.dirname(report[0]['path']), 'constant', 'polyMesh', 'points')).read()
 check(moved != open(os.path.join(case, 'constant', 'polyMesh', 'points')).read(), "a variant's points differ from the source's")
 
+# disk-lean variants: the variant's own points, links to the source's unchanged files
+variant = os.path.dirname(report[0]['path'])
+faces = os.path.join(variant, 'constant', 'polyMesh', 'faces')
+check(os.path.islink(faces) and os.path.realpath(faces) == os.path.realpath(os.path.join(case, 'constant', 'polyMesh', 'faces')),
+      "a variant links the source's unchanged files (constant/polyMesh/faces)")
+points_file = os.path.join(variant, 'constant', 'polyMesh', 'points')
+check(os.path.isfile(points_file) and not os.path.islink(points_file), 'a variant holds its own points file')
+own = sum(os.lstat(os.path.join(d, f)).st_size for d, _, files in os.walk(variant) for f in files
+          if not os.path.islink(os.path.join(d, f)))
+check(own <= 1.2 * os.path.getsize(points_file), "a variant's own files: %d bytes, the points file %d (issue 30: within 1.2x)"
+      % (own, os.path.getsize(points_file)))
+
+
+def snapshot(folder):
+    return {os.path.join(d, f): (os.lstat(os.path.join(d, f)).st_mtime_ns, os.lstat(os.path.join(d, f)).st_size)
+            for d, _, files in os.walk(folder) for f in files}
+
+
+before = snapshot(case)
+run = subprocess.run(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc >/dev/null 2>&1; simpleFoam -case "%s"' % variant],
+                     capture_output=True, text=True)
+check(run.returncode == 0 and os.path.isdir(os.path.join(variant, '20')) and 'End' in run.stdout,
+      'simpleFoam runs on a linked variant and writes its time folder there (exit %d)' % run.returncode)
+check(snapshot(case) == before, 'the source case is untouched by the run')
+copied = mlsdeform.designOfExperiments(dvs, os.path.join(work, 'copies'), samples=1, seed=1, copy=True, verbose=False)
+check(not any(os.path.islink(os.path.join(d, f)) for d, _, files in os.walk(os.path.dirname(copied[0]['path'])) for f in files),
+      'copy=True writes a self-contained case')
+
 # resuming: a variant interrupted while it was written (its .writing- folder) is written again,
 # the complete ones are kept as they are
 second = os.path.dirname(report[2]['path'])

@@ -214,7 +214,7 @@ public:
 };
 
 // Writes input to target; returns the error messages ("" on success).
-std::string write(vtkDataObject* input, const fs::path& target, bool overwrite = false)
+std::string write(vtkDataObject* input, const fs::path& target, bool overwrite = false, bool link = false)
 {
   vtkNew<vtkOpenFOAMCaseWriter> writer;
   vtkNew<ErrorCatcher> errors;
@@ -222,6 +222,7 @@ std::string write(vtkDataObject* input, const fs::path& target, bool overwrite =
   writer->SetInputData(input);
   writer->SetFileName((target / "case.foam").string().c_str());
   writer->SetOverwrite(overwrite);
+  writer->SetLinkUnchangedFiles(link);
   writer->Write();
   CHECK((writer->GetErrorCode() != 0) == !errors->Messages.empty());
   return errors->Messages;
@@ -409,6 +410,53 @@ TEST(DecomposedCaseMovesEveryMesh)
   CHECK(!fs::exists(target / "constant" / "polyMesh" / "points"));
   for (int p = 0; p < 2; ++p)
     CHECK(movedExactly(writtenPoints(target / ("processor" + std::to_string(p)) / "constant" / "polyMesh", Format::Ascii), stored, d, addressing[p]));
+}
+
+TEST(LinkedVariantsHoldTheirPointsOnly)
+{
+  // LinkUnchangedFiles: every mesh's points are the variant's own files, moved as in a copy; every
+  // other file, of the whole mesh and of each processor folder, links the source's
+  const int n = 150;
+  const std::vector<double> xyz = sourcePoints(n), d = smallDisplacement(3 * n);
+  const std::vector<double> stored = asStored(xyz, Format::Ascii);
+  std::vector<std::vector<int>> addressing(2);
+  for (int i = 0; i < 90; ++i)
+    addressing[0].push_back(i);
+  for (int i = n - 1; i >= 60; --i)
+    addressing[1].push_back(i);
+  std::vector<int> all(n);
+  for (int i = 0; i < n; ++i)
+    all[i] = i;
+  const fs::path source = makeCase("linked", Format::Ascii, xyz);
+  decompose(source, xyz, addressing);
+  const fs::path target = Root / "linked-variant";
+  fs::remove_all(target);
+  CHECK(write(deformedInput(source, stored, d, 0), target, false, true).empty());
+  CHECK(movedExactly(writtenPoints(target / "constant" / "polyMesh", Format::Ascii), stored, d, all));
+  std::size_t links = 0, own = 0;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(target))
+  {
+    if (fs::is_symlink(e.symlink_status()))
+    {
+      ++links;
+      const fs::path relative = fs::relative(e.path(), target);
+      CHECK(fs::equivalent(e.path(), source / relative)); // the source's file at the same place
+    }
+    else if (fs::is_regular_file(e.symlink_status()))
+    {
+      ++own;
+      CHECK(e.path().filename() == "points" || e.path().filename() == "case.foam");
+    }
+  }
+  std::printf("%zu links, %zu own files\n", links, own);
+  CHECK(links > 0 && own == 4); // the whole mesh's and two processors' points, and case.foam
+  for (int p = 0; p < 2; ++p)
+  {
+    const fs::path polyMesh = target / ("processor" + std::to_string(p)) / "constant" / "polyMesh";
+    CHECK(movedExactly(writtenPoints(polyMesh, Format::Ascii), stored, d, addressing[p]));
+    CHECK(fs::is_symlink(polyMesh / "pointProcAddressing"));
+  }
+  CHECK(noLeftovers(target));
 }
 
 TEST(DecomposedPolyhedraPointsAreIgnored)
