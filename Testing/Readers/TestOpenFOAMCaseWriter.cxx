@@ -366,22 +366,36 @@ bool movedExactly(const std::vector<double>& written, const std::vector<double>&
 
 // Issue 14: a decomposed case gets every mesh moved, its processor folders and its reconstructed
 // mesh, however the input was read.
+// A case of 150 points decomposed into two processor folders that overlap and run backwards:
+// processor0 holds points 0 .. 89, processor1 points 149 down to 60 (60 .. 89 shared).
+struct DecomposedCase
+{
+  static constexpr int n = 150;
+  std::vector<double> xyz = sourcePoints(n), d = smallDisplacement(3 * n);
+  std::vector<double> stored = asStored(xyz, Format::Ascii);
+  std::vector<std::vector<int>> addressing = std::vector<std::vector<int>>(2);
+  std::vector<int> all = std::vector<int>(n);
+  fs::path source;
+  explicit DecomposedCase(const char* name)
+  {
+    for (int i = 0; i < 90; ++i)
+      addressing[0].push_back(i);
+    for (int i = n - 1; i >= 60; --i)
+      addressing[1].push_back(i);
+    for (int i = 0; i < n; ++i)
+      all[i] = i;
+    source = makeCase(name, Format::Ascii, xyz);
+    decompose(source, xyz, addressing);
+  }
+};
+
 TEST(DecomposedCaseMovesEveryMesh)
 {
-  const int n = 150;
-  const std::vector<double> xyz = sourcePoints(n), d = smallDisplacement(3 * n);
-  const std::vector<double> stored = asStored(xyz, Format::Ascii);
-  // processor0: points 0 .. 89; processor1: points 149 down to 60 (60 .. 89 shared)
-  std::vector<std::vector<int>> addressing(2);
-  for (int i = 0; i < 90; ++i)
-    addressing[0].push_back(i);
-  for (int i = n - 1; i >= 60; --i)
-    addressing[1].push_back(i);
-  std::vector<int> all(n);
-  for (int i = 0; i < n; ++i)
-    all[i] = i;
-  const fs::path source = makeCase("processors", Format::Ascii, xyz);
-  decompose(source, xyz, addressing);
+  const DecomposedCase c("processors");
+  const std::vector<double>&stored = c.stored, &d = c.d;
+  const std::vector<std::vector<int>>& addressing = c.addressing;
+  const std::vector<int>& all = c.all;
+  const fs::path& source = c.source;
   const fs::path target = Root / "processors-variant";
   auto check = [&](const char* reading) {
     std::printf("%s reading\n", reading);
@@ -416,23 +430,13 @@ TEST(LinkedVariantsHoldTheirPointsOnly)
 {
   // LinkUnchangedFiles: every mesh's points are the variant's own files, moved as in a copy; every
   // other file, of the whole mesh and of each processor folder, links the source's
-  const int n = 150;
-  const std::vector<double> xyz = sourcePoints(n), d = smallDisplacement(3 * n);
-  const std::vector<double> stored = asStored(xyz, Format::Ascii);
-  std::vector<std::vector<int>> addressing(2);
-  for (int i = 0; i < 90; ++i)
-    addressing[0].push_back(i);
-  for (int i = n - 1; i >= 60; --i)
-    addressing[1].push_back(i);
-  std::vector<int> all(n);
-  for (int i = 0; i < n; ++i)
-    all[i] = i;
-  const fs::path source = makeCase("linked", Format::Ascii, xyz);
-  decompose(source, xyz, addressing);
+  const DecomposedCase c("linked");
+  const std::vector<double>&stored = c.stored, &d = c.d;
+  const fs::path& source = c.source;
   const fs::path target = Root / "linked-variant";
   fs::remove_all(target);
   CHECK(write(deformedInput(source, stored, d, 0), target, false, true).empty());
-  CHECK(movedExactly(writtenPoints(target / "constant" / "polyMesh", Format::Ascii), stored, d, all));
+  CHECK(movedExactly(writtenPoints(target / "constant" / "polyMesh", Format::Ascii), stored, d, c.all));
   std::size_t links = 0, own = 0;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(target))
   {
@@ -453,7 +457,7 @@ TEST(LinkedVariantsHoldTheirPointsOnly)
   for (int p = 0; p < 2; ++p)
   {
     const fs::path polyMesh = target / ("processor" + std::to_string(p)) / "constant" / "polyMesh";
-    CHECK(movedExactly(writtenPoints(polyMesh, Format::Ascii), stored, d, addressing[p]));
+    CHECK(movedExactly(writtenPoints(polyMesh, Format::Ascii), stored, d, c.addressing[p]));
     CHECK(fs::is_symlink(polyMesh / "pointProcAddressing"));
   }
   CHECK(noLeftovers(target));
