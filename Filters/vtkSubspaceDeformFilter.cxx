@@ -148,7 +148,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   {
     SolutionFigures figures;
     const auto setupStart = Clock::now();
-    session.readInputs(inSets, inputVector[1], group);
+    session.readInputs(inSets, inputVector[1], this->ExtrusionAxis, group);
     figures.resampled = session.updateSubspace(this->GetSubspaceDependencies(inputVector), inSets,
       [&] { return this->BuildSubspace(inSets, inputVector); }, group);
     session.updatePointRows(group);
@@ -173,7 +173,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     figures.setupTime = session.setupTime();
     figures.diagonal = session.diagonal();
 
-    const double constraintResidual = reportSolution(output->GetFieldData(), session.model(), session.regions(), solution, figures);
+    const double constraintResidual = reportSolution(output->GetFieldData(), session.model(), session.regions(), session.iteratedConstraints(), solution, figures);
     if (this->MeshQuality)
     {
       session.reportQuality(inSets, outSets, output->GetFieldData(), group);
@@ -348,6 +348,7 @@ void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "MaxIterations: " << this->MaxIterations << "\n"
      << indent << "Tolerance: " << this->Tolerance << "\n"
      << indent << "Acceleration: " << this->Acceleration << "\n"
+     << indent << "ExtrusionAxis: " << this->ExtrusionAxis << "\n"
      << indent << "MeshQuality: " << this->MeshQuality << "\n"
      << indent << "ComputeSensitivities: " << this->ComputeSensitivities << "\n"
      << indent << "ObjectiveGradientArray: " << (this->ObjectiveGradientArray ? this->ObjectiveGradientArray : "(none)") << "\n";

@@ -148,6 +148,22 @@ public:
   vtkGetMacro(Acceleration, int);
   ///@}
 
+  enum ExtrusionAxes
+  {
+    NoExtrusion = -1, // a 3D deformation
+    ExtrudedX = 0,
+    ExtrudedY,
+    ExtrudedZ
+  };
+  ///@{
+  /// A 2D case extruded along this axis (an OpenFOAM case whose front and back planes are an
+  /// `empty` patch): the displacement does not vary along the axis and has no component along it,
+  /// so the front and back planes move alike and the mesh stays 2D (Session/Extrusion.h; only
+  /// Handle, Fixed and Slip regions then). Default NoExtrusion.
+  vtkSetClampMacro(ExtrusionAxis, int, NoExtrusion, ExtrudedZ);
+  vtkGetMacro(ExtrusionAxis, int);
+  ///@}
+
   ///@{
   /// Report the volume mesh's quality before and after in the field data (default on; costs a
   /// pass over the cells per update).
@@ -227,6 +243,7 @@ protected:
   int MaxIterations = 5000;
   double Tolerance = 1e-7;
   int Acceleration = Anderson;
+  int ExtrusionAxis = NoExtrusion;
   vtkTypeBool MeshQuality = 1;
   vtkTypeBool ComputeSensitivities = 0;
   char* ObjectiveGradientArray = nullptr;

@@ -40,8 +40,23 @@ DeformationSession::DeformationSession(vtkAlgorithm* owner)
 {
 }
 
-void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, const Collective& group)
+void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, int extrusionAxis,
+  const Collective& group)
 {
+  if (extrusionAxis < -1 || extrusionAxis > 2)
+  {
+    throw InvalidInputException("the extrusion axis must be -1 (none), 0, 1 or 2 (x, y, z), not " + std::to_string(extrusionAxis));
+  }
+  if (extrusionAxis != Extruded.axis)
+  {
+    // Phi is evaluated at other positions: as if the points had changed
+    Extruded.axis = extrusionAxis;
+    PointsVersion = NextVersion++;
+    Diagonal = -1;
+    Targets.invalidate();
+    Constraints.invalidate();
+    SlipKey.invalidate();
+  }
   agree(group, [&] {
     Stamp stamp = pointsStamp(sets);
     if (stamp != PointsStamp)
@@ -64,7 +79,9 @@ void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkIn
   }
   if (group.any(Diagonal < 0))
   {
-    Diagonal = boundingBox(Points, group).size().norm();
+    const BoundingBox box = boundingBox(Points, group);
+    Diagonal = box.size().norm();
+    Extruded.middle = Extruded.active() ? 0.5 * (box.lower[Extruded.axis] + box.upper[Extruded.axis]) : 0.0;
   }
   gatherRegions(Regions, NextVersion, group);
   Design = designTable(Regions);
@@ -77,6 +94,10 @@ void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkIn
   {
     SlipKey.invalidate();
     Slips = slipPlanes(Regions);
+    if (Extruded.active())
+    {
+      Slips.push_back(Extruded.slide());
+    }
     SlipKey.built(std::move(slipKey));
   }
 }
@@ -110,7 +131,8 @@ void DeformationSession::updatePointRows(const Collective& group)
     {
       PointRowsKey.invalidate();
       std::vector<int> outside;
-      PointRows = subspaceBlocks(Model->basis(), Points, &outside, { &reportProgress, Owner, 0.6, 0.9 });
+      PointList projected;
+      PointRows = subspaceBlocks(Model->basis(), Extruded.evaluated(Points, projected), &outside, { &reportProgress, Owner, 0.6, 0.9 });
       if (!outside.empty())
       {
         throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
@@ -137,7 +159,8 @@ void DeformationSession::updateTargets()
   {
     if (!isConstraint(r.role))
     {
-      targets.push_back({ r.gathered.positions, r.weight });
+      PointList projected;
+      targets.push_back({ Extruded.evaluated(r.gathered.positions, projected), r.weight });
       positions.insert(positions.end(), r.gathered.positions.begin(), r.gathered.positions.end());
     }
   }
@@ -157,16 +180,32 @@ void DeformationSession::updateConstraints(ConstraintFormulation formulation)
   }
   Constraints.invalidate();
   std::vector<ShapeConstraint> shapes;
-  for (const RegionInput& r : Regions)
+  for (const RegionInput* r : iteratedConstraints())
   {
-    if (isConstraint(r.role))
+    if (Extruded.active() && r->role != roles::Slip)
     {
-      addConstraintSets(r, shapes);
+      throw InvalidInputException(std::string("a ") + regionRole(r->role).name +
+        " region in a 2D (extruded) deformation: only Handle, Fixed and Slip regions are supported there");
     }
+    addConstraintSets(*r, shapes);
   }
   Model->setConstraints(shapes, formulation);
   Constraints.built(std::move(key));
   ++Counts.constraints;
+}
+
+std::vector<const RegionInput*> DeformationSession::iteratedConstraints() const
+{
+  std::vector<const RegionInput*> iterated;
+  for (const RegionInput& r : Regions)
+  {
+    // a front or back plane of an extruded case is kept exactly by the extrusion's slide
+    if (isConstraint(r.role) && !(r.role == roles::Slip && Extruded.normalPlane(r.gathered.positions, 1e-6 * Diagonal)))
+    {
+      iterated.push_back(&r);
+    }
+  }
+  return iterated;
 }
 
 bool DeformationSession::updateFactorization(const EnergyWeights& weights)
@@ -243,7 +282,9 @@ std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double>
   if (Gradient.subspace != Counts.subspace || Gradient.points != PointsVersion || Gradient.positions != g.positions)
   {
     // rows at input points are copied from stage 2's (the same bits as evaluating them)
-    Gradient.rows = subspaceMatrix(Model->basis(), g.positions, nullptr, {}, { &PointRows, positionsAmong(Points, g.positions) });
+    PointList projected;
+    Gradient.rows = subspaceMatrix(Model->basis(), Extruded.evaluated(g.positions, projected), nullptr, {},
+      { &PointRows, positionsAmong(Points, g.positions) });
     Gradient.positions = g.positions;
     Gradient.subspace = Counts.subspace;
     Gradient.points = PointsVersion;

@@ -28,6 +28,7 @@
 #include "Common/Collective.h"
 #include "Session/DeformedOutput.h"
 #include "Session/DesignSensitivities.h"
+#include "Session/Extrusion.h"
 #include "Session/MeshQualityReport.h"
 #include "Session/RegionInputs.h"
 #include "Session/SlipPlanes.h"
@@ -106,10 +107,13 @@ public:
   const Runs& runs() const { return Counts; }
 
   /// Stage 0: this process's points (read again when their stamp changes, a new version when
-  /// their values do) and the Regions inputs of all processes (RegionInputs.h), the slip planes
-  /// fitted again when a region changed. Throws InvalidInputException on bad input (no points on
-  /// any process, NaN, a region that selects nothing, no Handle, a Slip region that is no plane).
-  void readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, const mlsdeform::Collective& group);
+  /// their values do or the extrusion axis changed) and the Regions inputs of all processes
+  /// (RegionInputs.h), the slip planes fitted again when a region changed. extrusionAxis: 0-2 for
+  /// a 2D case extruded along x, y or z (Extrusion.h), -1 for none. Throws InvalidInputException on
+  /// bad input (no points on any process, NaN, a region that selects nothing, no Handle, a Slip
+  /// region that is no plane).
+  void readInputs(const std::vector<vtkPointSet*>& sets, vtkInformationVector* regions, int extrusionAxis,
+    const mlsdeform::Collective& group);
 
   /// Stage 1: the subspace (shape functions and energies), rebuilt by build when its key changed;
   /// returns whether it was (the output's "Resampled").
@@ -124,7 +128,8 @@ public:
   /// position is an input point) and their normal matrices.
   void updateTargets();
 
-  /// Stage 4: the geometric constraints (section 6).
+  /// Stage 4: the geometric constraints (section 6). Throws InvalidInputException for a
+  /// constraint other than Slip in an extruded deformation.
   void updateConstraints(mlsdeform::ConstraintFormulation formulation);
 
   /// Stage 5: the factorization of eq. 14 (17); returns whether it ran (the output's
@@ -163,6 +168,9 @@ public:
 
   const mlsdeform::SpaceDeformation& model() const { return *Model; }
   const std::vector<RegionInput>& regions() const { return Regions; }
+  /// The constraint regions the model iterates on, in its order (not an extruded case's front
+  /// and back Slip planes, which the extrusion keeps exactly).
+  std::vector<const RegionInput*> iteratedConstraints() const;
   /// The diagonal of the bounding box of all processes' points.
   double diagonal() const { return Diagonal; }
   /// Seconds the last set-up (a run of stage 1 or 5) took.
@@ -179,6 +187,7 @@ private:
   mlsdeform::PointList Points; // the input points of this process, concatenated over the point sets
   long PointsVersion = -1;
   double Diagonal = -1; // -1: not known for these points
+  Extrusion Extruded;
   std::vector<RegionInput> Regions;
   Stage<std::vector<RegionKey>> SlipKey;
   std::vector<SlipPlane> Slips;

@@ -27,16 +27,9 @@ namespace
 // One tuple per constraint region: type, points, sets, residual (largest distance to the
 // projection over its sets, relative to the bounding-box diagonal), iterations, converged.
 // Returns the largest relative residual.
-double reportConstraints(vtkFieldData* field, const std::vector<RegionInput>& regions, const SpaceDeformation::Solution& solution, double diagonal)
+double reportConstraints(vtkFieldData* field, const std::vector<const RegionInput*>& constraints,
+  const SpaceDeformation::Solution& solution, double diagonal)
 {
-  std::vector<const RegionInput*> constraints;
-  for (const RegionInput& r : regions)
-  {
-    if (isConstraint(r.role))
-    {
-      constraints.push_back(&r);
-    }
-  }
   if (constraints.empty())
   {
     return 0;
@@ -71,7 +64,7 @@ double reportConstraints(vtkFieldData* field, const std::vector<RegionInput>& re
 }
 
 double reportSolution(vtkFieldData* field, const SpaceDeformation& model, const std::vector<RegionInput>& regions,
-  const SpaceDeformation::Solution& solution, const SolutionFigures& figures)
+  const std::vector<const RegionInput*>& constraints, const SpaceDeformation::Solution& solution, const SolutionFigures& figures)
 {
   // the RMS residual of each target region, in the order the regions were given (rmsResidual)
   double handleResidual = 0, fixedResidual = 0;
@@ -94,6 +87,6 @@ double reportSolution(vtkFieldData* field, const SpaceDeformation& model, const 
   addField(field, "ReciprocalCondition", model.reciprocalCondition());
   addField(field, "Resampled", figures.resampled ? 1 : 0);
   addField(field, "Refactorized", figures.refactorized ? 1 : 0);
-  return reportConstraints(field, regions, solution, figures.diagonal);
+  return reportConstraints(field, constraints, solution, figures.diagonal);
 }
 } // namespace mlsvtk

@@ -22,8 +22,10 @@ struct SolutionFigures
   double diagonal = 1; // of the bounding box of all processes' points: the constraint residuals' unit
 };
 
-/// Adds the figures of the solution of model for regions to field; returns the largest constraint
+/// Adds the figures of the solution of model for regions to field (one tuple per region of
+/// constraints, the ones the model iterates on, in its order); returns the largest constraint
 /// residual relative to the diagonal (0 without constraints).
 double reportSolution(vtkFieldData* field, const mlsdeform::SpaceDeformation& model, const std::vector<RegionInput>& regions,
-  const mlsdeform::SpaceDeformation::Solution& solution, const SolutionFigures& figures);
+  const std::vector<const RegionInput*>& constraints, const mlsdeform::SpaceDeformation::Solution& solution,
+  const SolutionFigures& figures);
 } // namespace mlsvtk

@@ -410,6 +410,90 @@ struct BadInputScene
   }
 };
 
+// A 2D case extruded along z (ExtrusionAxis; an OpenFOAM case with empty front and back planes,
+// here the box with its z = 0 and z = 1 planes as Slip regions): every point moves by the
+// displacement of its projection onto the mid-plane, without a z component, so points with the
+// same x and y move alike to the last bit, and their derivatives too. The planes' Slip regions
+// are implied (not iterated on: the deformation stays linear, its sensitivities exact).
+TEST(ExtrudedCaseStaysTwoDimensional)
+{
+  vtkNew<vtkTrivialProducer> source;
+  source->SetOutput(boxAndSurface(5));
+  auto fixed = region(source->GetOutputPort(), vtkConstraintRegion::Fixed, { -0.01, 0.01, -0.01, 1.01, -0.01, 1.01 });
+  auto handle = region(source->GetOutputPort(), vtkConstraintRegion::Handle, { 1.59, 2.01, -0.01, 1.01, -0.01, 1.01 });
+  auto front = region(source->GetOutputPort(), vtkConstraintRegion::Slip, { -0.01, 2.01, -0.01, 1.01, -0.01, 0.01 });
+  auto back = region(source->GetOutputPort(), vtkConstraintRegion::Slip, { -0.01, 2.01, -0.01, 1.01, 0.99, 1.01 });
+  handle->SetRotation(0, 0, 8);
+  vtkNew<vtkMLSDeformFilter> deform;
+  deform->SetInputConnection(source->GetOutputPort());
+  for (auto* r : { fixed.Get(), handle.Get(), front.Get(), back.Get() })
+    deform->AddRegionConnection(r->GetOutputPort());
+  deform->SetNumberOfSamples(200);
+  deform->SetExtrusionAxis(vtkMLSDeformFilter::ExtrudedZ);
+  const std::vector<Variable> variables = { { "lift", 0, { { handle, { 0, 1, 0.3 } } }, 0.05, -0.2, 0.2, 1e-3 },
+    { "turn", 1, { { handle, { 0, 0.2, 1 } } }, -2, -10, 10, 1e-2 } };
+  checkSensitivities(deform, variables, LinearBound);
+  CHECK(std::string(vtkStringArray::SafeDownCast(deform->GetOutputDataObject(0)->GetFieldData()->GetAbstractArray("SensitivityMethod"))
+                      ->GetValue(0))
+          .find("exact") == 0);
+  // the axes' z parts (0.3, and the turn's tilt) have no effect: x and y alone decide
+  const std::vector<double> X = deformedPoints(deform);
+  std::vector<std::vector<double>> derivatives;
+  for (int v = 0; v < 2; ++v)
+    derivatives.push_back(forward(deform, v, 2));
+  std::vector<double> input;
+  for (vtkPointSet* set : leaves(source->GetOutputDataObject(0)))
+    for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+      for (int k = 0; k < 3; ++k)
+        input.push_back(set->GetPoint(i)[k]);
+  std::map<std::pair<double, double>, std::vector<std::size_t>> twins;
+  for (std::size_t i = 0; i < input.size() / 3; ++i)
+    twins[{ input[3 * i], input[3 * i + 1] }].push_back(i);
+  std::size_t pairs = 0, alike = 0, flat = 0;
+  for (const auto& [xy, points] : twins)
+    for (std::size_t i : points)
+    {
+      const std::size_t j = points.front();
+      flat += X[3 * i + 2] == input[3 * i + 2] && derivatives[0][3 * i + 2] == 0 && derivatives[1][3 * i + 2] == 0;
+      if (i == j)
+        continue;
+      ++pairs;
+      bool same = true;
+      for (int k = 0; k < 2; ++k)
+        same = same && X[3 * i + k] - input[3 * i + k] == X[3 * j + k] - input[3 * j + k] &&
+          derivatives[0][3 * i + k] == derivatives[0][3 * j + k] && derivatives[1][3 * i + k] == derivatives[1][3 * j + k];
+      alike += same;
+    }
+  std::printf("extruded: %zu of %zu points keep z, %zu of %zu twins move alike\n", flat, input.size() / 3, alike, pairs);
+  CHECK(pairs > 0);
+  CHECK(alike == pairs);
+  CHECK(flat == input.size() / 3);
+  CHECK(fieldValue(deform->GetOutputDataObject(0), "InvertedCells") == 0);
+}
+
+TEST(ExtrudedCaseRefusesShapeConstraints)
+{
+  vtkNew<vtkTrivialProducer> source;
+  source->SetOutput(tetrahedralBox(4));
+  auto fixed = region(source->GetOutputPort(), vtkConstraintRegion::Fixed, { -0.01, 0.01, -0.01, 1.01, -0.01, 1.01 });
+  auto handle = region(source->GetOutputPort(), vtkConstraintRegion::Handle, { 1.49, 2.01, -0.01, 1.01, -0.01, 1.01 });
+  auto planar = region(source->GetOutputPort(), vtkConstraintRegion::Planarity, { 0.9, 1.1, -0.01, 1.01, -0.01, 1.01 });
+  handle->SetTranslation(0, 0.1, 0);
+  vtkNew<vtkMLSDeformFilter> deform;
+  deform->SetInputConnection(source->GetOutputPort());
+  for (auto* r : { fixed.Get(), handle.Get(), planar.Get() })
+    deform->AddRegionConnection(r->GetOutputPort());
+  deform->SetNumberOfSamples(100);
+  deform->SetExtrusionAxis(vtkMLSDeformFilter::ExtrudedZ);
+  auto messages = MessageCollector::watch(deform);
+  deform->Update();
+  CHECK(messages->errorContains("Planarity region in a 2D (extruded) deformation"));
+  CHECK(deform->GetErrorCode() == vtkErrorCode::UserError);
+  deform->SetExtrusionAxis(vtkMLSDeformFilter::NoExtrusion); // the same scene in 3D is fine
+  deform->Update();
+  CHECK(deform->GetErrorCode() == vtkErrorCode::NoError);
+}
+
 TEST(BadDesignVariablesAreReported)
 {
   struct Case
