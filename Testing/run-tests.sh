@@ -17,7 +17,7 @@ missing=()
 for program in pvpython pvbatch pvserver paraview mpiexec Xvfb xdpyinfo gmsh snappyHexMesh; do
   command -v "$program" > /dev/null || missing+=("program $program")
 done
-for program in blockMesh snappyHexMesh checkMesh decomposePar; do
+for program in blockMesh snappyHexMesh checkMesh decomposePar adjointOptimisationFoam foamDictionary; do
   bash -c "source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; command -v $program" > /dev/null ||
     missing+=("OpenFOAM's $program (after sourcing /usr/share/openfoam/etc/bashrc)")
 done
@@ -26,6 +26,9 @@ cgal_data=$(sed -n 's/^MLSDEFORM_CGAL_DATA:FILEPATH=//p' "$build/CMakeCache.txt"
 for file in /usr/share/openfoam/etc/bashrc "$cgal_data" "$build/data/fandisk.off" "$build/data/joint.off"; do
   [ -s "$file" ] || missing+=("file ${file:-MLSDEFORM_CGAL_DATA (not in $build/CMakeCache.txt)}")
 done
+examples=$(sed -n 's/^MLSDEFORM_OPENFOAM_EXAMPLES:PATH=//p' "$build/CMakeCache.txt")
+[ -d "$examples/usr/share/doc/openfoam-examples/examples/incompressible/adjointOptimisationFoam" ] ||
+  missing+=("OpenFOAM's adjoint tutorials (openfoam-examples) in ${examples:-MLSDEFORM_OPENFOAM_EXAMPLES (not in $build/CMakeCache.txt)}")
 if ((${#missing[@]})); then
   printf 'run-tests.sh: missing after the set-up (Testing/setup.sh), the tests that need it would be skipped:\n' >&2
   printf '  %s\n' "${missing[@]}" >&2

@@ -2,7 +2,8 @@
 # Sets up a Debian 12 machine for MLSDeform and builds it: installs the Debian packages that are
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
 # Qt's OpenGL module for the plugin's GUI part, Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb and PyQt5 for the GUI tests, and for the paper comparisons gmsh
-# and matplotlib, scipy for the optimization example, OpenFOAM for the CFD round-trip tests and examples), then configures and builds into build/ (or
+# and matplotlib, scipy for the optimization example, OpenFOAM for the CFD round-trip tests and examples, and OpenFOAM's tutorials from
+# openfoam-examples, unpacked into the build, for the adjoint tests), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -35,6 +36,9 @@ if ((${#missing[@]})); then
 fi
 
 mkdir -p "$build"
+# OpenFOAM's adjoint tutorials (the NACA 0012 case of the adjoint tests and examples): Debian's
+# openfoam-examples, unpacked into the build (its 36 MB are fetched once)
+"$root/Examples/OpenFOAM/openfoam-examples.sh" "$build/data/openfoam-examples" > /dev/null
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" -j "$(nproc)"
 echo "Built; the plugin is $build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so"

@@ -6,13 +6,16 @@ gives the deformed points and their exact derivatives, with the interface of pyG
 (``addHandleDV``, ``setDesignVars``, ``update``, ``totalSensitivity``,
 ``totalSensitivityProd``, ``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO; ``designOfExperiments``
 turns a Latin hypercube or a table of values into OpenFOAM variant cases with a mesh-quality
-verdict each.
+verdict each; ``readFoamSensitivity`` turns an OpenFOAM adjoint sensitivity field into dJ/dX on
+the deformation's points (for ``totalSensitivity``) and ``readFoamObjective`` reads J.
 """
 from .design import DesignVariables, KINDS, _load_wrapping
-from .experiments import THRESHOLDS, designOfExperiments, latinHypercube, readTable
+from .adjoint import readFoamDictionary, readFoamObjective, readFoamSensitivity
+from .experiments import THRESHOLDS, designOfExperiments, latinHypercube, meshQuality, passes, readTable
 
 # The filters' Python wrapping, now: a VTK object handed to Python before it is loaded keeps its
 # plain base class (and lacks the sensitivity methods).
 _load_wrapping()
 
-__all__ = ["DesignVariables", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "readTable"]
+__all__ = ["DesignVariables", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "meshQuality", "passes",
+           "readFoamDictionary", "readFoamObjective", "readFoamSensitivity", "readTable"]

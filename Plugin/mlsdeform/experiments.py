@@ -28,6 +28,26 @@ THRESHOLDS = {'MaxNonOrthogonality': 70.0, 'MaxSkewness': 4.0, 'InvertedCells': 
 QUALITY = ('InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness')
 
 
+def meshQuality(dvs):
+    """The last update's volume-mesh figures (checkMesh's definitions) as a dict: InvertedCells,
+    MaxNonOrthogonality, MaxSkewness. Raises RuntimeError when MLS Deform reports none."""
+    output = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
+    figures = {}
+    for key in QUALITY:
+        array = output.GetArray(key)
+        if array is None:
+            raise RuntimeError(f"MLS Deform reports no {key}: turn its MeshQuality on and give it a volume mesh")
+        figures[key] = array.GetTuple1(0)
+    figures['InvertedCells'] = int(figures['InvertedCells'])
+    return figures
+
+
+def passes(figures, thresholds=None):
+    """The verdict: every figure at most its threshold (THRESHOLDS, with thresholds' entries)."""
+    limits = dict(THRESHOLDS, **(thresholds or {}))
+    return all(figures[key] <= limits[key] for key in QUALITY)
+
+
 def latinHypercube(bounds, samples, seed=0):
     """samples points in the box bounds = [(lower, upper), ...]: each variable's range cut into
     samples equal strata, one point in each (uniform within it), the strata paired at random."""
@@ -115,7 +135,7 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     Prints a progress line per variant (verbose). The design
     variables' values are restored at the end. Raises ValueError for a bad design or table and
     RuntimeError when a deformation or a write fails (what was written stays)."""
-    from paraview import simple as pvs
+    from .foam import save_variant
     names = dvs.getVarNames()
     if not names:
         raise ValueError("the design has no variables: add some with addHandleDV first")
@@ -166,20 +186,11 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
             began = time.perf_counter()
             dvs.setDesignVars(point)
             dvs.update()
-            output = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
-            figures = {}
-            for key in QUALITY:
-                array = output.GetArray(key)
-                if array is None:
-                    raise RuntimeError(f"MLS Deform reports no {key}: turn its MeshQuality on and give it a volume mesh")
-                figures[key] = array.GetTuple1(0)
-            figures['InvertedCells'] = int(figures['InvertedCells'])
-            ok = all(figures[key] <= limits[key] for key in QUALITY)
+            figures = meshQuality(dvs)
+            ok = passes(figures, limits)
             path = ''
             if ok or writeFailed:
-                pvs.SaveData(case, proxy=dvs.deformer, Overwrite=1, LinkUnchangedFiles=0 if copy else 1)
-                if not os.path.exists(case):
-                    raise RuntimeError(f"the variant case {os.path.dirname(case)} was not written (see the output window)")
+                save_variant(dvs.deformer, case, overwrite=True, link=not copy)
                 path = case
             seconds = time.perf_counter() - began
             row = dict(point, **figures, variant=variant, ok=ok, seconds=seconds, path=path)

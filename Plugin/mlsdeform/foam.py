@@ -47,10 +47,11 @@ def morph(reader, handle, translation, fixed=(), slip=(), rigid_layers=0, **sett
     return deformed
 
 
-def save_variant(deformed, foam_file, overwrite=False):
-    """Writes the variant case whose .foam file is foam_file; raises RuntimeError if nothing was
-    written (the writer's message is in the output window)."""
+def save_variant(deformed, foam_file, overwrite=False, link=False):
+    """Writes the variant case whose .foam file is foam_file (link: its own points only, links to
+    the source's unchanged files); raises RuntimeError if nothing was written (the writer's
+    message is in the output window)."""
     import os
-    pvs.SaveData(foam_file, proxy=deformed, Overwrite=1 if overwrite else 0)
+    pvs.SaveData(foam_file, proxy=deformed, Overwrite=1 if overwrite else 0, LinkUnchangedFiles=1 if link else 0)
     if not os.path.exists(foam_file):
         raise RuntimeError('the variant case %s was not written' % os.path.dirname(foam_file))

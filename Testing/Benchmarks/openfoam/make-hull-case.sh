@@ -16,24 +16,8 @@ mkdir -p "$(dirname "$target")"
 target=$(cd "$(dirname "$target")" && pwd)/$(basename "$target")
 
 # The hull surface.
-relative=usr/share/doc/openfoam-examples/examples/resources/geometry/DTC-scaled.stl.gz
-stl=/$relative
-if [ ! -f "$stl" ]; then
-  cache=${GEOMETRY_CACHE:-$(dirname "$target")/openfoam-examples}
-  stl=$cache/$relative
-  if [ ! -f "$stl" ]; then
-    echo "Fetching Debian's openfoam-examples (36 MB) into $cache for the DTC hull"
-    mkdir -p "$cache"
-    (cd "$cache" && { apt-get download openfoam-examples > apt-download.log 2>&1 || {
-       # the package lists may be missing on a fresh machine
-       sudo=""; [ "$(id -u)" -eq 0 ] || sudo=sudo
-       $sudo apt-get update -q > /dev/null && apt-get download openfoam-examples > apt-download.log 2>&1; } ||
-       { cat apt-download.log; exit 1; } })
-    debs=("$cache"/openfoam-examples_*.deb)
-    dpkg-deb -x "${debs[0]}" "$cache"
-    rm -f "$cache"/openfoam-examples_*.deb
-  fi
-fi
+examples=$("$here/../../../Examples/OpenFOAM/openfoam-examples.sh" "${GEOMETRY_CACHE:-$(dirname "$target")/openfoam-examples}")
+stl=$examples/usr/share/doc/openfoam-examples/examples/resources/geometry/DTC-scaled.stl.gz
 
 rm -rf "$target"
 cp -r "$here/hullBox" "$target"

@@ -1,0 +1,94 @@
+"""The NACA 0012 laminar drag case of OpenFOAM's adjoint tutorials (make-naca0012-case.sh) as a
+design problem, for the adjoint examples: its deformation with two design variables on the
+airfoil, and adjointOptimisationFoam runs on its variants. Load the plugin before importing this.
+
+The airfoil (patches pressure and suction, one Handle region) turns and thickens about its quarter
+chord; the far field (patch inlet) is Fixed; the front and back planes (patch frontBack, type empty)
+are two Slip regions, and the deformation is that of a 2D case extruded along z (MLS Deform's
+ExtrusionAxis): both planes move alike, so the mesh stays 2D (Slip regions alone keep each plane
+flat but let them drift apart in x and y, which checkMesh reports as non-aligned edges):
+  aoa        Rotate about -z (nose up), in degrees, -3 to 3
+  thickness  Scale along y: the thickness grows by the factor 1 + thickness, -0.3 to 0.3
+J is the tutorial's drag objective (force along the flow direction, over 0.5 UInf^2 Aref, kinematic).
+"""
+import os
+import shutil
+import subprocess
+
+import paraview.simple as pvs
+
+import mlsdeform
+from mlsdeform.foam import open_case, patch_region
+
+PATCHES = ['inlet', 'pressure', 'suction', 'frontBack']
+QUARTER_CHORD = [0.25, 0.0, 0.5]
+FIELD = 'pointSensVecadjS1ESI'   # the adjoint solver adjS1's surface sensitivity, dJ/dx (make-naca0012-case.sh)
+
+
+def _plane(input, z_low, z_high, diagonal=100.0):
+    """A Slip region of the frontBack points with z_low < z < z_high (one of its two planes)."""
+    region = pvs.ConstraintRegion(Input=input, Role='Slip', SelectionMode='ImplicitFunction')
+    region.Region = 'Box'
+    region.Region.UseReferenceBounds = 0
+    region.Region.Position = [-diagonal, -diagonal, z_low]
+    region.Region.Length = [2 * diagonal, 2 * diagonal, z_high - z_low]
+    return region
+
+
+def deformation(foam_file, **settings):
+    """(deformed, dvs): MLS Deform of the case with the design variables aoa and thickness at 0."""
+    reader = open_case(foam_file, PATCHES, decompose_polyhedra=False)
+    airfoil = pvs.ExtractBlock(Input=reader, Selectors=['/Root/boundary/pressure', '/Root/boundary/suction'])
+    handle = pvs.ConstraintRegion(Input=airfoil, Role='Handle', SelectionMode='AllPoints', UseCentroid=0,
+                                  Center=QUARTER_CHORD)
+    fixed = patch_region(reader, 'inlet', 'Fixed')
+    planes = pvs.ExtractBlock(Input=reader, Selectors=['/Root/boundary/frontBack'])
+    front, back = _plane(planes, -0.5, 0.5), _plane(planes, 0.5, 1.5)
+    deformed = pvs.MLSDeform(Input=reader, Regions=[handle, fixed, front, back], ExtrusionAxis='Z', **settings)
+    dvs = mlsdeform.DesignVariables(deformed)
+    dvs.addHandleDV('aoa', handle, rotate=[0, 0, -1], lower=-3, upper=3)
+    dvs.addHandleDV('thickness', handle, scale=[0, 1, 0], lower=-0.3, upper=0.3)
+    dvs.update()
+    return deformed, dvs
+
+
+def _own(case, name):
+    """case/name as the case's own file (a linked variant links the source's: editing through the
+    link would edit the source)."""
+    path = os.path.join(case, name)
+    if os.path.islink(path):
+        target = os.path.realpath(path)
+        os.unlink(path)
+        shutil.copyfile(target, path)
+    return path
+
+
+def foam(command, case):
+    """An OpenFOAM command (a string) run in case with Debian's OpenFOAM environment: a Popen."""
+    return subprocess.Popen(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; ' + command],
+                            cwd=case, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+
+
+def start_adjoint(case, primal, adjoint, log='log.adjoint'):
+    """Starts adjointOptimisationFoam in case with the given iteration counts (adjoint 0: the
+    primal and the objective only); returns the Popen. A variant's iteration settings are its own."""
+    dictionary, control = _own(case, 'system/optimisationDict'), _own(case, 'system/controlDict')
+    adjoint_iterations = max(int(adjoint), 1)  # the objective is written when the adjoint starts
+    edits = ['foamDictionary -entry primalSolvers.op1.solutionControls.nIters -set %d %s' % (primal, dictionary),
+             'foamDictionary -entry adjointManagers.adjManager1.adjointSolvers.adjS1.solutionControls.nIters -set %d %s'
+             % (adjoint_iterations, dictionary),
+             'foamDictionary -entry endTime -set %d %s' % (primal + adjoint_iterations, control),
+             'foamDictionary -entry writeInterval -set %d %s' % (primal + adjoint_iterations, control)]
+    return foam(' > /dev/null && '.join(edits) + ' > /dev/null && adjointOptimisationFoam > %s 2>&1' % log, case)
+
+
+def finish(process, case, log='log.adjoint'):
+    if process.wait() != 0:
+        raise RuntimeError('adjointOptimisationFoam failed in %s (see %s)' % (case, os.path.join(case, log)))
+
+
+def checkmesh(case):
+    """checkMesh's verdict on a case: (ok, its log's text)."""
+    process = subprocess.run(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; checkMesh -case "%s"'
+                              % case], capture_output=True, text=True)
+    return 'Mesh OK.' in process.stdout and process.returncode == 0, process.stdout
