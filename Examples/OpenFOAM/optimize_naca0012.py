@@ -1,0 +1,162 @@
+"""Gradient-based shape optimization of the NACA 0012 laminar drag case with OpenFOAM's adjoint:
+the design variables of naca0012.py (angle of attack and thickness, bounded), each iteration a
+variant case written by MLS Deform and rejected if its mesh fails the quality thresholds (DAFoam's:
+no inverted cell, non-orthogonality at most 70, skewness at most 4), then adjointOptimisationFoam
+on it (primal, adjoint and the surface sensitivity), dJ/dp = sum_i dJ/dX_i . dX_i/dp through
+mlsdeform.readFoamSensitivity and DesignVariables.totalSensitivity, and a projected
+steepest-descent step in the variables scaled to their bounds with a backtracking (Armijo) line
+search: a trial whose mesh fails or whose J does not decrease enough is rejected and the step
+halved. J decreases from one accepted iterate to the next by construction; the drag optimum
+within the bounds is the thinnest airfoil aligned with the flow (aoa -2 degrees, thickness -0.3).
+
+Usage: pvpython optimize_naca0012.py PLUGIN WORK [--iterations 6] [--primal 3000] [--adjoint 3000]
+       [--cold]
+Prints a table (iteration, p, J, |dJ/dp|, inverted cells, max non-orthogonality) and writes
+WORK/history.csv and WORK/J.png. A trial's primal starts from the last accepted solution (its
+fields copied into the trial's initial time; --cold: from the tutorial's initial fields, so that
+J after a fixed number of iterations is a function of p alone, as the reduced test needs).
+"""
+import argparse
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+from paraview.simple import LoadPlugin
+
+parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+parser.add_argument('plugin')
+parser.add_argument('work')
+parser.add_argument('--iterations', type=int, default=6, help='accepted steps (default 6)')
+parser.add_argument('--primal', type=int, default=3000, help='primal iterations per run (at most; residuals 1e-7 stop it)')
+parser.add_argument('--adjoint', type=int, default=3000, help='adjoint iterations per run (at most)')
+parser.add_argument('--step', type=float, default=0.5, help='first step length in the scaled variables (bounds: -1 to 1)')
+parser.add_argument('--cold', action='store_true', help="every run from the tutorial's initial fields")
+args = parser.parse_args()
+LoadPlugin(args.plugin, remote=False)
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+import mlsdeform  # noqa: E402
+import naca0012  # noqa: E402
+
+ARMIJO = 1e-4         # sufficient decrease: J(p_new) <= J(p) + ARMIJO g . (p_new - p)
+SHRINK, GROW = 0.5, 1.5
+MAX_TRIALS = 6        # halvings per iteration before giving up
+
+work = os.path.abspath(args.work)
+source = os.path.join(work, 'source')
+if not os.path.exists(os.path.join(source, 'case.foam')):
+    subprocess.run(['bash', os.path.join(here, 'make-naca0012-case.sh'), source, str(args.primal), str(args.adjoint),
+                    os.path.join(work, 'openfoam-examples')], check=True)
+began = time.perf_counter()
+deformed, dvs = naca0012.deformation(os.path.join(source, 'case.foam'))
+names = dvs.getVarNames()
+bounds = dvs.getBounds()
+lower = np.array([bounds[n][0] for n in names])
+upper = np.array([bounds[n][1] for n in names])
+scale = (upper - lower) / 2    # the step is taken in p / scale: each variable's range is 2 wide
+
+
+def warm_start(case, previous):
+    """The trial's initial fields are the last accepted run's final ones (same mesh topology)."""
+    latest = max((d for d in os.listdir(previous) if d.replace('.', '', 1).isdigit() and float(d) > 0), key=float)
+    initial = os.path.join(case, '0')
+    for field in ('U', 'p', 'Ua', 'pa'):
+        for ext in ('', '.gz'):
+            if os.path.lexists(os.path.join(initial, field + ext)):
+                os.unlink(os.path.join(initial, field + ext))
+        name = next(field + ext for ext in ('', '.gz') if os.path.exists(os.path.join(previous, latest, field + ext)))
+        shutil.copyfile(os.path.join(previous, latest, name), os.path.join(initial, name))
+
+
+def evaluate(p, label, previous):
+    """Writes the variant at p, checks its mesh, runs the adjoint on it: a dict of the results,
+    with ok False (and no J) for a variant the thresholds reject."""
+    dvs.setDesignVars(dict(zip(names, p)))
+    dvs.update()
+    quality = mlsdeform.meshQuality(dvs)
+    result = dict(p=np.array(p), quality=quality, ok=mlsdeform.passes(quality), case=os.path.join(work, label))
+    if not result['ok']:
+        return result
+    mlsdeform.foam.save_variant(deformed, os.path.join(result['case'], 'case.foam'), overwrite=True, link=True)
+    if previous is not None and not args.cold:
+        warm_start(result['case'], previous)
+    naca0012.finish(naca0012.start_adjoint(result['case'], args.primal, args.adjoint), result['case'])
+    result['J'] = mlsdeform.readFoamObjective(result['case'])
+    g = dvs.totalSensitivity(mlsdeform.readFoamSensitivity(deformed, field=naca0012.FIELD, case=result['case']))
+    result['gradient'] = np.array([g[n] for n in names])
+    return result
+
+
+def row(iteration, r):
+    q = r['quality']
+    return dict(iteration=iteration, **{n: float(v) for n, v in zip(names, r['p'])}, J=r['J'],
+                gradient_norm=float(np.linalg.norm(r['gradient'])), inverted_cells=q['InvertedCells'],
+                max_non_orthogonality=q['MaxNonOrthogonality'], checkMesh=naca0012.checkmesh(r['case'])[0],
+                seconds=time.perf_counter() - began)
+
+
+def show(entry):
+    print('%9d  %s  %12.8f  %10.4g  %8d  %8.2f  %9s  %7.0f' % (
+        entry['iteration'], '  '.join('%9.4f' % entry[n] for n in names), entry['J'], entry['gradient_norm'],
+        entry['inverted_cells'], entry['max_non_orthogonality'], 'OK' if entry['checkMesh'] else 'FAILED',
+        entry['seconds']), flush=True)
+
+
+print('%9s  %s  %12s  %10s  %8s  %8s  %9s  %7s' % ('iteration', '  '.join('%9s' % n for n in names), 'J', '|dJ/dp|',
+                                                   'inverted', 'non-orth', 'checkMesh', 'seconds'), flush=True)
+current = evaluate(np.zeros(len(names)), 'iteration0', None)
+if not current['ok']:
+    sys.exit('the undeformed case fails the mesh-quality thresholds: %s' % current['quality'])
+history = [row(0, current)]
+show(history[-1])
+length = args.step
+for iteration in range(1, args.iterations + 1):
+    direction = -current['gradient'] * scale              # steepest descent in p / scale
+    direction /= np.linalg.norm(direction)
+    accepted = None
+    for trial in range(MAX_TRIALS):
+        p = np.clip(current['p'] + length * direction * scale, lower, upper)
+        if np.allclose(p, current['p'], rtol=0, atol=1e-12):
+            break                                           # the bounds stop the descent
+        candidate = evaluate(p, 'iteration%d_trial%d' % (iteration, trial), current['case'])
+        if candidate['ok'] and candidate['J'] <= current['J'] + ARMIJO * current['gradient'] @ (p - current['p']):
+            accepted = candidate
+            break
+        print('           rejected: %s' % ('J %.8f' % candidate['J'] if candidate['ok'] else
+                                            'mesh fails the thresholds %s' % candidate['quality']), flush=True)
+        length *= SHRINK
+    if accepted is None:
+        print('no descent step found: stopped at iteration %d' % (iteration - 1))
+        break
+    current = accepted
+    history.append(row(iteration, current))
+    show(history[-1])
+    length *= GROW
+dvs.setDesignVars({n: 0.0 for n in names})
+
+with open(os.path.join(work, 'history.csv'), 'w', newline='') as f:
+    writer = csv.DictWriter(f, fieldnames=list(history[0]))
+    writer.writeheader()
+    writer.writerows(history)
+import matplotlib  # noqa: E402
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt  # noqa: E402
+figure, axes = plt.subplots(figsize=(5, 3.5))
+axes.plot([h['iteration'] for h in history], [h['J'] for h in history], 'o-')
+axes.set_xlabel('iteration')
+axes.set_ylabel('J (drag objective)')
+axes.set_title('NACA 0012, laminar: MLS Deform + adjointOptimisationFoam')
+figure.tight_layout()
+figure.savefig(os.path.join(work, 'J.png'), dpi=120)
+print('J %.8f -> %.8f in %d iterations, %.0f s; %s and %s' % (history[0]['J'], history[-1]['J'], len(history) - 1,
+                                                             time.perf_counter() - began,
+                                                             os.path.join(work, 'history.csv'), os.path.join(work, 'J.png')))
+# the verdict (exit code 1 otherwise): J decreased, and checkMesh passed every accepted variant
+decreased = len(history) > 1 and all(b['J'] < a['J'] for a, b in zip(history, history[1:]))
+meshes = all(h['checkMesh'] for h in history)
+print('J decreased at every iteration: %s; checkMesh passed every variant: %s' % (decreased, meshes))
+sys.exit(0 if decreased and meshes else 1)
