@@ -20,7 +20,7 @@
 # (default 3 for small, 1 for 1M), the two tools' runs alternating; the first variant's ratio is
 # also printed run by run (each pair ran back to back).
 #
-# Usage: Testing/Benchmarks/run-openfoam-benchmark.sh [--cells small|1M] [--runs N] [--set NAME=VALUE ...]
+# Usage: Testing/Benchmarks/run-openfoam-benchmark.sh [--cells small|400k|1M] [--runs N] [--set NAME=VALUE ...]
 # (--set: an MLS Deform property other than its default, e.g. --set MeshQuality=0.)
 # Environment: MLSDEFORM_BUILD (build folder, default build/), MLSDEFORM_PLUGIN (the plugin,
 # default in the build folder; if missing, Testing/setup.sh sets up and builds),
@@ -35,14 +35,14 @@ runs=
 settings=()
 while (($#)); do
   case "$1" in
-    --cells) size=${2:?--cells small|1M}; shift 2 ;;
+    --cells) size=${2:?--cells small|400k|1M}; shift 2 ;;
     --runs) runs=${2:?--runs N}; shift 2 ;;
     --set) settings+=(--set "${2:?--set NAME=VALUE}"); shift 2 ;;
     -h|--help) sed -n '2,/^set -e/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
-    *) echo "unknown argument $1 (--cells small|1M, --runs N, --set NAME=VALUE)" >&2; exit 2 ;;
+    *) echo "unknown argument $1 (--cells small|400k|1M, --runs N, --set NAME=VALUE)" >&2; exit 2 ;;
   esac
 done
-case "$size" in small) runs=${runs:-3} ;; 1M) runs=${runs:-1} ;; *) echo "--cells small or 1M" >&2; exit 2 ;; esac
+case "$size" in small) runs=${runs:-3} ;; 400k|1M) runs=${runs:-1} ;; *) echo "--cells small, 400k or 1M" >&2; exit 2 ;; esac
 build=${MLSDEFORM_BUILD:-$root/build}
 plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
 work=${MLSDEFORM_BENCHMARK_DIR:-$build/openfoam-benchmark}

@@ -11,7 +11,7 @@
 # <= m further variants), the check that both modes give the same dJ/dp, and a JSON line
 # (SENSBENCH ...). Fails when the two modes disagree.
 #
-# Usage: Testing/Benchmarks/run-sensitivity-benchmark.sh [--cells small|1M] [--runs N] [--threads "1 2"] [--set NAME=VALUE ...]
+# Usage: Testing/Benchmarks/run-sensitivity-benchmark.sh [--cells small|400k|1M] [--runs N] [--threads "1 2"] [--set NAME=VALUE ...]
 # (defaults: 1M cells, 5 runs, OMP_NUM_THREADS 1 then 2; --set: an MLS Deform property other
 # than its default, e.g. --set MeshQuality=0.)
 # Environment: MLSDEFORM_BUILD (build folder, default build/), MLSDEFORM_PLUGIN (the plugin,
@@ -27,15 +27,15 @@ threads="1 2"
 settings=()
 while (($#)); do
   case "$1" in
-    --cells) size=${2:?--cells small|1M}; shift 2 ;;
+    --cells) size=${2:?--cells small|400k|1M}; shift 2 ;;
     --runs) runs=${2:?--runs N}; shift 2 ;;
     --threads) threads=${2:?--threads "1 2"}; shift 2 ;;
     --set) settings+=(--set "${2:?--set NAME=VALUE}"); shift 2 ;;
     -h|--help) sed -n '2,/^set -e/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
-    *) echo "unknown argument $1 (--cells small|1M, --runs N, --threads LIST, --set NAME=VALUE)" >&2; exit 2 ;;
+    *) echo "unknown argument $1 (--cells small|400k|1M, --runs N, --threads LIST, --set NAME=VALUE)" >&2; exit 2 ;;
   esac
 done
-case "$size" in small|1M) ;; *) echo "--cells small or 1M" >&2; exit 2 ;; esac
+case "$size" in small|400k|1M) ;; *) echo "--cells small, 400k or 1M" >&2; exit 2 ;; esac
 build=${MLSDEFORM_BUILD:-$root/build}
 plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
 work=${MLSDEFORM_BENCHMARK_DIR:-$build/openfoam-benchmark}

@@ -5,13 +5,13 @@
 # Debian's package openfoam-examples: from /usr/share/doc/openfoam-examples if it is installed,
 # else from $GEOMETRY_CACHE (default: next to TARGET), where the package is fetched with
 # `apt-get download openfoam-examples` and unpacked with `dpkg-deb -x` (it is not installed).
-# Usage: make-hull-case.sh small|1M TARGET [RANKS]
+# Usage: make-hull-case.sh small|400k|1M TARGET [RANKS]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-size=${1:?usage: make-hull-case.sh small|1M TARGET [RANKS]}
-target=${2:?usage: make-hull-case.sh small|1M TARGET [RANKS]}
+size=${1:?usage: make-hull-case.sh small|400k|1M TARGET [RANKS]}
+target=${2:?usage: make-hull-case.sh small|400k|1M TARGET [RANKS]}
 ranks=${3:-1}
-[ -f "$here/hullBox/system/meshSize.$size" ] || { echo "unknown size '$size' (small or 1M)" >&2; exit 2; }
+[ -f "$here/hullBox/system/meshSize.$size" ] || { echo "unknown size '$size' (small, 400k or 1M)" >&2; exit 2; }
 mkdir -p "$(dirname "$target")"
 target=$(cd "$(dirname "$target")" && pwd)/$(basename "$target")
 

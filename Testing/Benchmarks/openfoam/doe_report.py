@@ -1,0 +1,68 @@
+"""The design-of-experiments benchmark's table (run-doe-benchmark.sh): MLS Deform's batches (one per
+thread count) beside moveMesh's timed variants, against issue 30's targets.
+Usage: python3 doe_report.py RUN_FOLDER "THREADS" MOVEMESH"""
+import json
+import re
+import statistics
+import sys
+
+run, threads, movemesh = sys.argv[1], sys.argv[2].split(), int(sys.argv[3])
+TARGET_PER_HOUR, TARGET_DISK = 5000, 1.2
+
+
+def elapsed(path):
+    """Wall time and peak RSS (MiB) from /usr/bin/time -v."""
+    text = open(path).read()
+    clock = re.search(r'Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)', text)
+    seconds = int(clock.group(1) or 0) * 3600 + int(clock.group(2)) * 60 + float(clock.group(3))
+    return seconds, int(re.search(r'Maximum resident set size \(kbytes\): (\d+)', text).group(1)) / 1024
+
+
+figures = {'threads': {}}
+for t in threads:
+    line = next(l for l in open('%s/mls-%s.log' % (run, t)) if l.startswith('DOEBENCH '))
+    r = json.loads(line[len('DOEBENCH '):])
+    wall, rss = elapsed('%s/mls-%s.time' % (run, t))
+    n = r['samples']
+    r.update(wall_s=wall, rss_mib=rss, per_hour=3600 * n / wall, steady_per_hour=3600 / r['variant_s']['median'],
+             disk_ratio=r['disk_per_variant_bytes'] / r['points_file_bytes'] if r['points_file_bytes'] else float('nan'))
+    figures['threads'][t] = r
+moves = [elapsed('%s/moveMesh-%d.time' % (run, i)) for i in range(movemesh)]
+mm = statistics.median(m[0] for m in moves) if moves else float('nan')
+mm_bytes = statistics.median(int(open('%s/moveMesh-%d.bytes' % (run, i)).read()) for i in range(movemesh)) if moves else 0
+figures['moveMesh'] = {'seconds': [m[0] for m in moves], 'median_s': mm, 'rss_mib': max((m[1] for m in moves), default=0),
+                       'disk_bytes': mm_bytes}
+
+print('\n%-34s %s' % ('', ''.join('%20s' % ('MLS Deform, %s thr' % t) for t in threads)) + '%20s' % 'moveMesh')
+n = figures['threads'][threads[0]]['samples']
+
+
+def row(label, values, moveMesh=''):
+    print('%-34s %s%20s' % (label, ''.join('%20s' % v for v in values), moveMesh))
+
+
+T = [figures['threads'][t] for t in threads]
+row('batch of %d variants, wall [s]' % n, ['%.1f' % r['wall_s'] for r in T], '%.1f (%d x median)' % (n * mm, n))
+row('variants per hour', ['%.0f' % r['per_hour'] for r in T], '%.0f' % (3600 / mm))
+row('  after the set-up (median)', ['%.0f' % r['steady_per_hour'] for r in T], '')
+row('first variant: process start to', [''] * len(T), '')
+row('  its write [s] (pvpython start-up,', ['%.2f' % (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) for r in T],
+    '%.2f' % mm)
+row('  read, set-up, deform, verdict)', ['%.2fx' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm) for r in T], '')
+row('further variant, median [s]', ['%.2f' % r['variant_s']['median'] for r in T], '%.2f' % mm)
+row('disk per variant [MB]', ['%.1f' % (r['disk_per_variant_bytes'] / 1e6) for r in T], '%.1f' % (mm_bytes / 1e6))
+row('  / points file', ['%.3f' % r['disk_ratio'] for r in T], '')
+row('peak RSS [MiB]', ['%.0f' % r['rss_mib'] for r in T], '%.0f' % figures['moveMesh']['rss_mib'])
+row('  / moveMesh', ['%.2fx' % (r['rss_mib'] / figures['moveMesh']['rss_mib']) for r in T], '')
+row('variants passing the thresholds', ['%d/%d' % (r['ok'], n) for r in T], '')
+print('\nmoveMesh: %d variants timed (%s s), the batch extrapolated from their median.' % (
+    movemesh, ', '.join('%.1f' % s for s in figures['moveMesh']['seconds'])))
+for t, r in zip(threads, T):
+    first = (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm
+    memory = r['rss_mib'] / figures['moveMesh']['rss_mib']
+    print('targets, %s thread(s): %d variants/hour (target %d: %s); a variant %.2fx its points file (target <= %.1f: %s); '
+          'the first variant %.2fx moveMesh (target <= 0.6: %s); memory %.2fx moveMesh (target <= 1.5: %s)' % (
+              t, r['per_hour'], TARGET_PER_HOUR, 'met' if r['per_hour'] >= TARGET_PER_HOUR else 'NOT met', r['disk_ratio'],
+              TARGET_DISK, 'met' if r['disk_ratio'] <= TARGET_DISK else 'NOT met', first, 'met' if first <= 0.6 else 'NOT met',
+              memory, 'met' if memory <= 1.5 else 'NOT met'))
+print('DOEBENCHMARK ' + json.dumps(figures))

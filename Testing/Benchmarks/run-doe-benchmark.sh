@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Variants per hour: a design of experiments on the hull case (issue 30, point 5) against moveMesh
+# producing the same variants.
+#
+# On the cached "DTC hull in a box" case (run-openfoam-benchmark.sh builds it), a Latin hypercube
+# of --samples variants (default 50, seed 0) over three design variables of the hull (dx: -0.2 to
+# 0.2 m, yaw: -3 to 3 degrees, sx: the length scale, -5% to 5%), inlet and outlet fixed, sides,
+# bottom and top slipping, through mlsdeform.designOfExperiments (deform, quality verdict, a
+# linked variant case written: openfoam/doe_benchmark.py), with OMP_NUM_THREADS 1 and 2 (--threads).
+# Then --movemesh variants (default 3) by moveMesh (displacementLaplacian from the hull's
+# prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
+# batch time is their median times the number of variants (an extrapolation, as the table says).
+# Prints the machine (CPU model, cores per socket, threads per core), then per thread count: the
+# whole batch's wall time (process start to the last variant), variants per hour, seconds per
+# variant (first, median), disk per variant against the points file's size, peak RSS; moveMesh's
+# seconds per variant and disk; the targets (5,000 variants per hour, 0.72 s each; a variant's own
+# bytes within 1.2x its points file) met or not; and a JSON line (DOEBENCHMARK ...).
+#
+# Usage: Testing/Benchmarks/run-doe-benchmark.sh [--cells small|400k|1M] [--samples N] [--movemesh K] [--threads "1 2"]
+# Environment: MLSDEFORM_BUILD, MLSDEFORM_PLUGIN, MLSDEFORM_BENCHMARK_DIR as run-openfoam-benchmark.sh.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+here=$root/Testing/Benchmarks/openfoam
+size=1M
+samples=50
+movemesh=3
+threads="1 2"
+while (($#)); do
+  case "$1" in
+    --cells) size=${2:?--cells small|400k|1M}; shift 2 ;;
+    --samples) samples=${2:?--samples N}; shift 2 ;;
+    --movemesh) movemesh=${2:?--movemesh K}; shift 2 ;;
+    --threads) threads=${2:?--threads LIST}; shift 2 ;;
+    -h|--help) sed -n '2,/^set -e/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    *) echo "unknown argument $1 (--cells small|400k|1M, --samples N, --movemesh K, --threads LIST)" >&2; exit 2 ;;
+  esac
+done
+build=${MLSDEFORM_BUILD:-$root/build}
+plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
+work=${MLSDEFORM_BENCHMARK_DIR:-$build/openfoam-benchmark}
+[ -f "$plugin" ] || bash "$root/Testing/setup.sh"
+[ -x /usr/bin/time ] || { echo "/usr/bin/time is needed (Debian package time)" >&2; exit 1; }
+mkdir -p "$work"
+work=$(cd "$work" && pwd)
+case=$(bash "$here/cached-hull-case.sh" "$size" "$work")
+set +u
+source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1
+set -u
+run=$work/doe-$size
+rm -rf "$run"
+mkdir -p "$run"
+cp -r "$(dirname "$plugin")" "$run/plugin"   # a rebuild during the runs does not mix builds
+plugin_path=$run/plugin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+
+echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs; $(lscpu | sed -n 's/^Core(s) per socket: */cores per socket /p'), $(lscpu | sed -n 's/^Thread(s) per core: */threads per core /p')"
+echo "Case: $(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' ') $(grep -E '^ *points:' "$case/log.checkMesh" | tr -s ' '); $samples variants"
+for t in $threads; do
+  echo "MLS Deform, OMP_NUM_THREADS=$t (load $(cut -d' ' -f1-3 /proc/loadavg))"
+  OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/mls-$t.time" \
+    pvpython --no-mpi "$here/doe_benchmark.py" "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" \
+    "$case/case.foam" "$run/mls-$t" "$samples" "$movemesh" > "$run/mls-$t.log" 2>&1 || { tail -30 "$run/mls-$t.log"; exit 1; }
+  tail -1 "$run/mls-$t.log" | grep -v DOEBENCH || true
+done
+
+first=$(set -- $threads; echo "$1")
+for ((i = 0; i < movemesh; i++)); do
+  echo "moveMesh variant $((i + 1))/$movemesh (load $(cut -d' ' -f1-3 /proc/loadavg))"
+  copy=$run/moveMesh-$i
+  mkdir -p "$copy"
+  cp -r "$case/0" "$case/constant" "$case/system" "$copy/"
+  cp "$run/mls-$first/pointDisplacement-$i" "$copy/0/pointDisplacement"
+  (cd "$copy" && /usr/bin/time -v -o "$run/moveMesh-$i.time" moveMesh > "$run/moveMesh-$i.log" 2>&1) ||
+    { tail -30 "$run/moveMesh-$i.log"; exit 1; }
+  (cd "$copy" && checkMesh -latestTime > "$run/checkMesh.moveMesh-$i" 2>&1) || true
+  du -sb "$copy" | cut -f1 > "$run/moveMesh-$i.bytes"
+done
+python3 "$here/doe_report.py" "$run" "$threads" "$movemesh"
