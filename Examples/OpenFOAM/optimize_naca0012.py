@@ -115,7 +115,12 @@ history = [row(0, current)]
 show(history[-1])
 length = args.step
 for iteration in range(1, args.iterations + 1):
-    direction = -current['gradient'] * scale              # steepest descent in p / scale
+    direction = -current['gradient'] * scale              # steepest descent in p / scale, projected:
+    direction[(current['p'] <= lower) & (direction < 0)] = 0  # no push against an active bound
+    direction[(current['p'] >= upper) & (direction > 0)] = 0
+    if not np.any(direction):
+        print('the projected gradient is zero: a bound-constrained optimum at iteration %d' % (iteration - 1))
+        break
     direction /= np.linalg.norm(direction)
     accepted = None
     for trial in range(MAX_TRIALS):

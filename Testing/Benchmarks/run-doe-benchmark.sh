@@ -53,6 +53,8 @@ cp -r "$(dirname "$plugin")" "$run/plugin"   # a rebuild during the runs does no
 plugin_path=$run/plugin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 
 echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs; $(lscpu | sed -n 's/^Core(s) per socket: */cores per socket /p'), $(lscpu | sed -n 's/^Thread(s) per core: */threads per core /p')"
+# the BLAS CHOLMOD's solves and factorization run on (Debian's alternatives: OpenBLAS or the reference BLAS)
+echo "BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3), LAPACK: $(readlink -f /usr/lib/x86_64-linux-gnu/liblapack.so.3)"
 echo "Case: $(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' ') $(grep -E '^ *points:' "$case/log.checkMesh" | tr -s ' '); $samples variants"
 for t in $threads; do
   echo "MLS Deform, OMP_NUM_THREADS=$t (load $(cut -d' ' -f1-3 /proc/loadavg))"

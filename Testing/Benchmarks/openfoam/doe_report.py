@@ -50,6 +50,8 @@ row('  its write [s] (pvpython start-up,', ['%.2f' % (r['startup_s'] + r['setup_
     '%.2f' % mm)
 row('  read, set-up, deform, verdict)', ['%.2fx' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm) for r in T], '')
 row('further variant, median [s]', ['%.2f' % r['variant_s']['median'] for r in T], '%.2f' % mm)
+row('  of it: deform (its solve) [s]', ['%.2f (%.2f)' % (r['parts_s']['deform_s'], r['parts_s']['solve_s']) for r in T], '')
+row('  quality verdict, write [s]', ['%.2f, %.2f' % (r['parts_s']['quality_s'], r['parts_s']['write_s']) for r in T], '')
 row('disk per variant [MB]', ['%.1f' % (r['disk_per_variant_bytes'] / 1e6) for r in T], '%.1f' % (mm_bytes / 1e6))
 row('  / points file', ['%.3f' % r['disk_ratio'] for r in T], '')
 row('peak RSS [MiB]', ['%.0f' % r['rss_mib'] for r in T], '%.0f' % figures['moveMesh']['rss_mib'])
