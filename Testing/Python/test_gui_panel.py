@@ -29,7 +29,8 @@ GROUPS = {
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray']),
         ('Sampling', ['NumberOfSamples', 'VolumeSampleFraction', 'IntegrationPointRatio', 'LloydIterations', 'Cover',
                       'RandomSeed', 'FollowMeshGrading']),
-        ('Basis', ['Basis'])],
+        ('Basis', ['Basis']),
+        ('2D Case', ['ExtrusionAxis'])],
     'ShellDeform': [
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight']),
         ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
