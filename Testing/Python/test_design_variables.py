@@ -171,6 +171,14 @@ if mode == 'serial':
     upper.DesignVariables = before[0]
     check(np.array_equal(dvs.update(), X), 'after the bad property is removed the deformation is the same again')
 
+    # the same design in a 2D deformation extruded along z (the scene is not 2D: this only gives the
+    # ranks a reference for ExtrusionAxis's projected rows and slide)
+    deform.ExtrusionAxis = 'Z'
+    extrusion = {'X': dvs.update(), 'dJdp': np.array(list(dvs.totalSensitivity(g).values()))}
+    extrusion.update({'dX_' + n: dvs.totalSensitivityProd({n: 1.0}) for n in dvs.getVarNames()})
+    deform.ExtrusionAxis = 'None'
+    check(np.all(extrusion['X'][:, 2] == rest[:, 2]), 'extruded along z: no point moves along z')
+
     # a state file keeps the variables: DesignVariables of the loaded filter finds them
     state = os.path.join(work, 'state.pvsm')
     pvs.SaveState(state)
@@ -183,7 +191,8 @@ if mode == 'serial':
           and restored.getBounds()['twist'] == (-5, 5), 'a loaded state restores the variables (%s)' % restored.getValues())
     check(np.array_equal(restored.update(), X), 'and the loaded state deforms the same, bitwise')
     np.savez(os.path.join(work, 'reference.npz'), rest=rest, X=X, g=g,
-             dJdp=np.array([dJdp[n] for n in dvs.getVarNames()]), **{'dX_' + n: forward[n] for n in forward})
+             dJdp=np.array([dJdp[n] for n in dvs.getVarNames()]), **{'dX_' + n: forward[n] for n in forward},
+             **{'extruded_' + k: v for k, v in extrusion.items()})
 else:
     from vtkmodules.vtkParallelCore import vtkMultiProcessController
     controller = vtkMultiProcessController.GetGlobalController()
@@ -207,6 +216,14 @@ else:
         check(np.array_equal(dX, serial), 'rank %d: dX/d%s at its points equals the serial one bitwise (largest difference %g)'
               % (rank, name, np.abs(dX - serial).max() if len(dX) else 0))
     check(np.array_equal(X, reference['X'][which]), 'rank %d: the points equal the serial ones bitwise' % rank)
+    # extruded along z: the mid-plane is the whole input's, so the ranks' projections are the serial ones
+    deform.ExtrusionAxis = 'Z'
+    check(np.array_equal(dvs.update(), reference['extruded_X'][which]), 'rank %d: extruded, the points equal the serial ones bitwise' % rank)
+    dJdp = dvs.totalSensitivity(gradient(rest))
+    check(np.array_equal(np.array(list(dJdp.values())), reference['extruded_dJdp']), 'rank %d: extruded, dJ/dp is the serial one bitwise' % rank)
+    for name in dvs.getVarNames():
+        check(np.array_equal(dvs.totalSensitivityProd({name: 1.0}), reference['extruded_dX_' + name][which]),
+              'rank %d: extruded, dX/d%s is the serial one bitwise' % (rank, name))
 
 if failures:
     print('%d check(s) failed' % len(failures))
