@@ -123,10 +123,15 @@ for iteration in range(1, args.iterations + 1):
         break
     direction /= np.linalg.norm(direction)
     accepted = None
+    tried = None
     for trial in range(MAX_TRIALS):
         p = np.clip(current['p'] + length * direction * scale, lower, upper)
+        while tried is not None and np.array_equal(p, tried) and length > 1e-6:
+            length *= SHRINK                                # clipped to the same point: no new trial there
+            p = np.clip(current['p'] + length * direction * scale, lower, upper)
         if np.allclose(p, current['p'], rtol=0, atol=1e-12):
             break                                           # the bounds stop the descent
+        tried = p
         candidate = evaluate(p, 'iteration%d_trial%d' % (iteration, trial), current['case'])
         if candidate['ok'] and candidate['J'] <= current['J'] + ARMIJO * current['gradient'] @ (p - current['p']):
             accepted = candidate
