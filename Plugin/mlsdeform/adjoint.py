@@ -137,8 +137,10 @@ def _field_time(case, field, time):
             return holding[-1]
         found = sorted({os.path.basename(p).replace('.gz', '') for _, name in times
                         for p in glob.glob(os.path.join(case, name, '*Sens*'))})
+        decomposed = glob.glob(os.path.join(case, 'processor*', '*', field + '*'))
         raise ValueError(f"no time of {case} holds the field {field!r}"
-                         + (f" (sensitivity fields there: {', '.join(found)})" if found else
+                         + (f" (its processor folders do: run reconstructPar -fields '({field})' first)" if decomposed else
+                            f" (sensitivity fields there: {', '.join(found)})" if found else
                             " (no sensitivity field at all: has adjointOptimisationFoam run in it?)"))
     for value, name in times:
         if name == str(time) or math.isclose(value, float(time), rel_tol=1e-12, abs_tol=1e-12):

@@ -152,6 +152,10 @@ raises(lambda: mlsdeform.readFoamSensitivity(deformed, field='pointSensVecadjS1E
 write_field(field_file(far, 'pointSensVecadjS1ESI'), template, raw[:-10])
 raises(lambda: mlsdeform.readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', case=far), 'pointSensVecadjS1ESI',
        'a field of the wrong size')
+os.makedirs(os.path.join(far, 'processor0', '400'))
+shutil.copyfile(template, os.path.join(far, 'processor0', '400', 'pointSensVecadjS2ESI.gz'))
+raises(lambda: mlsdeform.readFoamSensitivity(deformed, field='pointSensVecadjS2ESI', case=far), 'run reconstructPar',
+       'a field of a decomposed run, in the processor folders only')
 os.remove(os.path.join(far, 'system', 'optimisationDict'))
 raises(lambda: mlsdeform.readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', case=far), 'has no system/optimisationDict',
        'a case without optimisationDict')
