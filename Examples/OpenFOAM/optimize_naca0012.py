@@ -159,7 +159,7 @@ figure, axes = plt.subplots(figsize=(5, 3.5))
 axes.plot([h['iteration'] for h in history], [h['J'] for h in history], 'o-')
 axes.set_xlabel('iteration')
 axes.set_ylabel('J (drag objective)')
-axes.set_title('NACA 0012, laminar: MLS Deform + adjointOptimisationFoam')
+axes.set_title('NACA 0012 drag: MLS Deform + OpenFOAM adjoint')
 figure.tight_layout()
 figure.savefig(os.path.join(work, 'J.png'), dpi=120)
 print('J %.8f -> %.8f in %d iterations, %.0f s; %s and %s' % (history[0]['J'], history[-1]['J'], len(history) - 1,
