@@ -19,6 +19,7 @@ import paraview.simple as pvs
 
 import mlsdeform
 from mlsdeform.foam import open_case, patch_region
+from openfoam_variant import checkmesh  # noqa: F401  (naca0012.checkmesh for the examples)
 
 PATCHES = ['inlet', 'pressure', 'suction', 'frontBack']
 QUARTER_CHORD = [0.25, 0.0, 0.5]
@@ -50,6 +51,17 @@ def deformation(foam_file, **settings):
     dvs.addHandleDV('thickness', handle, scale=[0, 1, 0], lower=-0.3, upper=0.3)
     dvs.update()
     return deformed, dvs
+
+
+def source_deformation(work, primal, adjoint, here=os.path.dirname(os.path.abspath(__file__))):
+    """(source case folder, deformed, dvs) of WORK/source, made by make-naca0012-case.sh with these
+    iteration counts if it is missing (the tutorials fetched into WORK/openfoam-examples)."""
+    source = os.path.join(work, 'source')
+    if not os.path.exists(os.path.join(source, 'case.foam')):
+        subprocess.run(['bash', os.path.join(here, 'make-naca0012-case.sh'), source, str(primal), str(adjoint),
+                        os.path.join(work, 'openfoam-examples')], check=True)
+    deformed, dvs = deformation(os.path.join(source, 'case.foam'))
+    return source, deformed, dvs
 
 
 def _own(case, name):
@@ -85,10 +97,3 @@ def start_adjoint(case, primal, adjoint, log='log.adjoint'):
 def finish(process, case, log='log.adjoint'):
     if process.wait() != 0:
         raise RuntimeError('adjointOptimisationFoam failed in %s (see %s)' % (case, os.path.join(case, log)))
-
-
-def checkmesh(case):
-    """checkMesh's verdict on a case: (ok, its log's text)."""
-    process = subprocess.run(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; checkMesh -case "%s"'
-                              % case], capture_output=True, text=True)
-    return 'Mesh OK.' in process.stdout and process.returncode == 0, process.stdout

@@ -20,7 +20,6 @@ import argparse
 import csv
 import os
 import shutil
-import subprocess
 import sys
 import time
 
@@ -47,12 +46,8 @@ SHRINK, GROW = 0.5, 1.5
 MAX_TRIALS = 6        # halvings per iteration before giving up
 
 work = os.path.abspath(args.work)
-source = os.path.join(work, 'source')
-if not os.path.exists(os.path.join(source, 'case.foam')):
-    subprocess.run(['bash', os.path.join(here, 'make-naca0012-case.sh'), source, str(args.primal), str(args.adjoint),
-                    os.path.join(work, 'openfoam-examples')], check=True)
 began = time.perf_counter()
-deformed, dvs = naca0012.deformation(os.path.join(source, 'case.foam'))
+source, deformed, dvs = naca0012.source_deformation(work, args.primal, args.adjoint)
 names = dvs.getVarNames()
 bounds = dvs.getBounds()
 lower = np.array([bounds[n][0] for n in names])

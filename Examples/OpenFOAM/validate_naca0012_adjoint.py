@@ -15,7 +15,6 @@ already done are kept.
 import argparse
 import csv
 import os
-import subprocess
 import sys
 import time
 
@@ -40,12 +39,8 @@ for entry in args.step:
     name, value = entry.split('=')
     steps[name] = float(value)
 work = os.path.abspath(args.work)
-source = os.path.join(work, 'source')
-if not os.path.exists(os.path.join(source, 'case.foam')):
-    subprocess.run(['bash', os.path.join(here, 'make-naca0012-case.sh'), source, str(args.primal), str(args.adjoint),
-                    os.path.join(work, 'openfoam-examples')], check=True)
 began = time.perf_counter()
-deformed, dvs = naca0012.deformation(os.path.join(source, 'case.foam'))
+source, deformed, dvs = naca0012.source_deformation(work, args.primal, args.adjoint)
 names = dvs.getVarNames()
 
 

@@ -196,9 +196,10 @@ def _points(dataset):
     return vtk_to_numpy(points.GetData()).reshape(-1, 3) if points is not None else np.zeros((0, 3), np.float32)
 
 
-def _read_case(case, patches, field, time, kind):
-    """The case's internal mesh points (float32, as the reader gives them), the field (its values
-    at the mesh points, or per patch face) and the patches' faces (point ids of the internal mesh)."""
+def _read_case(case, patches=(), field=None, time=None, kind=None):
+    """The case's internal mesh points (float32, as the reader gives them), the field (kind 'point':
+    its values at the mesh points; 'face': per patch face; None: no field) and the patches' faces
+    (point ids of the internal mesh), at time (None: the reader's first)."""
     import paraview.simple as pvs
     from vtkmodules.util.numpy_support import vtk_to_numpy
     foam, made = _foam_file(case)
@@ -212,13 +213,12 @@ def _read_case(case, patches, field, time, kind):
         reader.MeshRegions = ['internalMesh'] + ['patch/' + p for p in patches]
         reader.Decomposepolyhedra = 0
         reader.Createcelltopointfiltereddata = 0
-        if kind == 'point':
-            reader.PointArrays = [field]
-            reader.CellArrays = []
+        reader.PointArrays = [field] if kind == 'point' else []
+        reader.CellArrays = [field] if kind == 'face' else []
+        if time is None:
+            reader.UpdatePipeline()
         else:
-            reader.CellArrays = [field]
-            reader.PointArrays = []
-        reader.UpdatePipeline(float(time))
+            reader.UpdatePipeline(float(time))
         blocks = dict(_leaves(reader.GetClientSideObject().GetOutputDataObject(0)))
         internal = blocks.get('internalMesh')
         if internal is None:
@@ -414,22 +414,7 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
 
 def _source_points(source, n):
     """The source case's polyMesh points as the reader gives them (float32), for the matching."""
-    import paraview.simple as pvs
-    foam, made = _foam_file(source)
-    reader = None
-    try:
-        reader = pvs.OpenFOAMReader(FileName=foam)
-        reader.MeshRegions = ['internalMesh']
-        reader.Decomposepolyhedra = 0
-        reader.CellArrays = []
-        reader.PointArrays = []
-        reader.UpdatePipeline()
-        points = np.array(_points(reader.GetClientSideObject().GetOutputDataObject(0).GetBlock(0)))
-    finally:
-        if reader is not None:
-            pvs.Delete(reader)
-        if made:
-            os.remove(foam)
+    points = _read_case(source)[0]
     if len(points) != n:
         raise ValueError(f"the sensitivity case's mesh has {n} points but the deformation's source {source} {len(points)}: "
                          "it is not a variant of it")

@@ -17,29 +17,7 @@ sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402
 import openfoam_variant  # noqa: E402
 
-failures = []
-
-
-def check(condition, what):
-    print(('ok   ' if condition else 'FAIL ') + what, flush=True)
-    if not condition:
-        failures.append(what)
-
-
-def raises(call, text, what):
-    try:
-        call()
-    except ValueError as e:
-        check(text in str(e), '%s: %s' % (what, e))
-        return
-    check(False, '%s raises ValueError' % what)
-
-
-def checkmesh(case):
-    """checkMesh's verdict on a case folder."""
-    log = subprocess.run(['bash', '-c', 'source /usr/share/openfoam/etc/bashrc >/dev/null 2>&1; checkMesh -case "%s"' % case],
-                         capture_output=True, text=True).stdout
-    return 'Mesh OK.' in log
+from checks import check, finish, raises  # noqa: E402
 
 
 case = os.path.join(work, 'case')
@@ -70,7 +48,7 @@ check(len(rows) == 4 and set(names + ['InvertedCells', 'MaxNonOrthogonality', 'M
       'report.csv: a row per variant with the values, the quality, the verdict, seconds and path')
 check(all(float(rows[i][n]) == report[i][n] for i in range(4) for n in names), 'report.csv holds the values exactly')
 check(dvs.getValues() == {'dx': 0.0, 'dz': 0.0, 'yaw': 0.0}, 'the design values are restored afterwards')
-check(checkmesh(os.path.dirname(report[0]['path'])), 'checkMesh passes on a variant')
+check(openfoam_variant.checkmesh(os.path.dirname(report[0]['path']))[0], 'checkMesh passes on a variant')
 moved = open(os.path.join(os.path.dirname(report[0]['path']), 'constant', 'polyMesh', 'points')).read()
 check(moved != open(os.path.join(case, 'constant', 'polyMesh', 'points')).read(), "a variant's points differ from the source's")
 
@@ -166,6 +144,4 @@ with open(design, 'w') as f:
 run = subprocess.run(command, capture_output=True, text=True)
 check(run.returncode == 2 and 'has no patch hull' in run.stderr, 'a design naming a patch the case lacks exits with 2 (%s)' % run.stderr.strip()[-200:])
 
-if failures:
-    print('%d check(s) failed' % len(failures))
-    sys.exit(1)
+finish()

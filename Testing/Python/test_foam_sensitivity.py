@@ -21,23 +21,9 @@ sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402
 import naca0012  # noqa: E402
 
-failures = []
+from checks import check, finish, raises  # noqa: E402
+
 ITERATIONS = 200   # primal and adjoint: enough for non-trivial fields, far from converged
-
-
-def check(condition, what):
-    print(('ok   ' if condition else 'FAIL ') + what, flush=True)
-    if not condition:
-        failures.append(what)
-
-
-def raises(call, text, what):
-    try:
-        call()
-    except ValueError as e:
-        check(text in str(e), '%s: %s' % (what, e))
-        return
-    check(False, '%s raises ValueError' % what)
 
 
 def field_file(case, name):
@@ -162,6 +148,4 @@ raises(lambda: mlsdeform.readFoamSensitivity(deformed, field='pointSensVecadjS1E
 raises(lambda: mlsdeform.readFoamObjective(far + '-missing'), 'has no optimisation/objective', 'an objective of a case that did not run')
 check(sorted(os.listdir(source)) == before, 'the source case holds the same files as before')
 
-if failures:
-    sys.exit('%d check(s) failed: %s' % (len(failures), '; '.join(failures)))
-print('all checks passed')
+finish()

@@ -1,0 +1,27 @@
+"""The Python tests' checks: each prints ok or FAIL with what it checked; finish() exits non-zero
+when any failed."""
+import sys
+
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what, flush=True)
+    if not condition:
+        failures.append(what)
+
+
+def raises(call, text, what):
+    """call raises a ValueError whose message contains text."""
+    try:
+        call()
+    except ValueError as e:
+        check(text in str(e), '%s: %s' % (what, e))
+        return
+    check(False, '%s raises ValueError' % what)
+
+
+def finish():
+    if failures:
+        sys.exit('%d check(s) failed: %s' % (len(failures), '; '.join(failures)))
+    print('all checks passed')
