@@ -96,6 +96,7 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
   : Cells(cellFaces(rest))
 {
   Has3DCells = Cells.faces() > 0;
+  Measures.perFace = false; // the summary's maxima only
   if (Has3DCells)
   {
     Faces = mlsdeform::interiorFaces(Cells);
@@ -114,13 +115,6 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
 
 QualitySummary VolumeMeshQuality::summarizeMeasures() const
 {
-  QualitySummary s;
-  s.inverted = Measures.invertedCells;
-  for (std::size_t i = 0; i < Faces.size(); ++i)
-  {
-    s.maxNonOrthogonality = std::max(s.maxNonOrthogonality, Measures.nonOrthogonality[i]);
-    s.maxSkewness = std::max(s.maxSkewness, Measures.skewness[i]);
-  }
-  return s;
+  return QualitySummary{ Measures.invertedCells, Measures.maxNonOrthogonality, Measures.maxSkewness };
 }
 } // namespace mlsvtk

@@ -84,10 +84,14 @@ bool hasNegativePyramid(const std::vector<FaceGeometry>& faces, const Vec3& cent
   return std::any_of(faces.begin(), faces.end(), [&](const FaceGeometry& face) { return face.area.dot(face.centre - centre) < 0; });
 }
 
-double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area)
+double faceCosine(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area)
 {
   const Vec3 d = neighbourCentre - ownerCentre;
-  const double cosine = std::clamp(area.dot(d) / (area.norm() * d.norm() + RootVerySmall), -1.0, 1.0);
+  return std::clamp(area.dot(d) / (area.norm() * d.norm() + RootVerySmall), -1.0, 1.0);
+}
+
+double nonOrthogonalityOf(double cosine)
+{
   return std::acos(cosine) * 180.0 / M_PI;
 }
 
@@ -287,9 +291,10 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const std:
   const std::vector<int>* orientation, std::vector<int>* decided, const FaceWorkspace& work, FaceMeasures& m)
 {
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
-  m.nonOrthogonality.resize(faces.size());
-  m.skewness.resize(faces.size());
-#pragma omp parallel for schedule(static)
+  m.nonOrthogonality.resize(m.perFace ? faces.size() : 0);
+  m.skewness.resize(m.perFace ? faces.size() : 0);
+  double leastCosine = 1, maxSkewness = 0; // minimum and maximum: the same for any thread count
+#pragma omp parallel for schedule(static) reduction(min : leastCosine) reduction(max : maxSkewness)
   for (long i = 0; i < static_cast<long>(faces.size()); ++i)
   {
     const int* face = cells.face(faces[i].face);
@@ -299,9 +304,18 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const std:
     const Vec3& N = work.centres[faces[i].neighbour];
     const int sign = orientation ? (*orientation)[i] : ((*decided)[i] = g.area.dot(g.centre - P) < 0 ? -1 : 1);
     g.area *= sign;
-    m.nonOrthogonality[i] = nonOrthogonality(P, N, g.area);
-    m.skewness[i] = skewness(P, N, g, points, face, n);
+    const double cosine = faceCosine(P, N, g.area);
+    const double skew = skewness(P, N, g, points, face, n);
+    leastCosine = std::min(leastCosine, cosine);
+    maxSkewness = std::max(maxSkewness, skew);
+    if (m.perFace)
+    {
+      m.nonOrthogonality[i] = nonOrthogonalityOf(cosine);
+      m.skewness[i] = skew;
+    }
   }
+  m.maxNonOrthogonality = faces.empty() ? 0 : nonOrthogonalityOf(leastCosine);
+  m.maxSkewness = maxSkewness;
 }
 }
 

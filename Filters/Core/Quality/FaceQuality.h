@@ -41,9 +41,17 @@ CellGeometry cellGeometry(const std::vector<FaceGeometry>& faces);
 /// with the face listed as seen from outside the cell (VTK's order; OpenFOAM's for the owner).
 bool hasNegativePyramid(const std::vector<FaceGeometry>& faces, const Vec3& centre);
 
-/// Non-orthogonality in degrees of a face with area vector S between cells with centres P and N;
-/// S points from the owner P to the neighbour N (out of P), as in OpenFOAM.
-double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area);
+/// The cosine of the angle between a face's area vector S and d = N - P (cells with centres P
+/// and N; S points from the owner P to the neighbour N, out of P, as in OpenFOAM), in [-1, 1].
+double faceCosine(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area);
+
+/// That angle in degrees: the face's non-orthogonality (a decreasing function of faceCosine, so
+/// the largest over many faces is that of their smallest cosine).
+double nonOrthogonalityOf(double cosine);
+inline double nonOrthogonality(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area)
+{
+  return nonOrthogonalityOf(faceCosine(ownerCentre, neighbourCentre, area));
+}
 
 /// OpenFOAM's face skewness of an interior face (face points needed for its extent).
 double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
@@ -143,12 +151,17 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells);
 /// keep it: a neighbour whose centre folds over to the owner's side then shows above 90 degrees.
 std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces);
 
-/// Non-orthogonality (degrees) and skewness of every interior face; the cells with a pyramid of
-/// negative volume (inverted, hasNegativePyramid) and their number.
+/// The largest non-orthogonality (degrees) and skewness over the interior faces and, when asked
+/// for (perFace), those of every interior face; the cells with a pyramid of negative volume
+/// (inverted, hasNegativePyramid) and their number. A summary without the per-face values takes
+/// no face-sized buffer and one arc cosine in all.
 struct FaceMeasures
 {
-  std::vector<double> nonOrthogonality;
-  std::vector<double> skewness;
+  bool perFace = true;
+  std::vector<double> nonOrthogonality; // per interior face, when perFace
+  std::vector<double> skewness;         // per interior face, when perFace
+  double maxNonOrthogonality = 0;
+  double maxSkewness = 0;
   std::vector<unsigned char> inverted; // per cell
   long invertedCells = 0;
 };
@@ -162,7 +175,7 @@ struct FaceWorkspace
   std::vector<Vec3> centres; // per cell
 };
 
-/// faceMeasures into out, with the buffers of work.
+/// faceMeasures into out (per face as out.perFace says), with the buffers of work.
 void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
   const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
 
