@@ -93,6 +93,37 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Den
   return out;
 }
 
+/// A(begin:end, :)^T X (k x 3) for a dense X with one row per row of the range (b_r = Phi_r^T
+/// dbar_r), without a transposed copy of A: partial sums over fixed blocks of rows, added in block
+/// order, so that the result does not depend on the number of threads.
+template <typename Dense>
+Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Eigen::MatrixBase<Dense>& X)
+{
+  constexpr long Block = 8192;
+  const long blocks = (end - begin + Block - 1) / Block;
+  std::vector<PointDisplacements> partial(static_cast<std::size_t>(blocks)); // rows of x, y, z: one cache line apart
+
+#pragma omp parallel for schedule(dynamic)
+  for (long b = 0; b < blocks; ++b)
+  {
+    PointDisplacements& sum = partial[b];
+    sum.setZero(A.cols(), 3);
+    for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
+    {
+      for (auto a = A.outerIndexPtr()[i]; a < A.outerIndexPtr()[i + 1]; ++a)
+      {
+        sum.row(A.innerIndexPtr()[a]) += A.valuePtr()[a] * X.row(i - begin);
+      }
+    }
+  }
+  Displacements product = Displacements::Zero(A.cols(), 3);
+  for (const PointDisplacements& sum : partial)
+  {
+    product += sum;
+  }
+  return product;
+}
+
 /// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one non-negative weight per row
 /// of the range), the k x k Gram matrix of a row range (GramAccumulator on that one range).
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);

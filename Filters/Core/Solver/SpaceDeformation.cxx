@@ -122,14 +122,11 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions, c
       std::to_string(positions[outside[0]].z()) + "); resample on a geometry that contains the regions");
   }
   RegionNormals.clear();
-  RegionTransposed.clear();
   RegionNormals.reserve(RegionScale.size()); // Eigen's sparse matrices are copied, not moved, when a vector grows
-  RegionTransposed.reserve(RegionScale.size());
   for (std::size_t r = 0; r < RegionScale.size(); ++r)
   {
     const long n = RegionBegin[r + 1] - RegionBegin[r];
     RegionNormals.push_back(weightedGram(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], Eigen::VectorXd::Constant(n, RegionScale[r])));
-    RegionTransposed.emplace_back(RegionSubspace.middleRows(RegionBegin[r], n).transpose());
   }
   Factors.clear();
 }
@@ -236,9 +233,7 @@ Displacements SpaceDeformation::targetRightHandSide(const std::vector<PointDispl
     {
       continue; // a fixed region: the product would be zeros, at the cost of a pass over Phi_r
     }
-    PointDisplacements product(k, 3);
-    multiplyRows(RegionTransposed[r], prescribed[r], 0, k, product.data());
-    const Displacements br = RegionScale[r] * product;
+    const Displacements br = RegionScale[r] * multiplyTransposed(RegionSubspace, RegionBegin[r], RegionBegin[r + 1], prescribed[r]);
     b0 += Weights.fix * br;
     if (perRegion)
     {

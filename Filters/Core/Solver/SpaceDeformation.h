@@ -171,7 +171,6 @@ private:
   std::shared_ptr<const ShapeFunctions> Basis;
   EnergyNormals Energy;
   SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
-  std::vector<SparseRowMatrix> RegionTransposed; // Phi_r^T per region, for the right-hand sides
   std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end
   EnergyWeights Weights;       // as used (stretch at least 1e-6 bend)
