@@ -147,15 +147,13 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       points = std::max(points, *std::max_element(face, face + n) + 1);
     }
   }
-  // a counting sort by the smallest point, in parallel: the faces land in their group in any
-  // order, and each group is put in face order before it is matched
+  // a counting sort by the smallest point, in face order within each group (two sequential
+  // passes: faster than atomic counters shared by the threads and a sort of every group)
   std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
-#pragma omp parallel for schedule(static)
   for (long f = 0; f < faceCount; ++f)
   {
     if (smallest[f] >= 0)
     {
-#pragma omp atomic
       ++start[smallest[f] + 1];
     }
   }
@@ -163,15 +161,11 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   std::vector<long> grouped(static_cast<std::size_t>(start.back()));
   {
     std::vector<long> next(start.begin(), start.end() - 1);
-#pragma omp parallel for schedule(static)
     for (long f = 0; f < faceCount; ++f)
     {
       if (smallest[f] >= 0)
       {
-        long at;
-#pragma omp atomic capture
-        at = next[smallest[f]]++;
-        grouped[at] = f;
+        grouped[next[smallest[f]]++] = f;
       }
     }
   }
@@ -186,9 +180,8 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
 #pragma omp for schedule(dynamic, 4096) reduction(min : shared)
     for (int p = 0; p < points; ++p)
     {
-      long* begin = grouped.data() + start[p];
+      const long* begin = grouped.data() + start[p];
       const long count = start[p + 1] - start[p];
-      std::sort(begin, begin + count);
       signature.resize(count);
       for (long g = 0; g < count; ++g)
       {
