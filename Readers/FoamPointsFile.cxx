@@ -333,31 +333,66 @@ std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, c
   return labels;
 }
 
-void writeFoamPoints(const std::string& directory, const FoamPointsFile& original, const std::vector<double>& xyz)
+namespace
 {
-  const std::size_t n = xyz.size() / 3;
-  std::string out = original.header + std::to_string(n) + "\n(";
-  if (original.binary)
+// Writes the pieces one after the other into path, gzip-compressed or plain.
+void writePieces(const std::string& path, bool compressed, const std::vector<std::pair<const char*, std::size_t>>& pieces)
+{
+  bool written = true;
+  if (compressed)
   {
-    const std::size_t at = out.size();
-    out.resize(at + xyz.size() * static_cast<std::size_t>(original.scalarBytes));
-    if (original.scalarBytes == 8)
+    gzFile file = gzopen(path.c_str(), "wb");
+    if (!file)
     {
-      std::memcpy(&out[at], xyz.data(), 8 * xyz.size());
+      fail(path, "cannot be created");
     }
-    else
+    for (const auto& [data, size] : pieces)
     {
-      for (std::size_t k = 0; k < xyz.size(); ++k)
+      for (std::size_t at = 0; written && at < size; at += 1 << 24)
       {
-        const float single = static_cast<float>(xyz[k]);
-        std::memcpy(&out[at + 4 * k], &single, 4);
+        const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(size - at, 1 << 24));
+        written = gzwrite(file, data + at, chunk) == static_cast<int>(chunk);
       }
     }
+    written = gzclose(file) == Z_OK && written;
   }
   else
   {
+    std::ofstream file(path, std::ios::binary);
+    for (const auto& [data, size] : pieces)
+    {
+      file.write(data, static_cast<std::streamsize>(size));
+    }
+    file.close();
+    written = static_cast<bool>(file);
+  }
+  if (!written)
+  {
+    fail(path, "cannot be written");
+  }
+}
+} // namespace
+
+void writeFoamPoints(const std::string& directory, const FoamPointsFile& original, const std::vector<double>& xyz)
+{
+  const std::size_t n = xyz.size() / 3;
+  const std::string path = directory + (original.compressed ? "/points.gz" : "/points");
+  const std::string begin = original.header + std::to_string(n) + "\n(";
+  const std::string end = ")\n\n\n// ************************************************************************* //\n";
+  std::string list; // the coordinates as text or as 32-bit floats; 64-bit ones are written from xyz itself
+  if (original.binary && original.scalarBytes == 4)
+  {
+    list.resize(4 * xyz.size());
+    for (std::size_t k = 0; k < xyz.size(); ++k)
+    {
+      const float single = static_cast<float>(xyz[k]);
+      std::memcpy(&list[4 * k], &single, 4);
+    }
+  }
+  else if (!original.binary)
+  {
     // chunks of points formatted in parallel, joined in order
-    out += '\n';
+    list += '\n';
     constexpr std::size_t Chunk = 16384;
     std::vector<std::string> parts((n + Chunk - 1) / Chunk);
 #pragma omp parallel for schedule(dynamic)
@@ -380,45 +415,22 @@ void writeFoamPoints(const std::string& directory, const FoamPointsFile& origina
         text += '\n';
       }
     }
-    std::size_t length = out.size();
+    std::size_t length = list.size();
     for (const std::string& text : parts)
     {
       length += text.size();
     }
-    out.reserve(length + 128);
+    list.reserve(length);
     for (std::string& text : parts)
     {
-      out += text;
+      list += text;
       std::string().swap(text);
     }
   }
-  out += ")\n\n\n// ************************************************************************* //\n";
-  const std::string path = directory + (original.compressed ? "/points.gz" : "/points");
-  if (original.compressed)
-  {
-    gzFile file = gzopen(path.c_str(), "wb");
-    if (!file)
-    {
-      fail(path, "cannot be created");
-    }
-    bool written = true;
-    for (std::size_t at = 0; written && at < out.size(); at += 1 << 24)
-    {
-      const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(out.size() - at, 1 << 24));
-      written = gzwrite(file, out.data() + at, chunk) == static_cast<int>(chunk);
-    }
-    if (gzclose(file) != Z_OK || !written)
-    {
-      fail(path, "cannot be written");
-    }
-    return;
-  }
-  std::ofstream file(path, std::ios::binary);
-  file.write(out.data(), static_cast<std::streamsize>(out.size()));
-  file.close();
-  if (!file)
-  {
-    fail(path, "cannot be written");
-  }
+  const bool raw = original.binary && original.scalarBytes == 8; // not copied first: 28.5 MB on a 1M-point mesh
+  writePieces(path, original.compressed,
+    { { begin.data(), begin.size() },
+      raw ? std::make_pair(reinterpret_cast<const char*>(xyz.data()), 8 * xyz.size()) : std::make_pair(list.data(), list.size()),
+      { end.data(), end.size() } });
 }
 } // namespace mlsfoam
