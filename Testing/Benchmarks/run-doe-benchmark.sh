@@ -11,6 +11,7 @@
 # prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
 # batch time is their median times the number of variants (an extrapolation, as the table says).
 # Prints the machine (CPU model, cores per socket, threads per core), then per thread count: the
+# share of CPU time the hypervisor gave to other guests during the run (steal), the
 # whole batch's wall time (process start to the last variant), variants per hour, seconds per
 # variant (first, median), disk per variant against the points file's size, peak RSS; moveMesh's
 # seconds per variant and disk; the targets (5,000 variants per hour, 0.72 s each; a variant's own
@@ -56,12 +57,18 @@ echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs; $(lscpu |
 # the BLAS CHOLMOD's solves and factorization run on (Debian's alternatives: OpenBLAS or the reference BLAS)
 echo "BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3), LAPACK: $(readlink -f /usr/lib/x86_64-linux-gnu/liblapack.so.3)"
 echo "Case: $(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' ') $(grep -E '^ *points:' "$case/log.checkMesh" | tr -s ' '); $samples variants"
+# the machine's CPU time so far: all of it and the part the hypervisor gave to other guests
+# (steal): a virtual machine whose CPUs are shared runs slower by that much, which no setting here changes
+cpu_times() { awk '/^cpu /{ total = 0; for (i = 2; i <= NF; i++) total += $i; print total, $9 }' /proc/stat; }
 for t in $threads; do
   echo "MLS Deform, OMP_NUM_THREADS=$t (load $(cut -d' ' -f1-3 /proc/loadavg))"
+  read -r total0 steal0 < <(cpu_times)
   OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/mls-$t.time" \
     pvpython --no-mpi "$here/doe_benchmark.py" "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" \
     "$case/case.foam" "$run/mls-$t" "$samples" "$movemesh" > "$run/mls-$t.log" 2>&1 || { tail -30 "$run/mls-$t.log"; exit 1; }
   tail -1 "$run/mls-$t.log" | grep -v DOEBENCH || true
+  read -r total1 steal1 < <(cpu_times)
+  awk -v t=$((total1 - total0)) -v s=$((steal1 - steal0)) 'BEGIN { printf "%.1f\n", (t > 0 ? 100 * s / t : 0) }' > "$run/steal-$t"
 done
 
 first=$(set -- $threads; echo "$1")

@@ -28,6 +28,7 @@ for t in threads:
     # moveMesh inputs that doe_benchmark.py makes after it are not the batch's)
     r.update(wall_s=wall, rss_mib=rss, per_hour=3600 * n / r['process_s'], steady_per_hour=3600 / r['variant_s']['median'],
              disk_ratio=r['disk_per_variant_bytes'] / r['points_file_bytes'] if r['points_file_bytes'] else float('nan'))
+    r['steal_percent'] = float(open('%s/steal-%s' % (run, t)).read())
     figures['threads'][t] = r
 moves = [elapsed('%s/moveMesh-%d.time' % (run, i)) for i in range(movemesh)]
 mm = statistics.median(m[0] for m in moves) if moves else float('nan')
@@ -59,6 +60,7 @@ row('disk per variant [MB]', ['%.1f' % (r['disk_per_variant_bytes'] / 1e6) for r
 row('  / points file', ['%.3f' % r['disk_ratio'] for r in T], '')
 row('peak RSS [MiB]', ['%.0f' % r['rss_mib'] for r in T], '%.0f' % figures['moveMesh']['rss_mib'])
 row('  / moveMesh', ['%.2fx' % (r['rss_mib'] / figures['moveMesh']['rss_mib']) for r in T], '')
+row('CPU time stolen by the hypervisor', ['%.1f%%' % r['steal_percent'] for r in T], '')
 row('variants passing the thresholds', ['%d/%d' % (r['ok'], n) for r in T], '')
 print('\nmoveMesh: %d variants timed (%s s), the batch extrapolated from their median.' % (
     movemesh, ', '.join('%.1f' % s for s in figures['moveMesh']['seconds'])))
