@@ -130,6 +130,7 @@ void DeformationSession::updatePointRows(const Collective& group)
     if (PointRowsKey.stale(PointsVersion))
     {
       PointRowsKey.invalidate();
+      Targets.invalidate(); // the region rows are views of these rows
       std::vector<int> outside;
       PointList projected;
       PointRows = subspaceBlocks(Model->basis(), Extruded.evaluated(Points, projected), &outside, { &reportProgress, Owner, 0.6, 0.9 });
@@ -165,7 +166,7 @@ void DeformationSession::updateTargets()
     }
   }
   // a region's points are usually input points too (a patch of the mesh): their rows of Phi are
-  // copied from stage 2's rather than evaluated again
+  // stage 2's, viewed rather than evaluated again or copied
   Model->setRegions(targets, { &PointRows, positionsAmong(Points, positions) });
   Targets.built(std::move(key));
   ++Counts.targets;
@@ -281,15 +282,14 @@ std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double>
   const GatheredGradient g = gatherGradient(Points, gradient, group);
   if (Gradient.subspace != Counts.subspace || Gradient.points != PointsVersion || Gradient.positions != g.positions)
   {
-    // rows at input points are copied from stage 2's (the same bits as evaluating them)
+    // rows at input points are stage 2's, viewed (the same bits as evaluating them)
     PointList projected;
-    Gradient.rows = subspaceMatrix(Model->basis(), Extruded.evaluated(g.positions, projected), nullptr, {},
-      { &PointRows, positionsAmong(Points, g.positions) });
+    Gradient.rows = gatherRows(Model->basis(), Extruded.evaluated(g.positions, projected), { &PointRows, positionsAmong(Points, g.positions) });
     Gradient.positions = g.positions;
     Gradient.subspace = Counts.subspace;
     Gradient.points = PointsVersion;
   }
-  const Displacements H = Gradient.rows.transpose() * g.values;
+  const Displacements H = multiplyTransposed(Gradient.rows, 0, Gradient.rows.rows(), g.values);
   if (Model->isLinear())
   {
     method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";

@@ -8,7 +8,7 @@
 //   0 readInputs           point and region stamps -> values' versions  (versions feed the keys below)
 //   1 updateSubspace       SubspaceKey: subclass's dependencies,        2, 3, 4, 5
 //                          cells and points (if it samples the input)
-//   2 updatePointRows      the points' version                          -
+//   2 updatePointRows      the points' version                          3 (whose rows view these)
 //   3 updateTargets        TargetsKey: (version, role, weight) per      5
 //                          Handle/Fixed region
 //   4 updateConstraints    ConstraintsKey: (version, role, weight) per  5
@@ -213,7 +213,7 @@ private:
     mlsdeform::PointList positions;
     int subspace = -1;
     long points = -1;
-    mlsdeform::SparseRowMatrix rows;
+    mlsdeform::GatheredRows rows; // views of PointRows' rows where the positions are input points
   } Gradient;
   DeformedOutput Output;
   MeshQualityReport Quality;

@@ -172,12 +172,12 @@ TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
   CHECK((fromMatrix - PointDisplacements((Phi * w).middleRows(begin, end - begin))).cwiseAbs().maxCoeff() <= roundOff);
 }
 
-TEST(KnownRowsAreCopiedAsTheyWouldBeEvaluated)
+TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
 {
-  // Phi at region positions copied from the rows of the points they coincide with (a patch of
-  // the mesh) is the matrix evaluated at them, bit for bit; positions at no point (or outside
-  // every support) are evaluated. A position matches the first point at exactly its coordinates,
-  // -0 as +0.
+  // Phi at region positions viewed in the rows of the points they coincide with (a patch of the
+  // mesh) is the matrix evaluated at them, bit for bit; positions at no point (or outside every
+  // support) are evaluated. A position matches the first point at exactly its coordinates, -0 as
+  // +0. The views survive a move of the gathered rows.
   const Scene scene;
   const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
   PointList x = testgeometry::randomPoints(10000, Vec3(0, 0, 0), Vec3(3, 1, 1), 4);
@@ -188,16 +188,19 @@ TEST(KnownRowsAreCopiedAsTheyWouldBeEvaluated)
   positions.back().x() = std::nextafter(positions.back().x(), 10.0); // one ulp from a point: not it
   const std::vector<long> among = positionsAmong(x, positions);
   CHECK(among == std::vector<long>({ 9000, 5, 100, -1, -1, -1 }));
-  std::vector<int> outside, outsideCopied;
+  std::vector<int> outside, outsideGathered;
   const SparseRowMatrix evaluated = subspaceMatrix(basis, positions, &outside);
-  const SparseRowMatrix copied = subspaceMatrix(basis, positions, &outsideCopied, {}, { &blocks, among });
-  CHECK(outside == std::vector<int>({ 4 }) && outsideCopied == outside);
-  CHECK(copied.rows() == evaluated.rows() && copied.nonZeros() == evaluated.nonZeros());
-  bool same = copied.nonZeros() == evaluated.nonZeros();
-  for (long k = 0; same && k < evaluated.nonZeros(); ++k)
-    same = copied.valuePtr()[k] == evaluated.valuePtr()[k] && copied.innerIndexPtr()[k] == evaluated.innerIndexPtr()[k];
-  for (long i = 0; same && i <= evaluated.rows(); ++i)
-    same = copied.outerIndexPtr()[i] == evaluated.outerIndexPtr()[i];
+  GatheredRows moved = gatherRows(basis, positions, { &blocks, among }, &outsideGathered);
+  const GatheredRows gathered = std::move(moved);
+  CHECK(outside == std::vector<int>({ 4 }) && outsideGathered == outside);
+  CHECK(gathered.rows() == evaluated.rows() && gathered.cols() == evaluated.cols());
+  CHECK(gathered.index(0) == rowOf(blocks, 9000).index && gathered.value(1) == rowOf(blocks, 5).value); // views, not copies
+  bool same = gathered.rows() == evaluated.rows();
+  for (long i = 0; same && i < evaluated.rows(); ++i)
+  {
+    const RowSpan a = rowOf(gathered, i), b = rowOf(evaluated, i);
+    same = a.size == b.size && std::equal(a.index, a.index + a.size, b.index) && std::equal(a.value, a.value + a.size, b.value);
+  }
   CHECK(same);
 }
 

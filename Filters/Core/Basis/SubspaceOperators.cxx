@@ -183,14 +183,36 @@ GramAccumulator::GramAccumulator(long size)
 
 void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
 {
+  addRows(A, begin, end, rowWeight);
+}
+
+void GramAccumulator::add(const GatheredRows& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  addRows(A, begin, end, rowWeight);
+}
+
+template <typename Rows>
+void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
   const long rows = end - begin;
-  const int* outer = A.outerIndexPtr() + begin; // of the range's rows
-  const int* inner = A.innerIndexPtr();
-  const double* value = A.valuePtr();
-  if (outer[rows] - outer[0] > 0.25 * static_cast<double>(rows) * static_cast<double>(Size))
+  double entries = 0;
+  for (long row = begin; row < end; ++row)
+  {
+    entries += static_cast<double>(rowOf(A, row).size);
+  }
+  if (entries > 0.25 * static_cast<double>(rows) * static_cast<double>(Size))
   {
     // dense: DenseLower += B^T B with B = diag(sqrt(rowWeight)) A(begin:end, :)
-    Eigen::MatrixXd B = rowWeight.cwiseSqrt().asDiagonal() * Eigen::MatrixXd(A.middleRows(begin, rows));
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(rows, Size);
+    for (long row = 0; row < rows; ++row)
+    {
+      const RowSpan r = rowOf(A, begin + row);
+      for (long a = 0; a < r.size; ++a)
+      {
+        B(row, r.index[a]) = r.value[a];
+      }
+    }
+    B = rowWeight.cwiseSqrt().asDiagonal() * B;
     if (DenseLower.size() == 0)
     {
       DenseLower = Eigen::MatrixXd::Zero(Size, Size);
@@ -219,12 +241,16 @@ void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const 
     {
       const long first = c * ChunkRows, last = std::min(rows, first + ChunkRows);
       used.clear();
-      for (long e = outer[first]; e < outer[last]; ++e)
+      for (long row = first; row < last; ++row)
       {
-        if (local[inner[e]] < 0)
+        const RowSpan r = rowOf(A, begin + row);
+        for (long e = 0; e < r.size; ++e)
         {
-          local[inner[e]] = 0;
-          used.push_back(inner[e]);
+          if (local[r.index[e]] < 0)
+          {
+            local[r.index[e]] = 0;
+            used.push_back(r.index[e]);
+          }
         }
       }
       std::sort(used.begin(), used.end());
@@ -236,11 +262,12 @@ void GramAccumulator::add(const SparseRowMatrix& A, long begin, long end, const 
       G.setZero(m, m);
       for (long row = first; row < last; ++row)
       {
-        const long begin = outer[row], n = outer[row + 1] - begin;
+        const RowSpan r = rowOf(A, begin + row);
+        const long n = r.size;
         rowEntries.resize(n);
         for (long a = 0; a < n; ++a)
         {
-          rowEntries[a] = { local[inner[begin + a]], value[begin + a] };
+          rowEntries[a] = { local[r.index[a]], r.value[a] };
         }
         if (!std::is_sorted(rowEntries.begin(), rowEntries.end())) // Phi's rows are; others need not be
         {
@@ -308,11 +335,25 @@ SparseMatrix GramAccumulator::sum() const
   return Sparse.nonZeros() == 0 ? dense : SparseMatrix(dense + Sparse);
 }
 
-SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+namespace
+{
+template <typename Rows>
+SparseMatrix gramOf(const Rows& A, long begin, long end, const Eigen::VectorXd& rowWeight)
 {
   GramAccumulator gram(A.cols());
   gram.add(A, begin, end, rowWeight);
   return gram.sum();
+}
+}
+
+SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  return gramOf(A, begin, end, rowWeight);
+}
+
+SparseMatrix weightedGram(const GatheredRows& A, long begin, long end, const Eigen::VectorXd& rowWeight)
+{
+  return gramOf(A, begin, end, rowWeight);
 }
 
 long RowBlocks::rows() const
@@ -369,26 +410,28 @@ std::vector<long> positionsAmong(const PointList& points, const PointList& posit
   return found;
 }
 
-SparseRowMatrix subspaceMatrix(
-  const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress, const KnownRows& reuse)
+SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
-  if (!reuse.known || reuse.row.size() != positions.size())
-  {
-    return concatenate(subspaceBlocks(basis, positions, outside, progress));
-  }
-  // Phi evaluated at the positions without a known row, then every row in the positions' order
+  return concatenate(subspaceBlocks(basis, positions, outside, progress));
+}
+
+GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside)
+{
+  const bool usable = known.known && known.row.size() == positions.size();
+  // Phi evaluated at the positions without a known row, then every row viewed in the positions' order
   PointList missing;
   std::vector<long> missingIndex;
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
-    if (reuse.row[i] < 0)
+    if (!usable || known.row[i] < 0)
     {
       missing.push_back(positions[i]);
       missingIndex.push_back(static_cast<long>(i));
     }
   }
+  GatheredRows A;
   std::vector<int> outsideMissing;
-  const SparseRowMatrix evaluated = concatenate(subspaceBlocks(basis, missing, &outsideMissing, progress));
+  A.Own = std::make_unique<SparseRowMatrix>(subspaceMatrix(basis, missing, &outsideMissing));
   if (outside)
   {
     for (int m : outsideMissing)
@@ -396,32 +439,17 @@ SparseRowMatrix subspaceMatrix(
       outside->push_back(static_cast<int>(missingIndex[m]));
     }
   }
-  const RowBlocks& known = *reuse.known;
-  const auto rowOf = [&](std::size_t i, long& next) -> std::pair<const SparseRowMatrix*, long> {
-    if (reuse.row[i] < 0)
-    {
-      return { &evaluated, next++ };
-    }
-    return { &known.blocks[reuse.row[i] / known.rowsPerBlock], reuse.row[i] % known.rowsPerBlock };
-  };
-  SparseRowMatrix A(static_cast<long>(positions.size()), static_cast<long>(basis.size()));
-  long nonZeros = 0, next = 0;
+  A.Columns = static_cast<long>(basis.size());
+  A.Index.resize(positions.size());
+  A.Value.resize(positions.size());
+  A.Length.resize(positions.size());
+  long next = 0;
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
-    const auto [matrix, r] = rowOf(i, next);
-    nonZeros += matrix->outerIndexPtr()[r + 1] - matrix->outerIndexPtr()[r];
-  }
-  A.resizeNonZeros(nonZeros);
-  auto* outer = A.outerIndexPtr();
-  outer[0] = 0;
-  next = 0;
-  for (std::size_t i = 0; i < positions.size(); ++i)
-  {
-    const auto [matrix, r] = rowOf(i, next);
-    const int from = matrix->outerIndexPtr()[r], to = matrix->outerIndexPtr()[r + 1];
-    std::copy(matrix->innerIndexPtr() + from, matrix->innerIndexPtr() + to, A.innerIndexPtr() + outer[i]);
-    std::copy(matrix->valuePtr() + from, matrix->valuePtr() + to, A.valuePtr() + outer[i]);
-    outer[i + 1] = outer[i] + (to - from);
+    const RowSpan row = usable && known.row[i] >= 0 ? rowOf(*known.known, known.row[i]) : rowOf(*A.Own, next++);
+    A.Index[i] = row.index;
+    A.Value[i] = row.value;
+    A.Length[i] = row.size;
   }
   return A;
 }

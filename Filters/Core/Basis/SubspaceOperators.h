@@ -6,6 +6,9 @@
 
 #include "Basis/ShapeFunctions.h"
 
+#include <algorithm>
+#include <memory>
+
 namespace mlsdeform
 {
 /// A sparse matrix kept as blocks of consecutive rows, each a row-major matrix of rowsPerBlock
@@ -23,9 +26,9 @@ struct RowBlocks
 /// are empty; their indices are appended to outside when given.
 RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
-/// Phi rows evaluated before at some positions (with the same shape functions), to be copied
+/// Phi rows evaluated before at some positions (with the same shape functions), to be used
 /// rather than evaluated again: row[i] is the row of `known` that holds Phi at the i-th
-/// position, or -1 (a list of another length is not used).
+/// position, or -1.
 struct KnownRows
 {
   const RowBlocks* known = nullptr;
@@ -35,21 +38,69 @@ struct KnownRows
 /// For each position, the first index of points at exactly that position (+0 = -0), or -1.
 std::vector<long> positionsAmong(const PointList& points, const PointList& positions);
 
-/// Phi at the positions as one matrix (subspaceBlocks, concatenated). Rows given in `reuse` are
-/// copied from it (evaluating Phi at a position gives the same bits wherever it is done).
-SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr,
-  const Progress& progress = {}, const KnownRows& reuse = {});
+/// Phi at the positions as one matrix (subspaceBlocks, concatenated).
+SparseRowMatrix subspaceMatrix(
+  const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
+
+/// Phi at positions, each row a view: of a row of the known rows (evaluating Phi at a position
+/// gives the same bits wherever it is done) or of a row evaluated for it and kept here. A region
+/// of mesh points costs no copy of its rows (115 MB for the patches of the 1M-cell hull case).
+/// The views stay valid while the known rows live unchanged.
+class GatheredRows
+{
+public:
+  long rows() const { return static_cast<long>(Length.size()); }
+  long cols() const { return Columns; }
+  const int* index(long i) const { return Index[i]; }
+  const double* value(long i) const { return Value[i]; }
+  long size(long i) const { return Length[i]; }
+
+private:
+  friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*);
+  std::unique_ptr<SparseRowMatrix> Own; // the rows evaluated here (on the heap: the views outlive a move)
+  std::vector<const int*> Index;
+  std::vector<const double*> Value;
+  std::vector<long> Length;
+  long Columns = 0;
+};
+
+/// Phi at the positions, the rows in `known` viewed, the others evaluated (indices of positions
+/// outside every support appended to outside).
+GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside = nullptr);
+
+/// Row i of a row-major sparse matrix, of row blocks or of gathered rows: its column indices and
+/// values (the one way the products below read a row).
+struct RowSpan
+{
+  const int* index;
+  const double* value;
+  long size;
+};
+inline RowSpan rowOf(const SparseRowMatrix& A, long i)
+{
+  const long begin = A.outerIndexPtr()[i];
+  return { A.innerIndexPtr() + begin, A.valuePtr() + begin, A.outerIndexPtr()[i + 1] - begin };
+}
+inline RowSpan rowOf(const RowBlocks& A, long i)
+{
+  return rowOf(A.blocks[i / A.rowsPerBlock], i % A.rowsPerBlock);
+}
+inline RowSpan rowOf(const GatheredRows& A, long i)
+{
+  return { A.index(i), A.value(i), A.size(i) };
+}
 
 /// Row i of A X (d(x_i) = sum_j Phi_ij w_j) written as an (x, y, z) triple to out, summed in the
 /// order of the row.
-template <typename Dense>
-void multiplyRow(const SparseRowMatrix& A, long i, const Eigen::MatrixBase<Dense>& X, double* out)
+template <typename Rows, typename Dense>
+void multiplyRow(const Rows& A, long i, const Eigen::MatrixBase<Dense>& X, double* out)
 {
+  const RowSpan row = rowOf(A, i);
   double x = 0, y = 0, z = 0;
-  for (auto a = A.outerIndexPtr()[i]; a < A.outerIndexPtr()[i + 1]; ++a)
+  for (long a = 0; a < row.size; ++a)
   {
-    const double v = A.valuePtr()[a];
-    const auto j = A.innerIndexPtr()[a];
+    const double v = row.value[a];
+    const auto j = row.index[a];
     x += v * X(j, 0);
     y += v * X(j, 1);
     z += v * X(j, 2);
@@ -63,24 +114,13 @@ void multiplyRow(const SparseRowMatrix& A, long i, const Eigen::MatrixBase<Dense
 /// (x, y, z) triples to out: one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at
 /// many points). Each entry is summed by one thread in the order of its row, so the result does
 /// not depend on the number of threads.
-template <typename Dense>
-void multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+template <typename Rows, typename Dense>
+void multiplyRows(const Rows& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
 {
 #pragma omp parallel for schedule(static)
   for (long i = begin; i < end; ++i)
   {
     multiplyRow(A, i, X, out + 3 * (i - begin));
-  }
-}
-
-/// The same for a matrix in row blocks.
-template <typename Dense>
-void multiplyRows(const RowBlocks& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
-{
-#pragma omp parallel for schedule(static)
-  for (long i = begin; i < end; ++i)
-  {
-    multiplyRow(A.blocks[i / A.rowsPerBlock], i % A.rowsPerBlock, X, out + 3 * (i - begin));
   }
 }
 
@@ -96,13 +136,12 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Den
 /// A(begin:end, :)^T X (k x 3) for a dense X with one row per row of the range (b_r = Phi_r^T
 /// dbar_r), without a transposed copy of A: partial sums over fixed blocks of rows, added in block
 /// order, so that the result does not depend on the number of threads.
-template <typename Dense>
-Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end, const Eigen::MatrixBase<Dense>& X)
+template <typename Rows, typename Dense>
+Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X)
 {
   constexpr long Block = 8192;
   const long blocks = (end - begin + Block - 1) / Block;
   std::vector<PointDisplacements> partial(static_cast<std::size_t>(blocks)); // rows of x, y, z: one cache line apart
-
 #pragma omp parallel for schedule(dynamic)
   for (long b = 0; b < blocks; ++b)
   {
@@ -110,9 +149,10 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end,
     sum.setZero(A.cols(), 3);
     for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
     {
-      for (auto a = A.outerIndexPtr()[i]; a < A.outerIndexPtr()[i + 1]; ++a)
+      const RowSpan row = rowOf(A, i);
+      for (long a = 0; a < row.size; ++a)
       {
-        sum.row(A.innerIndexPtr()[a]) += A.valuePtr()[a] * X.row(i - begin);
+        sum.row(row.index[a]) += row.value[a] * X.row(i - begin);
       }
     }
   }
@@ -127,6 +167,7 @@ Displacements multiplyTransposed(const SparseRowMatrix& A, long begin, long end,
 /// A(begin:end, :)^T diag(rowWeight) A(begin:end, :) (rowWeight: one non-negative weight per row
 /// of the range), the k x k Gram matrix of a row range (GramAccumulator on that one range).
 SparseMatrix weightedGram(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+SparseMatrix weightedGram(const GatheredRows& A, long begin, long end, const Eigen::VectorXd& rowWeight);
 
 /// Sums Gram matrices A^T diag(weight) A of row blocks. A sparse block is multiplied by sparse
 /// products over row chunks of a fixed size in parallel, summed in their order (the same result
@@ -138,10 +179,14 @@ class GramAccumulator
 public:
   explicit GramAccumulator(long size);
   void add(const SparseRowMatrix& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+  void add(const GatheredRows& A, long begin, long end, const Eigen::VectorXd& rowWeight);
   /// The sum as a symmetric sparse matrix (both triangles).
   SparseMatrix sum() const;
 
 private:
+  template <typename Rows>
+  void addRows(const Rows& A, long begin, long end, const Eigen::VectorXd& rowWeight);
+
   long Size;
   SparseMatrix Sparse;
   Eigen::MatrixXd DenseLower; // empty until a dense block came

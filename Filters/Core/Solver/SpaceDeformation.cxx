@@ -114,7 +114,7 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions, c
     RegionBegin.push_back(static_cast<long>(positions.size()));
   }
   std::vector<int> outside;
-  RegionSubspace = subspaceMatrix(*Basis, positions, &outside, {}, reuse);
+  RegionSubspace = gatherRows(*Basis, positions, reuse, &outside);
   if (!outside.empty())
   {
     throw InvalidInputException(std::to_string(outside.size()) + " region position(s) lie outside every MLS support, e.g. (" +

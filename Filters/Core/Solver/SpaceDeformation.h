@@ -88,7 +88,8 @@ public:
 
   /// Phi at the region positions and F. Throws InvalidInputException for an empty region or a
   /// position outside every support. Rows of Phi known at region positions (numbered over all
-  /// regions' positions in order) are copied from `reuse` rather than evaluated again.
+  /// regions' positions in order) are viewed in `reuse` rather than evaluated again: its rows must
+  /// live unchanged until the next setRegions.
   void setRegions(const std::vector<DirichletRegion>& regions, const KnownRows& reuse = {});
 
   /// Geometric constraints (section 6); none by default. Throws InvalidInputException for a set
@@ -170,7 +171,7 @@ private:
 
   std::shared_ptr<const ShapeFunctions> Basis;
   EnergyNormals Energy;
-  SparseRowMatrix RegionSubspace;  // Phi at the stacked region positions
+  GatheredRows RegionSubspace;     // Phi at the stacked region positions (views of the known rows given to setRegions)
   std::vector<double> RegionScale; // F_r^2 = weight_r / n_r
   std::vector<long> RegionBegin;   // first row of each region in RegionSubspace, and the end
   EnergyWeights Weights;       // as used (stretch at least 1e-6 bend)
