@@ -20,7 +20,7 @@ packages=(
   libxml2-dev libx11-dev zlib1g-dev python3-dev
   libeigen3-dev libsuitesparse-dev libblas-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
-  gmsh python3-matplotlib python3-pyqt5 python3-scipy
+  gmsh python3-matplotlib python3-pyqt5 python3-scipy time
   openfoam
 )
 missing=()

@@ -11,7 +11,8 @@
 # prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
 # batch time is their median times the number of variants (an extrapolation, as the table says).
 # Prints the machine (CPU model, cores per socket, threads per core), then per thread count: the
-# share of CPU time the hypervisor gave to other guests during the run (steal), the
+# share of CPU time the hypervisor gave to other guests during the run (steal), the first variant
+# on a plain VTK pipeline without ParaView's server manager (openfoam/vtk_first_variant.py), the
 # whole batch's wall time (process start to the last variant), variants per hour, seconds per
 # variant (first, median), disk per variant against the points file's size, peak RSS; moveMesh's
 # seconds per variant and disk; the targets (5,000 variants per hour, 0.72 s each; a variant's own
@@ -68,6 +69,9 @@ for t in $threads; do
     "$case/case.foam" "$run/mls-$t" "$samples" "$movemesh" > "$run/mls-$t.log" 2>&1 || { tail -30 "$run/mls-$t.log"; exit 1; }
   tail -1 "$run/mls-$t.log" | grep -v DOEBENCH || true
   read -r total1 steal1 < <(cpu_times)
+  # the same first variant on a plain VTK pipeline (Debian's python3, no ParaView server manager)
+  OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/vtk-$t.time" \
+    /usr/bin/python3 "$here/vtk_first_variant.py" "$run/plugin" "$case/case.foam" > "$run/vtk-$t.log" 2>&1 || { tail -30 "$run/vtk-$t.log"; exit 1; }
   awk -v t=$((total1 - total0)) -v s=$((steal1 - steal0)) 'BEGIN { printf "%.1f\n", (t > 0 ? 100 * s / t : 0) }' > "$run/steal-$t"
 done
 
