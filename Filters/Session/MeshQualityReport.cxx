@@ -2,17 +2,37 @@
 
 #include "Session/SolutionReport.h"
 
+#include <vtkDataArray.h>
 #include <vtkObject.h>
+#include <vtkPoints.h>
 #include <vtkPointSet.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 using namespace mlsdeform;
 
 namespace mlsvtk
 {
+namespace
+{
+// Whether two sets' points hold the same values, bit for bit.
+bool samePoints(vtkPointSet* a, vtkPointSet* b)
+{
+  vtkDataArray* x = a->GetPoints() ? a->GetPoints()->GetData() : nullptr;
+  vtkDataArray* y = b->GetPoints() ? b->GetPoints()->GetData() : nullptr;
+  if (!x || !y || x->GetDataType() != y->GetDataType() || x->GetNumberOfValues() != y->GetNumberOfValues() ||
+    !x->HasStandardMemoryLayout() || !y->HasStandardMemoryLayout())
+  {
+    return false;
+  }
+  return x == y ||
+    std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0), static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0;
+}
+}
+
 void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
   const Collective& group, vtkObject* owner)
 {
@@ -58,7 +78,10 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
   {
     if (Quality[s] && Quality[s]->hasCells())
     {
-      deformed.add(Quality[s]->summary(vtkUnstructuredGrid::SafeDownCast(outSets[s])));
+      // points that did not move (a zero motion: the set-up's first update, a design at p = 0)
+      // have the original's measures: no pass over the cells
+      deformed.add(samePoints(inSets[s], outSets[s]) ? Quality[s]->original()
+                                                     : Quality[s]->summary(vtkUnstructuredGrid::SafeDownCast(outSets[s])));
       measured = true;
     }
   }
