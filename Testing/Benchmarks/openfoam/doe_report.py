@@ -57,7 +57,7 @@ row('  its write [s] (pvpython start-up,', ['%.2f' % (r['startup_s'] + r['setup_
     '%.2f' % mm)
 row('  read, set-up, deform, verdict)', ['%.2fx' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm) for r in T], '')
 row('the same on a VTK pipeline (python3,', ['%.2f' % r['vtk']['first_s'] for r in T], '')
-row('  no server manager; no write) [s]', ['%.2fx' % (r['vtk']['first_s'] / mm) for r in T], '')
+row('  no server manager) [s]', ['%.2fx' % (r['vtk']['first_s'] / mm) for r in T], '')
 row('  its peak RSS [MiB]', ['%.0f: %.2fx' % (r['vtk']['rss_mib'], r['vtk']['rss_mib'] / figures['moveMesh']['rss_mib'])
                             if figures['moveMesh']['rss_mib'] else '%.0f' % r['vtk']['rss_mib'] for r in T], '')
 row('further variant, median [s]', ['%.2f' % r['variant_s']['median'] for r in T], '%.2f' % mm)
