@@ -72,7 +72,7 @@ for t in $threads; do
   # the same first variant on a plain VTK pipeline (Debian's python3, no ParaView server manager)
   mkdir -p "$run/vtk-$t"
   OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/vtk-$t.time" \
-    /usr/bin/python3 "$here/vtk_first_variant.py" "$run/plugin" "$case/case.foam" "$run/vtk-$t" > "$run/vtk-$t.log" 2>&1 || { tail -30 "$run/vtk-$t.log"; exit 1; }
+    /usr/bin/python3 "$here/vtk_first_variant.py" "$run/plugin" "$root/Examples/OpenFOAM" "$case/case.foam" "$run/vtk-$t" > "$run/vtk-$t.log" 2>&1 || { tail -30 "$run/vtk-$t.log"; exit 1; }
   awk -v t=$((total1 - total0)) -v s=$((steal1 - steal0)) 'BEGIN { printf "%.1f\n", (t > 0 ? 100 * s / t : 0) }' > "$run/steal-$t"
 done
 
