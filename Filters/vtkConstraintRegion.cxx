@@ -34,6 +34,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <algorithm>
 #include <iterator>
 #include <optional>
 #include <unordered_set>
@@ -381,6 +382,22 @@ void vtkConstraintRegion::RemoveAllDesignVariables()
 int vtkConstraintRegion::GetNumberOfDesignVariables()
 {
   return static_cast<int>(this->Designs->variables.size());
+}
+
+const char* vtkConstraintRegion::GetDesignVariableName(int i)
+{
+  return i >= 0 && i < this->GetNumberOfDesignVariables() ? this->Designs->variables[i].name.c_str() : nullptr;
+}
+
+void vtkConstraintRegion::GetDesignVariable(int i, double row[7])
+{
+  if (i < 0 || i >= this->GetNumberOfDesignVariables())
+  {
+    return;
+  }
+  const mlsvtk::DesignVariable& v = this->Designs->variables[i];
+  const double values[7] = { static_cast<double>(v.kind), v.axis.x(), v.axis.y(), v.axis.z(), v.value, v.lower, v.upper };
+  std::copy(values, values + 7, row);
 }
 
 vtkMTimeType vtkConstraintRegion::GetMTime()

@@ -179,6 +179,10 @@ public:
   void AddDesignVariable(const char* name, int kind, double ax, double ay, double az, double value, double lower, double upper);
   void RemoveAllDesignVariables();
   int GetNumberOfDesignVariables();
+  /// Variable i's name, and its row after the name: kind, axis x, y, z, value, lower, upper
+  /// (nullptr and row untouched for an i out of range).
+  const char* GetDesignVariableName(int i);
+  void GetDesignVariable(int i, double row[7]);
   ///@}
 
   ///@{

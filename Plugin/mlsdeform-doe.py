@@ -1,14 +1,13 @@
 """Design of experiments on an OpenFOAM case from the command line (mlsdeform/cli.py):
 
-    pvpython mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV) [options]
+    python3 mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV) [options]
 
-It sits beside the plugin and loads it from there; --help lists the options."""
+(or pvpython in place of python3). It sits beside the plugin, with the mlsdeform package and the
+plugin's Python wrapping, and imports them from there; --help lists the options."""
 import os
 import sys
 
-from paraview.simple import LoadPlugin
-
-LoadPlugin(os.path.join(os.path.dirname(os.path.abspath(__file__)), 'MLSDeform.so'), remote=False)
-import mlsdeform.cli  # noqa: E402  (embedded in the plugin)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import mlsdeform.cli  # noqa: E402
 
 sys.exit(mlsdeform.cli.main(sys.argv[1:]))

@@ -1,5 +1,7 @@
 """MLS deformation for design optimization, in pvpython and pvbatch once the MLSDeform plugin is
-loaded (``LoadPlugin(...)``, or ``paraview --plugins=MLSDeform``): ``import mlsdeform``.
+loaded (``LoadPlugin(...)``, or ``paraview --plugins=MLSDeform``): ``import mlsdeform``; or in
+Debian's python3 with the plugin's folder (where the package is copied) on sys.path, on a plain
+VTK pipeline (``mlsdeform.vtkfoam``).
 
 ``DesignVariables`` puts design variables on the Handle regions of an MLS Deform filter and
 gives the deformed points and their exact derivatives, with the interface of pyGeo's DVGeometry
@@ -9,7 +11,8 @@ turns a Latin hypercube or a table of values into OpenFOAM variant cases with a 
 verdict each; ``readFoamSensitivity`` turns an OpenFOAM adjoint sensitivity field into dJ/dX on
 the deformation's points (for ``totalSensitivity``) and ``readFoamObjective`` reads J.
 """
-from .design import DesignVariables, KINDS, _load_wrapping
+from .deformer import _load_wrapping
+from .design import DesignVariables, KINDS
 from .adjoint import readFoamDictionary, readFoamObjective, readFoamSensitivity
 from .experiments import THRESHOLDS, designOfExperiments, latinHypercube, meshQuality, passes, readTable
 

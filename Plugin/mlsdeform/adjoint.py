@@ -200,29 +200,37 @@ def _read_case(case, patches=(), field=None, time=None, kind=None):
     """The case's internal mesh points (float32, as the reader gives them), the field (kind 'point':
     its values at the mesh points; 'face': per patch face; None: no field) and the patches' faces
     (point ids of the internal mesh), at time (None: the reader's first)."""
-    import paraview.simple as pvs
     from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOGeometry import vtkOpenFOAMReader
     foam, made = _foam_file(case)
-    reader = None
     try:
-        reader = pvs.OpenFOAMReader(FileName=foam)
-        available = list(reader.GetProperty('PatchArrayInfo')[0::2])
+        reader = vtkOpenFOAMReader()   # with ParaView's reader's defaults where VTK's differ (Skip Zero Time)
+        reader.SetFileName(foam)
+        reader.SetSkipZeroTime(1)
+        reader.SetDecomposePolyhedra(0)
+        reader.SetCreateCellToPoint(0)
+        reader.SetCacheMesh(0)
+        reader.UpdateInformation()
+        available = [reader.GetPatchArrayName(i) for i in range(reader.GetNumberOfPatchArrays())]
         missing = [p for p in patches if 'patch/' + p not in available]
         if missing:
             raise ValueError(f"the sensitivity patches {missing} of {case}'s optimisationDict are not patches of its mesh")
-        reader.MeshRegions = ['internalMesh'] + ['patch/' + p for p in patches]
-        reader.Decomposepolyhedra = 0
-        reader.Createcelltopointfiltereddata = 0
-        reader.PointArrays = [field] if kind == 'point' else []
-        reader.CellArrays = [field] if kind == 'face' else []
+        for name in available:
+            reader.SetPatchArrayStatus(name, 1 if name == 'internalMesh' or name[len('patch/'):] in patches else 0)
+        for count, get_name, set_status, wanted in (
+                (reader.GetNumberOfPointArrays, reader.GetPointArrayName, reader.SetPointArrayStatus, 'point'),
+                (reader.GetNumberOfCellArrays, reader.GetCellArrayName, reader.SetCellArrayStatus, 'face')):
+            for i in range(count()):
+                name = get_name(i)
+                set_status(name, 1 if kind == wanted and name == field else 0)
         if time is None:
-            reader.UpdatePipeline()
+            reader.Update()
         else:
-            reader.UpdatePipeline(float(time))
-        blocks = dict(_leaves(reader.GetClientSideObject().GetOutputDataObject(0)))
+            reader.UpdateTimeStep(float(time))
+        blocks = dict(_leaves(reader.GetOutput()))
         internal = blocks.get('internalMesh')
         if internal is None:
-            raise ValueError(f"{case}: ParaView's OpenFOAM reader gave no internal mesh")
+            raise ValueError(f"{case}: the OpenFOAM reader gave no internal mesh")
         mesh = np.array(_points(internal))
         faces = []   # per patch: (point ids per face, field values per face or None)
         for patch in patches:
@@ -245,8 +253,6 @@ def _read_case(case, patches=(), field=None, time=None, kind=None):
             values = np.array(vtk_to_numpy(array), dtype=float)
         return mesh, values, faces
     finally:
-        if reader is not None:
-            pvs.Delete(reader)
         if made:
             os.remove(foam)
 
@@ -332,7 +338,7 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
     a sensitivity, a case whose mesh is not the deformation's input or its current shape, and a
     field that is zero at every point a Handle region moves.
     """
-    from .design import _algorithm
+    from .deformer import deformer as _deformer
     try:
         from vtkmodules.vtkParallelCore import vtkMultiProcessController
         controller = vtkMultiProcessController.GetGlobalController()
@@ -341,8 +347,9 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
     if controller is not None and controller.GetNumberOfProcesses() > 1:
         raise RuntimeError("readFoamSensitivity runs on one process (pvpython, or pvbatch without MPI): under MPI each "
                            "rank would need the whole case's field")
-    algorithm = _algorithm(deformed)
-    deformed.UpdatePipeline()
+    filter_ = _deformer(deformed)
+    algorithm = filter_.algorithm
+    filter_.update()
     source_data = algorithm.GetInputDataObject(0, 0)
     output = algorithm.GetOutputDataObject(0)
     if source_data is None or output is None:
@@ -408,7 +415,7 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
                          f"deformation at the current design variables, or set the variables the case was written with")
     result = np.zeros((len(inputs), 3))
     result[owners] = gradient[mesh_ids]
-    _check_on_handles(deformed, result, inputs, field, case, patches)
+    _check_on_handles(filter_, result, inputs, field, case, patches)
     return result
 
 
@@ -421,13 +428,11 @@ def _source_points(source, n):
     return points
 
 
-def _check_on_handles(deformed, gradient, inputs, field, case, patches):
+def _check_on_handles(filter_, gradient, inputs, field, case, patches):
     """A field that is zero wherever a Handle region moves gives dJ/dp = 0 for every variable: an error."""
     from .design import _HANDLE
-    regions = deformed.Regions
-    regions = list(regions) if hasattr(regions, '__len__') else [regions]
-    handles = [r for r in regions if r.SMProxy.GetProperty('Role').GetElement(0) == _HANDLE]
-    held = [np.array(_points(d)) for r in handles for _, d in _leaves(r.GetClientSideObject().GetOutputDataObject(0))]
+    handles = [r for r in filter_.regions() if filter_.role(r) == _HANDLE]
+    held = [np.array(_points(d)) for r in handles for _, d in _leaves(filter_.output(r))]
     if not held:
         raise ValueError("the deformation has no Handle region: no design variable can move a point")
     moving = np.zeros(len(inputs), bool)

@@ -1,8 +1,11 @@
 """The command line of a design of experiments on an OpenFOAM case (mlsdeform-doe.py beside the
-plugin runs it in pvpython):
+plugin runs it in Debian's python3 or in pvpython):
 
-    pvpython .../plugins/MLSDeform/mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV)
+    python3 .../plugins/MLSDeform/mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV)
         [--write-failed] [--copy] [--max-non-orthogonality 70] [--max-skewness 4] [--max-inverted-cells 0]
+
+It builds a plain VTK pipeline (mlsdeform.vtkfoam), without ParaView's server manager: less
+memory and a faster start than paraview.simple, and the same variants.
 
 DESIGN.json names the case, its patches by role and the design variables, e.g.
 
@@ -13,7 +16,7 @@ DESIGN.json names the case, its patches by role and the design variables, e.g.
      "settings": {"NumberOfSamples": 1000}}
 
 A variable acts on the handle patches it names (default: all of them), with one axis for all or
-one per patch; "settings" are MLS Deform properties. A relative "case" is relative to the design
+one per patch; "settings" are MLS Deform properties, as numbers (the VTK filter's Set<Name>). A relative "case" is relative to the design
 file. Exit code 0 when every variant was made (whatever their verdicts), 1 on a failure, 2 on a
 bad design or command line, with the message on stderr. Running it again resumes.
 """
@@ -28,7 +31,7 @@ VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'lower', 'upper', 'valu
 
 def setUp(design_path):
     """The MLS Deform of the design file's case with its design variables (mlsdeform.DesignVariables)."""
-    from . import DesignVariables, foam
+    from . import DesignVariables, vtkfoam
     with open(design_path) as f:
         design = json.load(f)
     if not isinstance(design, dict) or not {'case', 'handle', 'variables'} <= set(design) or set(design) - KEYS:
@@ -38,11 +41,8 @@ def setUp(design_path):
     if not os.path.exists(case):
         raise ValueError(f"{design_path}: the case {case} does not exist")
     handle, fixed, slip = list(design['handle']), list(design.get('fixed', [])), list(design.get('slip', []))
-    reader = foam.open_case(case, handle + fixed + slip, decompose_polyhedra=False)
-    missing = [p for p in handle + fixed + slip if 'patch/' + p not in reader.MeshRegions.Available]
-    if missing:
-        raise ValueError(f"{design_path}: the case has no patch {', '.join(missing)}")
-    deformer = foam.morph(reader, handle, (0, 0, 0), fixed, slip, **design.get('settings', {}))
+    reader = vtkfoam.open_case(case, handle + fixed + slip, decompose_polyhedra=False)  # checkMesh's own cells
+    deformer = vtkfoam.morph(reader, handle, (0, 0, 0), fixed, slip, **design.get('settings', {}))
     dvs = DesignVariables(deformer)
     for variable in design['variables']:
         if not isinstance(variable, dict) or set(variable) - VARIABLE_KEYS or 'name' not in variable:
@@ -52,7 +52,7 @@ def setUp(design_path):
         unknown = [p for p in patches if p not in handle]
         if unknown:
             raise ValueError(f"{design_path}: variable {variable['name']!r} names {unknown}, which are no handle patches {handle}")
-        regions = [deformer.Regions[handle.index(p)] for p in patches]  # morph() lists the handles first
+        regions = [deformer.GetInputAlgorithm(1, handle.index(p)) for p in patches]  # morph() connects the handles first
         axes = {k: variable[k] for k in ('translate', 'rotate', 'scale') if k in variable}
         dvs.addHandleDV(variable['name'], regions, lower=variable.get('lower'), upper=variable.get('upper'),
                         value=variable.get('value', 0.0), **axes)

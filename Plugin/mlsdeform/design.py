@@ -12,45 +12,13 @@ import math
 
 import numpy as np
 
+from .deformer import _load_wrapping, deformer as _deformer
+
 # The kinds of design variable, in the order of vtkConstraintRegion's kind numbers
 # (Filters/Adapters/DesignVariables.h: DesignKindNames).
 KINDS = ("translate", "rotate", "scale")
-_ROW = 8            # name, kind, axis x, y, z, value, lower, upper: one DesignVariables row
 _UNBOUNDED = 1e300  # a missing bound (the filter needs finite numbers)
-_HANDLE = 0         # vtkConstraintRegion::Handle
-
-
-def _load_wrapping():
-    """The Python wrapping of the plugin's filters (built next to the plugin): it makes the
-    MLS Deform VTK object's sensitivity methods callable."""
-    import importlib
-    import os
-    import sys
-    try:
-        return importlib.import_module("mlsdeform_wrapping.MLSDeformFilters")
-    except ImportError:
-        pass
-    from paraview.modules.vtkRemotingCore import vtkPVPluginTracker
-    tracker = vtkPVPluginTracker.GetInstance()
-    for i in range(tracker.GetNumberOfPlugins()):
-        if tracker.GetPluginName(i) == "MLSDeform" and tracker.GetPluginLoaded(i):
-            folder = os.path.dirname(tracker.GetPluginFileName(i))
-            if os.path.isdir(os.path.join(folder, "mlsdeform_wrapping")) and folder not in sys.path:
-                sys.path.append(folder)
-            return importlib.import_module("mlsdeform_wrapping.MLSDeformFilters")
-    raise RuntimeError("the MLSDeform plugin is not loaded: LoadPlugin(...) it before using mlsdeform")
-
-
-def _algorithm(proxy):
-    _load_wrapping()
-    algorithm = proxy.GetClientSideObject()
-    if algorithm is None:
-        raise RuntimeError("mlsdeform.DesignVariables needs a builtin session (pvpython or pvbatch without a server "
-                           "connection): the sensitivities are computed on the filter itself")
-    if not hasattr(algorithm, "ComputeObjectiveSensitivity"):
-        raise RuntimeError("the MLS Deform filter's VTK object was handed to Python (GetClientSideObject) before "
-                           "mlsdeform was imported, as a plain VTK algorithm: import mlsdeform right after LoadPlugin")
-    return algorithm
+_HANDLE = 0         # vtkConstraintRegion::Handle (Filters/Vocabulary/RegionRoles.h)
 
 
 def _vector(value, what):
@@ -66,7 +34,8 @@ def _vector(value, what):
 
 
 class DesignVariables:
-    """The design variables of one MLS Deform filter (a paraview.simple proxy).
+    """The design variables of one MLS Deform filter: a paraview.simple proxy, or a
+    vtkMLSDeformFilter on a plain VTK pipeline (mlsdeform.vtkfoam) with vtkConstraintRegions.
 
     Variables live on the Handle regions (their DesignVariables property), so they are saved with
     a ParaView state and found again: ``DesignVariables(deformer)`` reads the ones its regions
@@ -75,19 +44,16 @@ class DesignVariables:
 
     def __init__(self, deformer):
         self.deformer = deformer
-        self._algorithm = _algorithm(deformer)
-        # name -> {"kind", "regions": [proxy], "axes": [[x, y, z]], "value", "lower", "upper"}, in definition order
+        self._filter = _deformer(deformer)
+        self._algorithm = self._filter.algorithm
+        # name -> {"kind", "regions": [region], "axes": [[x, y, z]], "value", "lower", "upper"}, in definition order
         self._variables = {}
-        for region in self._regions():
-            rows = list(region.DesignVariables)
-            for r in range(0, len(rows), _ROW):
-                name, kind = str(rows[r]), int(rows[r + 1])
-                axis = [float(x) for x in rows[r + 2:r + 5]]
-                value, lower, upper = (float(x) for x in rows[r + 5:r + 8])
-                entry = self._variables.setdefault(name, {"kind": KINDS[kind], "regions": [], "axes": [], "value": value,
+        for region in self._filter.regions():
+            for name, (kind, x, y, z, value, lower, upper) in self._filter.rows(region):
+                entry = self._variables.setdefault(name, {"kind": KINDS[int(kind)], "regions": [], "axes": [], "value": value,
                                                           "lower": lower, "upper": upper})
                 entry["regions"].append(region)
-                entry["axes"].append(axis)
+                entry["axes"].append([x, y, z])
 
     # -- definition -------------------------------------------------------------------------
     def addHandleDV(self, name, regions, translate=None, rotate=None, scale=None, lower=None, upper=None, value=0.0):
@@ -122,15 +88,16 @@ class DesignVariables:
             raise ValueError(f"design variable {name!r}: lower ({lower}) must not exceed upper ({upper})")
         if not (lower <= value <= upper):
             raise ValueError(f"design variable {name!r}: the value {value} is outside its bounds [{lower}, {upper}]")
-        connected = self._regions()
+        key = self._filter.key
+        connected = {key(c) for c in self._filter.regions()}
         for region in regions:
-            if not any(region.SMProxy is c.SMProxy for c in connected):
+            if key(region) not in connected:
                 raise ValueError(f"design variable {name!r}: a region is not among this MLS Deform's Regions inputs")
-            role = region.SMProxy.GetProperty("Role").GetElement(0)
+            role = self._filter.role(region)
             if role != _HANDLE:
                 raise ValueError(f"design variable {name!r}: it acts on a Handle region's motion, not on a region of role "
-                                 f"{region.GetProperty('Role').GetAvailable()[role] if role < len(region.GetProperty('Role').GetAvailable()) else role}")
-        if len(set(id(r.SMProxy) for r in regions)) != len(regions):
+                                 f"{_load_wrapping().vtkConstraintRegion.GetRoleName(role)}")
+        if len(set(key(r) for r in regions)) != len(regions):
             raise ValueError(f"design variable {name!r}: a region is named twice")
         self._variables[name] = {"kind": kind, "regions": regions, "axes": axes, "value": value, "lower": lower, "upper": upper}
         self._write(regions)
@@ -254,29 +221,18 @@ class DesignVariables:
         return worst
 
     # -- internals --------------------------------------------------------------------------
-    def _regions(self):
-        regions = self.deformer.Regions
-        return list(regions) if isinstance(regions, (list, tuple)) or hasattr(regions, "__len__") else [regions]
-
     def _write(self, regions):
-        # each touched region's DesignVariables property rewritten from the table, in definition order
-        done = set()
-        for region in regions:
-            if id(region.SMProxy) in done:
-                continue
-            done.add(id(region.SMProxy))
-            rows = []
-            for name, v in self._variables.items():
-                for r, axis in zip(v["regions"], v["axes"]):
-                    if r.SMProxy is region.SMProxy:
-                        rows += [name, str(KINDS.index(v["kind"]))] + [repr(float(a)) for a in axis] + \
-                                [repr(v["value"]), repr(v["lower"]), repr(v["upper"])]
-            region.DesignVariables = rows
+        # each touched region's design-variable rows rewritten from the table, in definition order
+        key = self._filter.key
+        for k, region in {key(r): r for r in regions}.items():
+            self._filter.write(region, [(name, [KINDS.index(v["kind"])] + list(axis) + [v["value"], v["lower"], v["upper"]])
+                                        for name, v in self._variables.items()
+                                        for r, axis in zip(v["regions"], v["axes"]) if key(r) == k])
 
     def _updated(self):
         """Brings the filter up to date; raises RuntimeError on a failure; the variables' names in
         the filter's column order."""
-        self.deformer.UpdatePipeline()
+        self._filter.update()
         output = self._algorithm.GetOutputDataObject(0)
         error = output.GetFieldData().GetAbstractArray("DeformationError") if output else None
         if error is not None and error.GetNumberOfValues() > 0:

@@ -5,7 +5,8 @@ or a table of values, turned into variant cases with a mesh-quality verdict each
     report = mlsdeform.designOfExperiments(dvs, 'variants', table='doe.csv')
 
 Every variant is ``<folder>/variant<i>/case.foam``, written by the plugin's OpenFOAM case writer
-from the deformation's source case (the reader's CasePath): its own points, and links to the
+(mlsdeform.foam's for a paraview.simple proxy, mlsdeform.vtkfoam's for a VTK filter) from the
+deformation's source case (the reader's CasePath): its own points, and links to the
 source's unchanged files unless copies are asked for; ``<folder>/report.csv`` holds a row
 per variant: the variables' values, InvertedCells, MaxNonOrthogonality, MaxSkewness (MLS Deform's
 mesh-quality figures, checkMesh's definitions), ok (the verdict against the thresholds), seconds
@@ -135,7 +136,10 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     Prints a progress line per variant (verbose). The design
     variables' values are restored at the end. Raises ValueError for a bad design or table and
     RuntimeError when a deformation or a write fails (what was written stays)."""
-    from .foam import save_variant
+    if dvs._filter.proxy is not None:
+        from .foam import save_variant
+    else:
+        from .vtkfoam import save_variant
     names = dvs.getVarNames()
     if not names:
         raise ValueError("the design has no variables: add some with addHandleDV first")

@@ -1,7 +1,7 @@
 """Issue 30 point 3: mlsdeform.designOfExperiments on the sphereChannel snappyHexMesh case (built
 here): a Latin hypercube and a table into variant cases with a mesh-quality verdict each, the
 report, the thresholds, resuming after an interruption, and bad designs.
-Usage: pvpython test_design_of_experiments.py PLUGIN EXAMPLES_OPENFOAM_DIR WORK_DIR"""
+Usage: pvpython test_design_of_experiments.py PLUGIN EXAMPLES_OPENFOAM_DIR WORK_DIR PYTHON3"""
 import csv
 import os
 import shutil
@@ -11,7 +11,7 @@ import sys
 import numpy as np
 from paraview.simple import LoadPlugin
 
-plugin, examples, work = sys.argv[1:4]
+plugin, examples, work, python3 = sys.argv[1:5]
 LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402
@@ -124,24 +124,50 @@ raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), sam
        'unknown threshold', 'an unknown threshold')
 
 # the command line: a design file (relative case path), a Latin hypercube, a progress line per
-# variant, the report; a bad design file exits with 2 and the message
+# variant, the report; in Debian's python3 (a plain VTK pipeline, mlsdeform.vtkfoam) and in pvpython
+# the same variants as the package's designOfExperiments on paraview.simple proxies, bit for bit;
+# a bad design file exits with 2 and the message
 import json  # noqa: E402
 design = os.path.join(work, 'design.json')
+variables = [{'name': 'dx', 'translate': [1, 0, 0], 'lower': -0.05, 'upper': 0.05},
+             {'name': 'yaw', 'rotate': [0, 0, 1], 'lower': -10, 'upper': 10, 'patches': ['body']}]
 with open(design, 'w') as f:
-    json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip,
-               'variables': [{'name': 'dx', 'translate': [1, 0, 0], 'lower': -0.05, 'upper': 0.05},
-                             {'name': 'yaw', 'rotate': [0, 0, 1], 'lower': -10, 'upper': 10, 'patches': ['body']}],
+    json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip, 'variables': variables,
                'settings': {'NumberOfSamples': 500}}, f)
-command = [sys.executable if 'pvpython' in sys.executable else 'pvpython',
-           os.path.join(os.path.dirname(plugin), 'mlsdeform-doe.py'), design, os.path.join(work, 'cli'), '--samples', '3', '--seed', '2']
-run = subprocess.run(command, capture_output=True, text=True)
-check(run.returncode == 0 and run.stdout.count('variant ') >= 3 and '3 variants, 3 pass the thresholds' in run.stdout,
-      'the command line writes 3 variants with a progress line each (exit %d: %s)' % (run.returncode, run.stdout[-300:] + run.stderr[-300:]))
-with open(os.path.join(work, 'cli', 'report.csv')) as f:
-    check(len(list(csv.DictReader(f))) == 3, "the command line's report.csv has 3 rows")
+command = [os.path.join(os.path.dirname(plugin), 'mlsdeform-doe.py'), design, None, '--samples', '3', '--seed', '2']
+reports = {}
+for interpreter in (python3, 'pvpython'):
+    folder = os.path.join(work, 'cli-' + os.path.basename(interpreter))
+    command[2] = folder
+    run = subprocess.run([interpreter] + command, capture_output=True, text=True)
+    check(run.returncode == 0 and run.stdout.count('variant ') >= 3 and '3 variants, 3 pass the thresholds' in run.stdout,
+          'the command line in %s writes 3 variants with a progress line each (exit %d: %s)'
+          % (interpreter, run.returncode, run.stdout[-300:] + run.stderr[-300:]))
+    with open(os.path.join(folder, 'report.csv')) as f:
+        reports[interpreter] = list(csv.DictReader(f))
+    check(len(reports[interpreter]) == 3, "the command line's report.csv has 3 rows")
+proxies = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip, NumberOfSamples=500)
+same = mlsdeform.DesignVariables(proxies)
+for v in variables:
+    same.addHandleDV(v['name'], proxies.Regions[0], lower=v['lower'], upper=v['upper'],
+                     **{k: v[k] for k in ('translate', 'rotate') if k in v})
+expected = mlsdeform.designOfExperiments(same, os.path.join(work, 'cli-proxies'), samples=3, seed=2, verbose=False)
+columns = ['variant', 'dx', 'yaw', 'InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness', 'ok']
+for interpreter, rows in reports.items():
+    check([[r[c] for c in columns] for r in rows] == [[str(e[c]) if not isinstance(e[c], float) else repr(e[c]) for c in columns]
+                                                         for e in expected],
+          "the command line's report in %s is the package's on proxies (values, quality figures, verdicts)" % interpreter)
+    check(all(open(os.path.join(os.path.dirname(r['path']), 'constant', 'polyMesh', 'points'), 'rb').read() ==
+              open(os.path.join(os.path.dirname(e['path']), 'constant', 'polyMesh', 'points'), 'rb').read()
+              for r, e in zip(rows, expected)),
+          "and its variants' points files are the proxies', byte for byte (%s)" % interpreter)
 with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handle': ['hull'], 'variables': []}, f)
-run = subprocess.run(command, capture_output=True, text=True)
+run = subprocess.run([python3] + command, capture_output=True, text=True)
 check(run.returncode == 2 and 'has no patch hull' in run.stderr, 'a design naming a patch the case lacks exits with 2 (%s)' % run.stderr.strip()[-200:])
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handle': handle, 'variables': variables, 'settings': {'Basis': 'Linear'}}, f)
+run = subprocess.run([python3] + command, capture_output=True, text=True)
+check(run.returncode == 2 and 'takes a number' in run.stderr, 'a setting that is not a number exits with 2 (%s)' % run.stderr.strip()[-200:])
 
 finish()

@@ -1,9 +1,11 @@
-"""A plain VTK pipeline in python3, without ParaView's server manager: ParaView's VTK modules and
-the plugin's wrapped filters and case writer (Examples/OpenFOAM/vtk_variant.py) read the
-sphereChannel case (built here), deform it (the sphere moved by (0.05, 0, 0.02), inlet and outlet
-Fixed, the other planes Slip) and write a linked variant case. The variant's points file must be,
-byte for byte, the one pvpython writes through mlsdeform.foam (Examples/OpenFOAM/morph_case.py with
-its defaults); a bad target is refused with nothing written.
+"""A plain VTK pipeline in python3, without ParaView's server manager: ParaView's VTK modules, the
+plugin's wrapped filters and case writer and the mlsdeform package beside the plugin
+(mlsdeform.vtkfoam) read the sphereChannel case (built here), deform it (the sphere moved by
+(0.05, 0, 0.02), inlet and outlet Fixed, the other planes Slip) and write a linked variant case.
+The variant's points file must be, byte for byte, the one pvpython writes through mlsdeform.foam
+(Examples/OpenFOAM/morph_case.py with its defaults); a bad target is refused with nothing written.
+mlsdeform.DesignVariables drives the VTK filter as it drives a proxy: variables written to the
+vtkConstraintRegion are read back, and their exact dX/dp is the central difference's.
 Usage: python3 test_vtk_pipeline.py PLUGIN_FILE EXAMPLES_OPENFOAM_DIR WORK_DIR"""
 import os
 import subprocess
@@ -11,19 +13,20 @@ import sys
 
 plugin, examples, work = sys.argv[1:4]
 folder = os.path.dirname(os.path.abspath(plugin))
-sys.path.insert(0, examples)
+sys.path.insert(0, folder)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import vtk_variant  # noqa: E402
+import mlsdeform  # noqa: E402
+from mlsdeform import vtkfoam  # noqa: E402
 
-from checks import check, finish  # noqa: E402
+from checks import check, finish, raises  # noqa: E402
 
 case = os.path.join(work, 'case')
 subprocess.run(['bash', os.path.join(examples, 'make-case.sh'), case], check=True)
 # Decompose polyhedra on: ParaView's default, as morph_case.py reads the case
-_, deform, _ = vtk_variant.morph(folder, os.path.join(case, 'case.foam'), ['body'], (0.05, 0, 0.02), ['inlet', 'outlet'],
-                                 ['ground', 'top', 'front', 'back'], decompose_polyhedra=True)
-writer = vtk_variant.save_variant(folder, deform, os.path.join(work, 'vtk-variant', 'case.foam'))
-check(writer.GetErrorCode() == 0, 'the VTK pipeline writes the variant case')
+handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']
+reader = vtkfoam.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose_polyhedra=True)
+deform = vtkfoam.morph(reader, handle, (0.05, 0, 0.02), fixed, slip)
+vtkfoam.save_variant(deform, os.path.join(work, 'vtk-variant', 'case.foam'), link=True)
 check('paraview.servermanager' not in sys.modules and 'paraview.simple' not in sys.modules,
       "the pipeline ran without ParaView's server manager")
 polymesh = os.path.join(work, 'vtk-variant', 'constant', 'polyMesh')
@@ -40,7 +43,28 @@ with open(os.path.join(case, 'constant', 'polyMesh', 'points'), 'rb') as source:
 check(mine == theirs, "its points file is pvpython's, byte for byte (%d bytes)" % len(mine))
 
 # a target folder that does not exist: refused, nothing written
-bad = vtk_variant.save_variant(folder, deform, os.path.join(work, 'no-such-folder', 'variant', 'case.foam'))
-check(bad.GetErrorCode() != 0 and not os.path.exists(os.path.join(work, 'no-such-folder')),
-      'a variant in a folder that does not exist is refused, and nothing is written')
+try:
+    vtkfoam.save_variant(deform, os.path.join(work, 'no-such-folder', 'variant', 'case.foam'))
+    check(False, 'a variant in a folder that does not exist raises RuntimeError')
+except RuntimeError as e:
+    check('was not written' in str(e) and not os.path.exists(os.path.join(work, 'no-such-folder')),
+          'a variant in a folder that does not exist is refused (%s), and nothing is written' % e)
+raises(lambda: vtkfoam.open_case(os.path.join(case, 'case.foam'), ['hull']), 'has no patch hull', 'a patch the case lacks')
+
+# design variables on the VTK filter: written to the region, read back by a new DesignVariables,
+# exact derivatives against central differences (as test_design_variables.py: translation acts
+# linearly, so the difference is exact up to the output's round-off, 1e-14 over the step 1e-4;
+# the rotation's truncation is (h pi/180)^2 / 6 = 5e-13)
+body = deform.GetInputAlgorithm(1, 0)
+dvs = mlsdeform.DesignVariables(deform)
+dvs.addHandleDV('dx', body, translate=[1, 0, 0], lower=-0.05, upper=0.05)
+dvs.addHandleDV('yaw', body, rotate=[0, 0, 1], lower=-10, upper=10, value=2.0)
+check(body.GetNumberOfDesignVariables() == 2, 'the variables are rows of the vtkConstraintRegion')
+again = mlsdeform.DesignVariables(deform)
+check(again.getVarNames() == ['dx', 'yaw'] and again.getValues() == {'dx': 0.0, 'yaw': 2.0}
+      and again.getBounds() == {'dx': (-0.05, 0.05), 'yaw': (-10.0, 10.0)},
+      'a new DesignVariables reads them back from the region (%s)' % again.getValues())
+raises(lambda: dvs.addHandleDV('fix', deform.GetInputAlgorithm(1, 1), translate=[1, 0, 0]), 'Handle', 'a variable on a Fixed region')
+worst = dvs.checkDerivatives(step=1e-4, verbose=False)
+check(worst <= 1e-6, "dX/dp of the VTK filter's variables is the central difference's (%.2e)" % worst)
 finish()

@@ -1,0 +1,136 @@
+"""An MLS Deform filter as the package drives it: a paraview.simple proxy (pvpython, pvbatch, the
+GUI's Python shell) or the VTK object itself (a plain VTK pipeline in python3, mlsdeform.vtkfoam).
+``deformer(d)`` gives one interface to both: the VTK algorithm (for the sensitivity methods), its
+Constraint Regions with their role, output and design-variable rows, and the update.
+A design-variable row is (name, [kind, axis x, y, z, value, lower, upper]), vtkConstraintRegion's
+AddDesignVariable arguments (the proxies' DesignVariables property, 8 entries per row).
+"""
+import importlib
+import os
+import sys
+
+_ROW = 8   # name, kind, axis x, y, z, value, lower, upper: one DesignVariables property row
+
+
+def _load_wrapping(readers=False):
+    """The Python wrapping of the plugin's filters (or of its case writer: readers), built beside
+    the plugin as mlsdeform_wrapping: it makes the MLS Deform VTK object's sensitivity methods
+    callable. Found on sys.path, beside this package (python3 with the plugin's folder on
+    sys.path), or beside the plugin ParaView loaded."""
+    module = "mlsdeform_wrapping." + ("MLSDeformReaders" if readers else "MLSDeformFilters")
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        pass
+    folders = [os.path.dirname(os.path.dirname(os.path.abspath(__file__)))] if "__file__" in globals() else []
+    try:
+        from paraview.modules.vtkRemotingCore import vtkPVPluginTracker
+        tracker = vtkPVPluginTracker.GetInstance()
+        folders += [os.path.dirname(tracker.GetPluginFileName(i)) for i in range(tracker.GetNumberOfPlugins())
+                    if tracker.GetPluginName(i) == "MLSDeform" and tracker.GetPluginLoaded(i)]
+    except ImportError:
+        pass
+    for folder in folders:
+        if os.path.isdir(os.path.join(folder, "mlsdeform_wrapping")):
+            if folder not in sys.path:
+                sys.path.append(folder)
+            return importlib.import_module(module)
+    raise RuntimeError("the MLSDeform plugin's Python wrapping (mlsdeform_wrapping) was not found: LoadPlugin(...) "
+                       "the plugin before using mlsdeform in pvpython, or put the plugin's folder on sys.path")
+
+
+def _checked(algorithm):
+    if not hasattr(algorithm, "ComputeObjectiveSensitivity"):
+        raise RuntimeError("the MLS Deform filter's VTK object was handed to Python before mlsdeform was imported, as a "
+                           "plain VTK algorithm: import mlsdeform right after LoadPlugin (or before making the filter)")
+    return algorithm
+
+
+class ProxyDeformer:
+    """A paraview.simple MLS Deform proxy; its regions are the proxies of its Regions input."""
+
+    def __init__(self, proxy):
+        _load_wrapping()
+        algorithm = proxy.GetClientSideObject()
+        if algorithm is None:
+            raise RuntimeError("mlsdeform needs a builtin session (pvpython or pvbatch without a server connection): "
+                               "the sensitivities are computed on the filter itself")
+        self.proxy, self.algorithm = proxy, _checked(algorithm)
+
+    def regions(self):
+        regions = self.proxy.Regions
+        return list(regions) if hasattr(regions, "__len__") else [regions]
+
+    @staticmethod
+    def key(region):
+        return id(region.SMProxy)
+
+    @staticmethod
+    def role(region):
+        return region.SMProxy.GetProperty("Role").GetElement(0)
+
+    @staticmethod
+    def output(region):
+        return region.GetClientSideObject().GetOutputDataObject(0)
+
+    @staticmethod
+    def rows(region):
+        values = list(region.DesignVariables)
+        return [(str(values[r]), [float(x) for x in values[r + 1:r + _ROW]]) for r in range(0, len(values), _ROW)]
+
+    @staticmethod
+    def write(region, rows):
+        region.DesignVariables = [x for name, row in rows for x in [name, str(int(row[0]))] + [repr(float(v)) for v in row[1:]]]
+
+    def update(self):
+        self.proxy.UpdatePipeline()
+
+
+class VTKDeformer:
+    """A vtkMLSDeformFilter; its regions are the vtkConstraintRegions connected to its port 1."""
+
+    def __init__(self, algorithm):
+        _load_wrapping()
+        self.proxy, self.algorithm = None, _checked(algorithm)
+
+    def regions(self):
+        return [self.algorithm.GetInputAlgorithm(1, i) for i in range(self.algorithm.GetNumberOfInputConnections(1))]
+
+    @staticmethod
+    def key(region):
+        return region.__this__
+
+    @staticmethod
+    def role(region):
+        return region.GetRole()
+
+    @staticmethod
+    def output(region):
+        return region.GetOutputDataObject(0)
+
+    @staticmethod
+    def rows(region):
+        rows = []
+        for i in range(region.GetNumberOfDesignVariables()):
+            row = [0.0] * (_ROW - 1)
+            region.GetDesignVariable(i, row)
+            rows.append((region.GetDesignVariableName(i), row))
+        return rows
+
+    @staticmethod
+    def write(region, rows):
+        region.RemoveAllDesignVariables()
+        for name, row in rows:
+            region.AddDesignVariable(name, int(row[0]), *(float(v) for v in row[1:]))
+
+    def update(self):
+        self.algorithm.Update()
+
+
+def deformer(d):
+    """The interface to an MLS Deform filter given as a paraview.simple proxy or a VTK object."""
+    if hasattr(d, "SMProxy"):
+        return ProxyDeformer(d)
+    if hasattr(d, "GetInputAlgorithm"):
+        return VTKDeformer(d)
+    raise TypeError(f"an MLS Deform filter (a paraview.simple proxy or a vtkMLSDeformFilter) is needed, not {type(d).__name__}")

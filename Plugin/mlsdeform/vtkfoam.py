@@ -1,0 +1,95 @@
+"""Morphing an OpenFOAM case into a variant on a plain VTK pipeline, the twin of mlsdeform.foam
+without ParaView's server manager: VTK's OpenFOAM reader, one vtkConstraintRegion per patch, one
+vtkMLSDeformFilter, the plugin's vtkOpenFOAMCaseWriter. It runs in Debian's python3 (ParaView's
+VTK modules) with the plugin's folder on sys.path, and in pvpython without LoadPlugin; it is what
+the design-of-experiments command line (mlsdeform-doe.py) builds, since it holds less memory and
+starts faster than paraview.simple (221 MB before a script's first line in pvpython, 312 MB after
+``import paraview.simple``).
+
+    reader = open_case('hull/case.foam', ['hull', 'inlet'])
+    deform = morph(reader, ['hull'], (0.1, 0, 0), fixed=['inlet'])
+    save_variant(deform, 'variant/case.foam', link=True)
+"""
+import os
+
+from .deformer import _load_wrapping
+
+
+def open_case(foam_file, patches, decompose_polyhedra=True):
+    """VTK's OpenFOAM reader of the case's internal mesh and the named patches, updated (no mesh
+    cache: a variant has no time steps of its own). Raises ValueError naming a missing patch."""
+    from vtkmodules.vtkIOGeometry import vtkOpenFOAMReader
+    if not os.path.isfile(foam_file):
+        raise ValueError(f"the case file {foam_file} does not exist")
+    reader = vtkOpenFOAMReader()
+    reader.SetFileName(foam_file)
+    reader.SetDecomposePolyhedra(1 if decompose_polyhedra else 0)
+    reader.SetCacheMesh(0)
+    reader.UpdateInformation()
+    available = [reader.GetPatchArrayName(i) for i in range(reader.GetNumberOfPatchArrays())]
+    missing = [p for p in patches if 'patch/' + p not in available]
+    if missing:
+        raise ValueError(f"the case {foam_file} has no patch {', '.join(missing)}")
+    for name in available:
+        reader.SetPatchArrayStatus(name, 1 if name == 'internalMesh' or name[len('patch/'):] in patches else 0)
+    reader.Update()
+    return reader
+
+
+def patch_region(reader, patch, role, translation=(0, 0, 0)):
+    """A vtkConstraintRegion of the given role (vtkConstraintRegion.Handle, .Fixed, .Slip, ...)
+    holding every point of one patch; a Handle moves by translation."""
+    from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+    Region = _load_wrapping().vtkConstraintRegion
+    boundary = reader.GetOutput().GetBlock(1)
+    blocks = {boundary.GetMetaData(i).Get(vtkMultiBlockDataSet.NAME()): i for i in range(boundary.GetNumberOfBlocks())}
+    region = Region()
+    region.SetInputData(boundary.GetBlock(blocks[patch]))
+    region.SetRole(role)
+    region.SetSelectionMode(Region.AllPoints)
+    if role == Region.Handle:
+        region.SetTranslation(*translation)
+    return region
+
+
+def morph(reader, handle, translation, fixed=(), slip=(), **settings):
+    """vtkMLSDeformFilter of the whole case, updated: the handle patches move by translation,
+    fixed patches stay, slip patches (planes) slide within their plane; its Regions input (port 1)
+    lists the handles first, then the fixed and the slip patches. settings are MLS Deform
+    properties by name (NumberOfSamples=2000: SetNumberOfSamples(2000); numbers, as the VTK filter
+    takes them). Raises ValueError for an unknown setting and RuntimeError if the deformation failed."""
+    Region = _load_wrapping().vtkConstraintRegion
+    deform = _load_wrapping().vtkMLSDeformFilter()
+    for name, value in settings.items():
+        setter = getattr(deform, 'Set' + name, None)
+        if setter is None or isinstance(value, str):
+            raise ValueError(f"MLS Deform setting {name}={value!r}: the VTK filter takes a number for each of its "
+                             f"properties (Set{name})")
+        if isinstance(value, (list, tuple)):
+            setter(*value)
+        else:
+            setter(value)
+    deform.SetInputData(0, reader.GetOutput())
+    roles = [(p, Region.Handle) for p in handle] + [(p, Region.Fixed) for p in fixed] + [(p, Region.Slip) for p in slip]
+    for patch, role in roles:
+        region = patch_region(reader, patch, role, translation)  # held while connected: an output port does not hold its algorithm
+        deform.AddInputConnection(1, region.GetOutputPort())
+    deform.Update()
+    error = deform.GetOutputDataObject(0).GetFieldData().GetAbstractArray('DeformationError')
+    if error is not None:
+        raise RuntimeError('MLS Deform failed: %s' % error.GetValue(0))
+    return deform
+
+
+def save_variant(deform, foam_file, overwrite=False, link=False):
+    """Writes the variant case whose .foam file is foam_file from the deformation's source case
+    (link: its own points only, links to the source's unchanged files); raises RuntimeError if
+    nothing was written (the writer's message went to VTK's output window, stderr)."""
+    writer = _load_wrapping(readers=True).vtkOpenFOAMCaseWriter()
+    writer.SetInputConnection(deform.GetOutputPort())
+    writer.SetFileName(foam_file)
+    writer.SetOverwrite(1 if overwrite else 0)
+    writer.SetLinkUnchangedFiles(1 if link else 0)
+    writer.Write()
+    if writer.GetErrorCode() != 0 or not os.path.exists(foam_file):
+        raise RuntimeError('the variant case %s was not written' % os.path.dirname(foam_file))
