@@ -5,15 +5,16 @@
 # On the cached "DTC hull in a box" case (run-openfoam-benchmark.sh builds it), a Latin hypercube
 # of --samples variants (default 50, seed 0) over three design variables of the hull (dx: -0.2 to
 # 0.2 m, yaw: -3 to 3 degrees, sx: the length scale, -5% to 5%), inlet and outlet fixed, sides,
-# bottom and top slipping, through mlsdeform.designOfExperiments (deform, quality verdict, a
-# linked variant case written: openfoam/doe_benchmark.py), with OMP_NUM_THREADS 1 and 2 (--threads).
+# bottom and top slipping, as the command line mlsdeform-doe.py runs it in Debian's python3 (a plain
+# VTK pipeline; mlsdeform.designOfExperiments: deform, quality verdict, a linked variant case
+# written: openfoam/doe_benchmark.py), with OMP_NUM_THREADS 1 and 2 (--threads).
 # Then --movemesh variants (default 3) by moveMesh (displacementLaplacian from the hull's
 # prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
 # batch time is their median times the number of variants (an extrapolation, as the table says).
 # Prints the machine (CPU model, cores per socket, threads per core), then per thread count: the
-# share of CPU time the hypervisor gave to other guests during the run (steal), the first variant
-# on a plain VTK pipeline without ParaView's server manager (openfoam/vtk_first_variant.py), the
-# whole batch's wall time (process start to the last variant), variants per hour, seconds per
+# share of CPU time the hypervisor gave to other guests during the run (steal), the same first
+# variant in pvpython on paraview.simple proxies (openfoam/first_variant.py), the whole batch's
+# wall time (process start to the last variant), variants per hour, seconds per
 # variant (first, median), disk per variant against the points file's size, peak RSS; moveMesh's
 # seconds per variant and disk; the targets (5,000 variants per hour, 0.72 s each; a variant's own
 # bytes within 1.2x its points file) met or not; and a JSON line (DOEBENCHMARK ...).
@@ -65,14 +66,14 @@ for t in $threads; do
   echo "MLS Deform, OMP_NUM_THREADS=$t (load $(cut -d' ' -f1-3 /proc/loadavg))"
   read -r total0 steal0 < <(cpu_times)
   OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/mls-$t.time" \
-    pvpython --no-mpi "$here/doe_benchmark.py" "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" \
-    "$case/case.foam" "$run/mls-$t" "$samples" "$movemesh" > "$run/mls-$t.log" 2>&1 || { tail -30 "$run/mls-$t.log"; exit 1; }
+    /usr/bin/python3 "$here/doe_benchmark.py" "$run/plugin" "$case/case.foam" "$run/mls-$t" "$samples" "$movemesh" \
+    > "$run/mls-$t.log" 2>&1 || { tail -30 "$run/mls-$t.log"; exit 1; }
   tail -1 "$run/mls-$t.log" | grep -v DOEBENCH || true
   read -r total1 steal1 < <(cpu_times)
-  # the same first variant on a plain VTK pipeline (Debian's python3, no ParaView server manager)
-  mkdir -p "$run/vtk-$t"
-  OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/vtk-$t.time" \
-    /usr/bin/python3 "$here/vtk_first_variant.py" "$run/plugin" "$root/Examples/OpenFOAM" "$case/case.foam" "$run/vtk-$t" > "$run/vtk-$t.log" 2>&1 || { tail -30 "$run/vtk-$t.log"; exit 1; }
+  # the same first variant in pvpython on paraview.simple proxies (ParaView's server manager)
+  mkdir -p "$run/pv-$t"
+  OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path /usr/bin/time -v -o "$run/pv-$t.time" \
+    pvpython --no-mpi "$here/first_variant.py" "$run/plugin" "$case/case.foam" "$run/pv-$t" > "$run/pv-$t.log" 2>&1 || { tail -30 "$run/pv-$t.log"; exit 1; }
   awk -v t=$((total1 - total0)) -v s=$((steal1 - steal0)) 'BEGIN { printf "%.1f\n", (t > 0 ? 100 * s / t : 0) }' > "$run/steal-$t"
 done
 

@@ -1,11 +1,12 @@
 """MLS Deform's side of the design-of-experiments benchmark (run-doe-benchmark.sh): on the hull
 case, three design variables on the hull (dx: translation along x in m, yaw: rotation about z in
-degrees, sx: the hull's length scale), a Latin hypercube of SAMPLES points (seed 0) through
-mlsdeform.designOfExperiments (deform, quality verdict, write a linked variant), timed from the
-process's start; then, for the first MOVEMESH variants, the hull patch's prescribed displacement
-(the same map as the handle's, in the patch's point order) into a 0/pointDisplacement for moveMesh.
-Prints one JSON line (DOEBENCH {...}).
-Usage: pvpython doe_benchmark.py PLUGIN EXAMPLES_OPENFOAM_DIR CASE.foam OUT SAMPLES MOVEMESH"""
+degrees, sx: the hull's length scale), a Latin hypercube of SAMPLES points (seed 0), run as the
+command line mlsdeform-doe.py runs it (mlsdeform.cli.setUp of a design file: a plain VTK pipeline
+in Debian's python3; then mlsdeform.designOfExperiments: deform, quality verdict, write a linked
+variant), timed from the process's start; then, for the first MOVEMESH variants, the hull patch's
+prescribed displacement (the same map as the handle's, in the patch's point order) into a
+0/pointDisplacement for moveMesh. Prints one JSON line (DOEBENCH {...}).
+Usage: python3 doe_benchmark.py PLUGIN_FOLDER CASE.foam OUT SAMPLES MOVEMESH"""
 import json
 import math
 import os
@@ -14,18 +15,20 @@ import sys
 import time
 
 start = time.time()
-from paraview.simple import LoadPlugin  # noqa: E402
-
-plugin, examples, foam, out, samples, movemesh = sys.argv[1:7]
+plugin_folder, foam, out, samples, movemesh = sys.argv[1:6]
 samples, movemesh = int(samples), int(movemesh)
-LoadPlugin(plugin, remote=False)
-sys.path.insert(0, examples)
+sys.path.insert(0, plugin_folder)
 import numpy as np  # noqa: E402
 import mlsdeform  # noqa: E402
-import openfoam_variant  # noqa: E402
+from mlsdeform import cli, vtkfoam  # noqa: E402
 
-handle, fixed, slip = ['hull'], ['inlet', 'outlet'], ['sideYmin', 'sideYmax', 'bottom', 'top']
 VARIABLES = [('dx', 'translate', [1, 0, 0], -0.2, 0.2), ('yaw', 'rotate', [0, 0, 1], -3, 3), ('sx', 'scale', [1, 0, 0], -0.05, 0.05)]
+design_file = os.path.join(out, 'design.json')
+os.makedirs(out, exist_ok=True)
+with open(design_file, 'w') as f:
+    json.dump({'case': os.path.abspath(foam), 'handle': ['hull'], 'fixed': ['inlet', 'outlet'],
+               'slip': ['sideYmin', 'sideYmax', 'bottom', 'top'],
+               'variables': [{'name': name, kind: axis, 'lower': lower, 'upper': upper} for name, kind, axis, lower, upper in VARIABLES]}, f)
 
 
 def peak_mib():
@@ -36,11 +39,8 @@ def peak_mib():
 
 result = {'startup_s': time.time() - start, 'samples': samples}
 began = time.time()
-reader = openfoam_variant.open_case(foam, handle + fixed + slip, decompose_polyhedra=False)  # checkMesh's own cells
-deformed = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip)
-dvs = mlsdeform.DesignVariables(deformed)
-for name, kind, axis, lower, upper in VARIABLES:
-    dvs.addHandleDV(name, deformed.Regions[0], lower=lower, upper=upper, **{kind: axis})
+dvs = cli.setUp(design_file)
+deformed = dvs.deformer
 result['setup_s'] = time.time() - began   # read, sample, Phi, factorization, the undeformed solve
 result['peak_mib_setup'] = peak_mib()
 began = time.time()
@@ -71,17 +71,17 @@ def own_bytes(folder):
 parts = {'deform_s': [], 'quality_s': [], 'write_s': [], 'solve_s': []}
 for i, values in enumerate([[r[name] for name, *_ in VARIABLES] for r in report[:5]]):
     dvs.setDesignVars({name: -v for (name, *_), v in zip(VARIABLES, values)})
-    deformed.MeshQuality = 0
+    deformed.SetMeshQuality(0)
     t = time.time()
     dvs.update()
     parts['deform_s'].append(time.time() - t)
     parts['solve_s'].append(dvs._algorithm.GetOutputDataObject(0).GetFieldData().GetArray('SolveTime').GetTuple1(0))
-    deformed.MeshQuality = 1
+    deformed.SetMeshQuality(1)
     t = time.time()
     dvs.update()   # the same update again with the quality pass: its extra time is the pass
     parts['quality_s'].append(time.time() - t - parts['deform_s'][-1])
     t = time.time()
-    openfoam_variant.save_variant(deformed, os.path.join(out, 'parts-%d' % i, 'case.foam'), link=True)
+    vtkfoam.save_variant(deformed, os.path.join(out, 'parts-%d' % i, 'case.foam'), link=True)
     parts['write_s'].append(time.time() - t)
 result['parts_s'] = {key: float(np.median(v)) for key, v in parts.items()}
 
@@ -130,9 +130,7 @@ def hull_points(case):
 if movemesh > 0:
     case = os.path.dirname(os.path.abspath(foam))
     x = hull_points(case)
-    region = deformed.Regions[0]
-    region.UpdatePropertyInformation()
-    pivot = np.array(region.GetProperty('PivotInfo').GetData())
+    pivot = np.array(deformed.GetInputAlgorithm(1, 0).GetPivot())
     template = open(os.path.join(case, '0', 'pointDisplacement')).read()
     for i, values in enumerate(result['values'][:movemesh]):
         dx, yaw, sx = values

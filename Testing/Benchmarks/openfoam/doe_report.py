@@ -29,9 +29,9 @@ for t in threads:
     r.update(wall_s=wall, rss_mib=rss, per_hour=3600 * n / r['process_s'], steady_per_hour=3600 / r['variant_s']['median'],
              disk_ratio=r['disk_per_variant_bytes'] / r['points_file_bytes'] if r['points_file_bytes'] else float('nan'))
     r['steal_percent'] = float(open('%s/steal-%s' % (run, t)).read())
-    vtk_line = next(l for l in open('%s/vtk-%s.log' % (run, t)) if l.startswith('VTKFIRST '))
-    r['vtk'] = json.loads(vtk_line[len('VTKFIRST '):])
-    r['vtk']['rss_mib'] = elapsed('%s/vtk-%s.time' % (run, t))[1]
+    pv_line = next(l for l in open('%s/pv-%s.log' % (run, t)) if l.startswith('FIRSTVARIANT '))
+    r['pv'] = json.loads(pv_line[len('FIRSTVARIANT '):])
+    r['pv']['rss_mib'] = elapsed('%s/pv-%s.time' % (run, t))[1]
     figures['threads'][t] = r
 moves = [elapsed('%s/moveMesh-%d.time' % (run, i)) for i in range(movemesh)]
 mm = statistics.median(m[0] for m in moves) if moves else float('nan')
@@ -53,13 +53,13 @@ row('  (process start to the last write)', [''] * len(T), '')
 row('variants per hour', ['%.0f' % r['per_hour'] for r in T], '%.0f' % (3600 / mm))
 row('  after the set-up (median)', ['%.0f' % r['steady_per_hour'] for r in T], '')
 row('first variant: process start to', [''] * len(T), '')
-row('  its write [s] (pvpython start-up,', ['%.2f' % (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) for r in T],
+row('  its write [s] (python3 start-up,', ['%.2f' % (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) for r in T],
     '%.2f' % mm)
 row('  read, set-up, deform, verdict)', ['%.2fx' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm) for r in T], '')
-row('the same on a VTK pipeline (python3,', ['%.2f' % r['vtk']['first_s'] for r in T], '')
-row('  no server manager) [s]', ['%.2fx' % (r['vtk']['first_s'] / mm) for r in T], '')
-row('  its peak RSS [MiB]', ['%.0f: %.2fx' % (r['vtk']['rss_mib'], r['vtk']['rss_mib'] / figures['moveMesh']['rss_mib'])
-                            if figures['moveMesh']['rss_mib'] else '%.0f' % r['vtk']['rss_mib'] for r in T], '')
+row('the same in pvpython (paraview.simple', ['%.2f' % r['pv']['first_s'] for r in T], '')
+row('  proxies, mlsdeform.foam) [s]', ['%.2fx' % (r['pv']['first_s'] / mm) for r in T], '')
+row('  its peak RSS [MiB]', ['%.0f: %.2fx' % (r['pv']['rss_mib'], r['pv']['rss_mib'] / figures['moveMesh']['rss_mib'])
+                            if figures['moveMesh']['rss_mib'] else '%.0f' % r['pv']['rss_mib'] for r in T], '')
 row('further variant, median [s]', ['%.2f' % r['variant_s']['median'] for r in T], '%.2f' % mm)
 row('  of it: deform (its solve) [s]', ['%.2f (%.2f)' % (r['parts_s']['deform_s'], r['parts_s']['solve_s']) for r in T], '')
 row('  quality verdict, write [s]', ['%.2f, %.2f' % (r['parts_s']['quality_s'], r['parts_s']['write_s']) for r in T], '')
