@@ -36,9 +36,13 @@ def _plane(input, z_low, z_high, diagonal=100.0):
     return region
 
 
-def deformation(foam_file, **settings):
-    """(deformed, dvs): MLS Deform of the case with the design variables aoa and thickness at 0."""
+def deformation(foam_file, distribute=False, **settings):
+    """(deformed, dvs): MLS Deform of the case with the design variables aoa and thickness at 0.
+    distribute: the case spread over the MPI processes first (RedistributeDataSet; pvbatch
+    --symmetric), each deforming its piece."""
     reader = open_case(foam_file, PATCHES, decompose_polyhedra=False)
+    if distribute:
+        reader = pvs.RedistributeDataSet(Input=reader)
     airfoil = pvs.ExtractBlock(Input=reader, Selectors=['/Root/boundary/pressure', '/Root/boundary/suction'])
     handle = pvs.ConstraintRegion(Input=airfoil, Role='Handle', SelectionMode='AllPoints', UseCentroid=0,
                                   Center=QUARTER_CHORD)

@@ -36,6 +36,8 @@ import re
 
 import numpy as np
 
+from .ranks import all_reduce, rank
+
 SENSITIVITY_PREFIXES = ('pointSensVec', 'pointSensNormalVec', 'pointSensNormal',
                         'faceSensVec', 'faceSensNormalVec', 'faceSensNormal')
 
@@ -322,7 +324,7 @@ def _mesh_gradient(mesh, values, faces, kind, area_included, normal_form):
 
 
 # -- the public entry --------------------------------------------------------------------------
-def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', case=None):
+def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', case=None, source=None):
     """dJ/dX as an (n, 3) array in the deformation's output order (as DesignVariables.totalSensitivity
     takes it) from an adjointOptimisationFoam sensitivity field of an OpenFOAM case.
 
@@ -331,22 +333,18 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
     output (the variant written from it, or the source case itself while every design variable is at
     its undeformed value); default: the deformation's source case (the reader's CasePath). field:
     a point or face sensitivity field (module docstring); time: 'latest' (the latest time that
-    holds the field) or a time. One process only (not under MPI). Each polyMesh point's dJ/dx goes to the first output point at that
-    position (the internal mesh's, or a patch's when the internal mesh is not deformed); every
-    other output point gets zero, so that no point counts twice. Raises ValueError naming the field
+    holds the field) or a time. source: the deformation's source case, needed where its input lost
+    the reader's CasePath (after RedistributeDataSet). Each polyMesh point's dJ/dx goes to the
+    first output point at that position (the internal mesh's, or a patch's when the internal mesh
+    is not deformed); every other output point gets zero, so that no point counts twice. Under MPI
+    (pvbatch --symmetric) every process reads the case and gets its own output points' rows; a
+    point on several processes' pieces counts on the lowest-ranked one, so that
+    DesignVariables.totalSensitivity's sum over the processes is the serial one. Raises ValueError naming the field
     or case for a missing field, time or optimisationDict, a field of the wrong size or that is not
     a sensitivity, a case whose mesh is not the deformation's input or its current shape, and a
     field that is zero at every point a Handle region moves.
     """
     from .deformer import deformer as _deformer
-    try:
-        from vtkmodules.vtkParallelCore import vtkMultiProcessController
-        controller = vtkMultiProcessController.GetGlobalController()
-    except ImportError:
-        controller = None
-    if controller is not None and controller.GetNumberOfProcesses() > 1:
-        raise RuntimeError("readFoamSensitivity runs on one process (pvpython, or pvbatch without MPI): under MPI each "
-                           "rank would need the whole case's field")
     filter_ = _deformer(deformed)
     algorithm = filter_.algorithm
     filter_.update()
@@ -358,10 +356,14 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
     if error is not None and error.GetNumberOfValues() > 0:
         raise RuntimeError(f"the deformation failed: {error.GetValue(0)}")
     path = source_data.GetFieldData().GetAbstractArray('CasePath')
-    if path is None:
-        raise ValueError("the deformation's input has no CasePath field data: it did not come from ParaView's OpenFOAM reader")
-    characters = (path.GetValue(i) for i in range(path.GetNumberOfValues()))
-    source = os.path.abspath(''.join(c if isinstance(c, str) else chr(c) for c in characters).rstrip('\0'))
+    if source is not None:
+        source = _case_folder(source)
+    elif path is not None:
+        characters = (path.GetValue(i) for i in range(path.GetNumberOfValues()))
+        source = os.path.abspath(''.join(c if isinstance(c, str) else chr(c) for c in characters).rstrip('\0'))
+    else:
+        raise ValueError("the deformation's input has no CasePath field data (it did not come from the OpenFOAM reader, "
+                         "or RedistributeDataSet dropped it): give source=, the case it was read from")
     case = source if case is None else _case_folder(case)
     if not os.path.isdir(case):
         raise ValueError(f"the case {case} does not exist")
@@ -399,16 +401,20 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
     if len(now) != len(inputs):
         raise RuntimeError(f"the output has {len(now)} points but the input {len(inputs)}")
     ids = _match(mesh if case == source else _source_points(source, len(mesh)), inputs)
-    if np.count_nonzero(ids >= 0) == 0:
+    if all_reduce(np.count_nonzero(ids >= 0), 'sum') == 0:
         raise ValueError(f"no point of the deformation's input is a mesh point of {source}")
-    # each mesh point once: at its first output point
+    # each mesh point once: at its first output point, on the lowest-ranked process that has it
     order = np.flatnonzero(ids >= 0)
     _, first = np.unique(ids[order], return_index=True)
     owners = order[first]
+    holder = np.full(len(mesh), np.iinfo(np.int32).max, dtype=np.int64)
+    holder[ids[owners]] = rank()
+    owners = owners[all_reduce(holder, 'min')[ids[owners]] == rank()]
     mesh_ids = ids[owners]  # not every mesh point need be deformed (e.g. the patches only)
-    # the case's mesh must be the deformation's current shape (float32 round-off of its points)
-    diagonal = float(np.linalg.norm(inputs.max(axis=0).astype(float) - inputs.min(axis=0))) if len(inputs) else 1.0
-    gap = float(np.abs(mesh[mesh_ids].astype(float) - now[owners]).max()) if len(owners) else 0.0
+    # the case's mesh must be the deformation's current shape (float32 round-off of its points);
+    # the mesh's diagonal: the same bound on every process
+    diagonal = float(np.linalg.norm(mesh.max(axis=0).astype(float) - mesh.min(axis=0))) if len(mesh) else 1.0
+    gap = all_reduce(float(np.abs(mesh[mesh_ids].astype(float) - now[owners]).max()) if len(owners) else 0.0, 'max')
     if gap > 1e-6 * diagonal:
         raise ValueError(f"the mesh of {case} is not the deformation's current shape (a point is {gap:.3g} away, "
                          f"{gap / diagonal:.2g} of the diagonal): run the adjoint on the variant written from the "
@@ -432,14 +438,15 @@ def _check_on_handles(filter_, gradient, inputs, field, case, patches):
     """A field that is zero wherever a Handle region moves gives dJ/dp = 0 for every variable: an error."""
     from .design import _HANDLE
     handles = [r for r in filter_.regions() if filter_.role(r) == _HANDLE]
-    held = [np.array(_points(d)) for r in handles for _, d in _leaves(filter_.output(r))]
-    if not held:
+    if not handles:
         raise ValueError("the deformation has no Handle region: no design variable can move a point")
+    held = [np.array(_points(d)) for r in handles for _, d in _leaves(filter_.output(r))]
     moving = np.zeros(len(inputs), bool)
-    ids = _match(inputs, np.concatenate(held))
-    moving[ids[ids >= 0]] = True
-    if not np.any(np.abs(gradient[moving]).sum(axis=1) > 0):
-        where = np.count_nonzero(np.abs(gradient).sum(axis=1) > 0)
+    if held:
+        ids = _match(inputs, np.concatenate(held))
+        moving[ids[ids >= 0]] = True
+    if not all_reduce(int(np.any(np.abs(gradient[moving]).sum(axis=1) > 0)), 'max'):
+        where = all_reduce(np.count_nonzero(np.abs(gradient).sum(axis=1) > 0), 'sum')
         raise ValueError(f"{field!r} of {case} is zero at every point of the Handle regions (it is non-zero at {where} "
                          f"point(s), none of them a Handle region's; its optimisationDict names the patches {patches}): "
                          f"dJ/dp would be zero")

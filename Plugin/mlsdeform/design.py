@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from .deformer import _load_wrapping, deformer as _deformer
+from .ranks import all_reduce
 
 # The kinds of design variable, in the order of vtkConstraintRegion's kind numbers
 # (Filters/Adapters/DesignVariables.h: DesignKindNames).
@@ -255,17 +256,4 @@ class DesignVariables:
 
     @staticmethod
     def _global_max(values):
-        local = float(values.max()) if values.size else 0.0
-        try:
-            from vtkmodules.vtkParallelCore import vtkMultiProcessController
-            controller = vtkMultiProcessController.GetGlobalController()
-        except ImportError:
-            controller = None
-        if controller is None or controller.GetNumberOfProcesses() < 2:
-            return local
-        from vtkmodules.vtkCommonCore import vtkDoubleArray
-        send, receive = vtkDoubleArray(), vtkDoubleArray()
-        send.InsertNextValue(local)
-        receive.SetNumberOfValues(1)
-        controller.AllReduce(send, receive, 0)  # vtkCommunicator.MAX_OP
-        return receive.GetValue(0)
+        return float(all_reduce(float(values.max()) if values.size else 0.0, 'max'))

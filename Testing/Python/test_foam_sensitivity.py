@@ -114,6 +114,10 @@ check(np.count_nonzero(np.abs(face).sum(axis=1) > 0) == 796, 'the face form reac
 
 g = dvs.totalSensitivity(vec)
 check(all(np.isfinite(v) and v != 0 for v in g.values()), 'dJ/dp of both variables: %s' % g)
+# the serial answer for Python.FoamSensitivity.Ranks2 (test_foam_sensitivity_ranks.py)
+rest = np.concatenate([np.array(mlsdeform.adjoint._points(d)) for _, d in
+                       mlsdeform.adjoint._leaves(dvs._algorithm.GetInputDataObject(0, 0))])
+np.savez(os.path.join(work, 'reference.npz'), rest=rest, dJdX=vec, dJdp=np.array([g[n] for n in dvs.getVarNames()]))
 J = mlsdeform.readFoamObjective(source)
 check(np.isfinite(J) and J > 0, 'J from the objective history: %r' % J)
 
