@@ -12,6 +12,7 @@
 #include "Solver/SpaceDeformation.h"
 
 #include <vtkInformationVector.h>
+#include <vtkLogger.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
@@ -119,6 +120,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
   }
   else
   {
+    vtkLogScopeF(TRACE, "MLS Deform: sampling");
     samples = sampleDomain(mlsvtk::samplingDomain(inSets, group), samplingParameters(this), { &mlsvtk::reportProgress, this, 0.0, 0.4 }, group);
   }
   const BasisKind kind = static_cast<BasisKind>(this->Basis);
@@ -138,6 +140,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     DeformationEnergy energy = surfaceVertexEnergy(*basis, mesh);
     return std::make_unique<SpaceDeformation>(std::move(basis), std::move(energy), largestSide(mesh.points));
   }
+  vtkLogScopeF(TRACE, "MLS Deform: basis and energy operators");
   return std::make_unique<SpaceDeformation>(samples, kind, mlsdeform::Progress{ &mlsvtk::reportProgress, this, 0.4, 0.6 });
 }
 

@@ -8,6 +8,7 @@
 #include <vtkCell.h>
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
+#include <vtkLogger.h>
 #include <vtkMeshQuality.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
@@ -93,13 +94,20 @@ mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
 }
 
 VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
-  : Cells(cellFaces(rest))
 {
+  {
+    vtkLogScopeF(TRACE, "mesh quality: the cells' faces");
+    Cells = cellFaces(rest);
+  }
   Has3DCells = Cells.faces() > 0;
   Measures.perFace = false; // the summary's maxima only
   if (Has3DCells)
   {
-    Faces = mlsdeform::interiorFaces(Cells);
+    {
+      vtkLogScopeF(TRACE, "mesh quality: interior faces");
+      Faces = mlsdeform::interiorFaces(Cells);
+    }
+    vtkLogScopeF(TRACE, "mesh quality: the undeformed mesh's figures");
     gridPoints(rest, "the mesh's points", Points);
     Orientation = mlsdeform::faceOrientation(Points, Cells, Faces, Work, Measures);
     Original = summarizeMeasures();

@@ -7,6 +7,7 @@
 #include "Vocabulary/RegionRoles.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkLogger.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -129,6 +130,7 @@ void DeformationSession::updatePointRows(const Collective& group)
   agree(group, [&] {
     if (PointRowsKey.stale(PointsVersion))
     {
+      vtkLogScopeF(TRACE, "MLS Deform: Phi at the input points");
       PointRowsKey.invalidate();
       Targets.invalidate(); // the region rows are views of these rows
       std::vector<int> outside;
@@ -215,6 +217,7 @@ bool DeformationSession::updateFactorization(const EnergyWeights& weights)
   {
     return false;
   }
+  vtkLogScopeF(TRACE, "MLS Deform: factorization");
   Model->factorize(weights);
   ++Counts.factorization;
   return true;
@@ -222,6 +225,7 @@ bool DeformationSession::updateFactorization(const EnergyWeights& weights)
 
 SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& settings, const Collective& group)
 {
+  vtkLogScopeF(TRACE, "MLS Deform: solve");
   Last = SpaceDeformation::Solution();
   Last = Model->solve(gatherPrescribed(Regions, Prescribed, group), settings);
   if (Design.size() > 0)
@@ -330,6 +334,7 @@ void DeformationSession::deformedPoints(double* out) const
 void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
   const SpaceDeformation::Solution& solution)
 {
+  vtkLogScopeF(TRACE, "MLS Deform: output points");
   const PointDisplacements w = solution.w; // row-major: a shape function's x, y, z share a cache line
   Output.write(inSets, outSets, Points, PointRows, w, Slips);
 }
@@ -337,6 +342,7 @@ void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, co
 void DeformationSession::reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
   vtkFieldData* field, const Collective& group)
 {
+  vtkLogScopeF(TRACE, "MLS Deform: mesh quality report");
   Quality.report(inSets, outSets, field, group, Owner);
   checkAbort(Owner, group);
 }
