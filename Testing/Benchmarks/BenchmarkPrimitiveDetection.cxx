@@ -1,11 +1,11 @@
 // Primitive detection (paper section 6.3) against CGAL's Efficient RANSAC on the same oriented
 // face samples (barycenters and face normals): time and coverage (fraction of the faces that
-// belong to a primitive) on CGAL's fandisk and joint and on a generated part of about 100k
-// faces, clean and with noise of 0.1% of the diagonal. Same epsilon, cluster epsilon, normal
-// threshold, minimum support and probability (CGAL's is the probability of missing a shape:
-// 1 - ours). Each line is a JSON record with the median time of the runs.
+// belong to a primitive) on CGAL's parts (fandisk and joint, or the ones named) and on a generated
+// part of about 100k faces, clean and with noise of 0.1% of the diagonal. Same epsilon, cluster
+// epsilon, normal threshold, minimum support and probability (CGAL's is the probability of
+// missing a shape: 1 - ours). Each line is a JSON record with the medians of the runs.
 //
-//   BenchmarkPrimitiveDetection DATA_DIR [runs]
+//   BenchmarkPrimitiveDetection DATA_DIR [runs [PART...]]
 //
 // CGAL's Shape_detection is GPL: this program is a benchmark only, built when CMake is given
 // -DMLSDEFORM_BENCHMARK_CGAL=ON, and never linked into the plugin.
@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -158,12 +159,15 @@ int main(int argc, char* argv[])
 {
   if (argc < 2)
   {
-    std::printf("usage: %s DATA_DIR [runs]\n", argv[0]);
+    std::printf("usage: %s DATA_DIR [runs [PART...]] (PART: an OFF file of DATA_DIR without .off; default fandisk joint)\n", argv[0]);
     return 2;
   }
   const int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
-  compare(readOFF(argv[1], "fandisk"), runs);
-  compare(readOFF(argv[1], "joint"), runs);
+  std::vector<std::string> parts(argv + std::min(argc, 3), argv + argc);
+  if (parts.empty())
+    parts = { "fandisk", "joint" };
+  for (const std::string& part : parts)
+    compare(readOFF(argv[1], part), runs);
   compare(generated(false), runs);
   compare(generated(true), runs);
   return 0;

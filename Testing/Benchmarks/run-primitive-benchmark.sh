@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Primitive detection against CGAL's Efficient RANSAC (paper section 6.3): installs CGAL
 # (libcgal-dev, for this benchmark only) if missing, sets up and builds (Testing/setup.sh), then
-# prints one JSON line per mesh: fandisk, joint, a generated part of about 100k faces, clean
-# and noisy; median time and coverage over the runs given (default 5).
+# prints one JSON line per mesh: CGAL's mechanical parts of Debian's libcgal-demo (fandisk,
+# joint, anchor, couplingdown, pinion, part, pipe, rotor, mech-holes-shark), a generated part of
+# about 100k faces, clean and noisy; median time and coverage over the runs given (default 5).
+# Usage: run-primitive-benchmark.sh [RUNS]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build=${MLSDEFORM_BUILD:-$root/build}
@@ -15,4 +17,5 @@ fi
 bash "$root/Testing/setup.sh"
 cmake "$build" -DMLSDEFORM_BENCHMARK_CGAL=ON > /dev/null
 cmake --build "$build" --target BenchmarkPrimitiveDetection -j "$(nproc)"
-"$build/Testing/Benchmarks/BenchmarkPrimitiveDetection" "$build/data" "${1:-5}"
+"$build/Testing/Benchmarks/BenchmarkPrimitiveDetection" "$build/data" "${1:-5}" \
+  fandisk joint anchor couplingdown pinion part pipe rotor mech-holes-shark
