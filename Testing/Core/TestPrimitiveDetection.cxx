@@ -333,6 +333,14 @@ TEST(SeparatePrimitivesWithNoiseOf0_1PercentAreWhole)
   checkWholeWithNoise(0.001, 0.04, 8, 4); // a box face that a cone of a far apex fits closer than the plane
 }
 
+TEST(SeparatePrimitivesWithNoiseOf0_3PercentAreWhole)
+{
+  // legs of 0.12: 8.8 times the noise's deviation per coordinate, the ratio of the 0.1% test's
+  // legs of 0.04 (issue 31 asks for 0.3% as well); four noise and detection seeds
+  for (unsigned seed = 1; seed <= 4; ++seed)
+    checkWholeWithNoise(0.003, 0.12, seed, seed);
+}
+
 TEST(CoarseSeparatePrimitivesAreWhole)
 {
   checkWholeWithNoise(0.0001, 0.1, 1, 3);
