@@ -16,7 +16,8 @@ DESIGN.json names the case, its patches by role and the design variables, e.g.
      "settings": {"NumberOfSamples": 1000}}
 
 A variable acts on the handle patches it names (default: all of them), with one axis for all or
-one per patch; "settings" are MLS Deform properties, as numbers (the VTK filter's Set<Name>). A relative "case" is relative to the design
+one per patch; "settings" are MLS Deform properties (the VTK filter's Set<Name>): numbers, or an
+enumeration value by its name in the VTK class ("Basis": "Wendland"). A relative "case" is relative to the design
 file. Exit code 0 when every variant was made (whatever their verdicts), 1 on a failure, 2 on a
 bad design or command line, with the message on stderr. Running it again resumes.
 """

@@ -56,15 +56,21 @@ def morph(reader, handle, translation, fixed=(), slip=(), **settings):
     """vtkMLSDeformFilter of the whole case, updated: the handle patches move by translation,
     fixed patches stay, slip patches (planes) slide within their plane; its Regions input (port 1)
     lists the handles first, then the fixed and the slip patches. settings are MLS Deform
-    properties by name (NumberOfSamples=2000: SetNumberOfSamples(2000); numbers, as the VTK filter
-    takes them). Raises ValueError for an unknown setting and RuntimeError if the deformation failed."""
+    properties by name: numbers (NumberOfSamples=2000: SetNumberOfSamples(2000)), or an
+    enumeration value by its name in the VTK class (Basis='Wendland', ExtrusionAxis='ExtrudedZ').
+    Raises ValueError for an unknown setting or value and RuntimeError if the deformation failed."""
     Region = _load_wrapping().vtkConstraintRegion
     deform = _load_wrapping().vtkMLSDeformFilter()
     for name, value in settings.items():
         setter = getattr(deform, 'Set' + name, None)
-        if setter is None or isinstance(value, str):
-            raise ValueError(f"MLS Deform setting {name}={value!r}: the VTK filter takes a number for each of its "
-                             f"properties (Set{name})")
+        if setter is None:
+            raise ValueError(f"MLS Deform has no setting {name} (the VTK filter has no Set{name})")
+        if isinstance(value, str):
+            named = getattr(deform, value, None)   # an enumeration value by its name in the VTK class
+            if not isinstance(named, int) or isinstance(named, bool):
+                raise ValueError(f"MLS Deform setting {name}={value!r}: neither a number nor a name of the VTK filter's "
+                                 f"enumerations (e.g. Basis 'Wendland', ExtrusionAxis 'ExtrudedZ')")
+            value = int(named)
         if isinstance(value, (list, tuple)):
             setter(*value)
         else:

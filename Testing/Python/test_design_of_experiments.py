@@ -165,9 +165,20 @@ with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handle': ['hull'], 'variables': []}, f)
 run = subprocess.run([python3] + command, capture_output=True, text=True)
 check(run.returncode == 2 and 'has no patch hull' in run.stderr, 'a design naming a patch the case lacks exits with 2 (%s)' % run.stderr.strip()[-200:])
+# settings: an enumeration value by its VTK name; an unknown name or property exits with 2
 with open(design, 'w') as f:
-    json.dump({'case': 'case/case.foam', 'handle': handle, 'variables': variables, 'settings': {'Basis': 'Linear'}}, f)
+    json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip, 'variables': variables,
+               'settings': {'NumberOfSamples': 500, 'Basis': 'Wendland'}}, f)
+command[2] = os.path.join(work, 'cli-wendland')
 run = subprocess.run([python3] + command, capture_output=True, text=True)
-check(run.returncode == 2 and 'takes a number' in run.stderr, 'a setting that is not a number exits with 2 (%s)' % run.stderr.strip()[-200:])
+with open(os.path.join(work, 'cli-wendland', 'report.csv')) as f:
+    wendland = list(csv.DictReader(f))
+check(run.returncode == 0 and [r['MaxNonOrthogonality'] for r in wendland] != [r['MaxNonOrthogonality'] for r in reports[python3]],
+      "a setting by its enumeration name: Basis 'Wendland' deforms otherwise (exit %d)" % run.returncode)
+for settings, message in (({'Basis': 'Linear'}, 'neither a number nor a name'), ({'Bassis': 0}, 'has no setting Bassis')):
+    with open(design, 'w') as f:
+        json.dump({'case': 'case/case.foam', 'handle': handle, 'variables': variables, 'settings': settings}, f)
+    run = subprocess.run([python3] + command, capture_output=True, text=True)
+    check(run.returncode == 2 and message in run.stderr, 'a bad setting %s exits with 2 (%s)' % (settings, run.stderr.strip()[-200:]))
 
 finish()
