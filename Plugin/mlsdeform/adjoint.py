@@ -203,28 +203,10 @@ def _read_case(case, patches=(), field=None, time=None, kind=None):
     its values at the mesh points; 'face': per patch face; None: no field) and the patches' faces
     (point ids of the internal mesh), at time (None: the reader's first)."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOGeometry import vtkOpenFOAMReader
+    from .vtkfoam import configured_reader
     foam, made = _foam_file(case)
     try:
-        reader = vtkOpenFOAMReader()   # with ParaView's reader's defaults where VTK's differ (Skip Zero Time)
-        reader.SetFileName(foam)
-        reader.SetSkipZeroTime(1)
-        reader.SetDecomposePolyhedra(0)
-        reader.SetCreateCellToPoint(0)
-        reader.SetCacheMesh(0)
-        reader.UpdateInformation()
-        available = [reader.GetPatchArrayName(i) for i in range(reader.GetNumberOfPatchArrays())]
-        missing = [p for p in patches if 'patch/' + p not in available]
-        if missing:
-            raise ValueError(f"the sensitivity patches {missing} of {case}'s optimisationDict are not patches of its mesh")
-        for name in available:
-            reader.SetPatchArrayStatus(name, 1 if name == 'internalMesh' or name[len('patch/'):] in patches else 0)
-        for count, get_name, set_status, wanted in (
-                (reader.GetNumberOfPointArrays, reader.GetPointArrayName, reader.SetPointArrayStatus, 'point'),
-                (reader.GetNumberOfCellArrays, reader.GetCellArrayName, reader.SetCellArrayStatus, 'face')):
-            for i in range(count()):
-                name = get_name(i)
-                set_status(name, 1 if kind == wanted and name == field else 0)
+        reader = configured_reader(foam, patches, decompose_polyhedra=False, fields=[field] if kind else [])
         if time is None:
             reader.Update()
         else:

@@ -15,16 +15,20 @@ import os
 from .deformer import _load_wrapping
 
 
-def open_case(foam_file, patches, decompose_polyhedra=True):
-    """VTK's OpenFOAM reader of the case's internal mesh and the named patches, updated (no mesh
-    cache: a variant has no time steps of its own). Raises ValueError naming a missing patch."""
+def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
+    """VTK's OpenFOAM reader of the case's internal mesh, the named patches and the named fields
+    only (point fields as point data, face fields as the patches' cell data), with ParaView's
+    Skip Zero Time, no mesh cache (a variant has no time steps of its own) and no cell-to-point
+    interpolation, not yet updated. Raises ValueError naming a missing patch."""
     from vtkmodules.vtkIOGeometry import vtkOpenFOAMReader
     if not os.path.isfile(foam_file):
         raise ValueError(f"the case file {foam_file} does not exist")
     reader = vtkOpenFOAMReader()
     reader.SetFileName(foam_file)
+    reader.SetSkipZeroTime(1)
     reader.SetDecomposePolyhedra(1 if decompose_polyhedra else 0)
     reader.SetCacheMesh(0)
+    reader.SetCreateCellToPoint(0)
     reader.UpdateInformation()
     available = [reader.GetPatchArrayName(i) for i in range(reader.GetNumberOfPatchArrays())]
     missing = [p for p in patches if 'patch/' + p not in available]
@@ -32,6 +36,17 @@ def open_case(foam_file, patches, decompose_polyhedra=True):
         raise ValueError(f"the case {foam_file} has no patch {', '.join(missing)}")
     for name in available:
         reader.SetPatchArrayStatus(name, 1 if name == 'internalMesh' or name[len('patch/'):] in patches else 0)
+    for count, get_name, set_status in ((reader.GetNumberOfPointArrays, reader.GetPointArrayName, reader.SetPointArrayStatus),
+                                        (reader.GetNumberOfCellArrays, reader.GetCellArrayName, reader.SetCellArrayStatus)):
+        for i in range(count()):
+            set_status(get_name(i), 1 if get_name(i) in fields else 0)
+    return reader
+
+
+def open_case(foam_file, patches, decompose_polyhedra=True):
+    """The case's internal mesh and the named patches (no fields), read by VTK's OpenFOAM reader
+    (configured_reader), updated. Raises ValueError naming a missing patch."""
+    reader = configured_reader(foam_file, patches, decompose_polyhedra)
     reader.Update()
     return reader
 
