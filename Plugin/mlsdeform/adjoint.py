@@ -418,8 +418,8 @@ def _source_points(source, n):
 
 def _check_on_handles(filter_, gradient, inputs, field, case, patches):
     """A field that is zero wherever a Handle region moves gives dJ/dp = 0 for every variable: an error."""
-    from .design import _HANDLE
-    handles = [r for r in filter_.regions() if filter_.role(r) == _HANDLE]
+    from .deformer import _load_wrapping
+    handles = [r for r in filter_.regions() if filter_.role(r) == _load_wrapping().vtkConstraintRegion.Handle]
     if not handles:
         raise ValueError("the deformation has no Handle region: no design variable can move a point")
     held = [np.array(_points(d)) for r in handles for _, d in _leaves(filter_.output(r))]

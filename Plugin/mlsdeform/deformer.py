@@ -1,7 +1,8 @@
 """An MLS Deform filter as the package drives it: a paraview.simple proxy (pvpython, pvbatch, the
 GUI's Python shell) or the VTK object itself (a plain VTK pipeline in python3, mlsdeform.vtkfoam).
 ``deformer(d)`` gives one interface to both: the VTK algorithm (for the sensitivity methods), its
-Constraint Regions with their role, output and design-variable rows, and the update.
+Constraint Regions with their role, output and design-variable rows, the update, and the variant
+case written (mlsdeform.foam's or mlsdeform.vtkfoam's save_variant).
 A design-variable row is (name, [kind, axis x, y, z, value, lower, upper]), vtkConstraintRegion's
 AddDesignVariable arguments (the proxies' DesignVariables property, 8 entries per row).
 """
@@ -85,13 +86,17 @@ class ProxyDeformer:
     def update(self):
         self.proxy.UpdatePipeline()
 
+    def save(self, foam_file, overwrite=False, link=False):
+        from .foam import save_variant
+        save_variant(self.proxy, foam_file, overwrite, link)
+
 
 class VTKDeformer:
     """A vtkMLSDeformFilter; its regions are the vtkConstraintRegions connected to its port 1."""
 
     def __init__(self, algorithm):
         _load_wrapping()
-        self.proxy, self.algorithm = None, _checked(algorithm)
+        self.algorithm = _checked(algorithm)
 
     def regions(self):
         return [self.algorithm.GetInputAlgorithm(1, i) for i in range(self.algorithm.GetNumberOfInputConnections(1))]
@@ -125,6 +130,10 @@ class VTKDeformer:
 
     def update(self):
         self.algorithm.Update()
+
+    def save(self, foam_file, overwrite=False, link=False):
+        from .vtkfoam import save_variant
+        save_variant(self.algorithm, foam_file, overwrite, link)
 
 
 def deformer(d):

@@ -19,7 +19,6 @@ from .ranks import all_reduce
 # (Filters/Adapters/DesignVariables.h: DesignKindNames).
 KINDS = ("translate", "rotate", "scale")
 _UNBOUNDED = 1e300  # a missing bound (the filter needs finite numbers)
-_HANDLE = 0         # vtkConstraintRegion::Handle (Filters/Vocabulary/RegionRoles.h)
 
 
 def _vector(value, what):
@@ -95,7 +94,7 @@ class DesignVariables:
             if key(region) not in connected:
                 raise ValueError(f"design variable {name!r}: a region is not among this MLS Deform's Regions inputs")
             role = self._filter.role(region)
-            if role != _HANDLE:
+            if role != _load_wrapping().vtkConstraintRegion.Handle:
                 raise ValueError(f"design variable {name!r}: it acts on a Handle region's motion, not on a region of role "
                                  f"{_load_wrapping().vtkConstraintRegion.GetRoleName(role)}")
         if len(set(key(r) for r in regions)) != len(regions):

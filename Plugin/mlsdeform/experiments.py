@@ -136,10 +136,6 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     Prints a progress line per variant (verbose). The design
     variables' values are restored at the end. Raises ValueError for a bad design or table and
     RuntimeError when a deformation or a write fails (what was written stays)."""
-    if dvs._filter.proxy is not None:
-        from .foam import save_variant
-    else:
-        from .vtkfoam import save_variant
     names = dvs.getVarNames()
     if not names:
         raise ValueError("the design has no variables: add some with addHandleDV first")
@@ -194,7 +190,7 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
             ok = passes(figures, limits)
             path = ''
             if ok or writeFailed:
-                save_variant(dvs.deformer, case, overwrite=True, link=not copy)
+                dvs._filter.save(case, overwrite=True, link=not copy)
                 path = case
             seconds = time.perf_counter() - began
             row = dict(point, **figures, variant=variant, ok=ok, seconds=seconds, path=path)
