@@ -153,6 +153,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       [&] { return this->BuildSubspace(inSets, inputVector); }, group);
     session.updatePointRows(group);
     session.updateTargets();
+    session.updateExactTargets(this->ExactTargets ? this->TargetBlendRadius : 0.0, group);
     session.updateConstraints(static_cast<mlsdeform::ConstraintFormulation>(this->ConstraintFormulation));
     figures.refactorized =
       session.updateFactorization({ this->StretchWeight, this->BendWeight, this->FixWeight, this->ConstraintWeight });
@@ -167,11 +168,12 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     settings.tolerance = this->Tolerance;
     settings.andersonDepth = this->Acceleration == Anderson ? 5 : 0;
     const SpaceDeformation::Solution solution = session.solve(settings, group);
-    session.writeOutput(inSets, outSets, solution);
+    session.writeOutput(inSets, outSets);
     figures.solveTime = secondsSince(solveStart);
     this->WriteSensitivities(inSets, outSets, output->GetFieldData(), group);
     figures.setupTime = session.setupTime();
     figures.diagonal = session.diagonal();
+    figures.targetCorrection = session.targetCorrection();
 
     const double constraintResidual = reportSolution(output->GetFieldData(), session.model(), session.regions(), session.iteratedConstraints(), solution, figures);
     if (this->MeshQuality)
@@ -281,9 +283,9 @@ bool vtkSubspaceDeformFilter::ComputeSensitivityProduct(vtkDoubleArray* seeds, v
       }
       requireFiniteValues(values, "the seeds");
     });
-    const Displacements dw = session.tangent(values); // may throw: out is resized after it
+    const PointField t = session.tangent(values); // may throw: out is resized after it
     const std::size_t n = session.inputPoints().size();
-    session.pointDerivative(dw, 0, static_cast<long>(n), resized(out, n));
+    session.displacement(t, 0, static_cast<long>(n), resized(out, n));
   });
 }
 
@@ -344,6 +346,8 @@ void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "BendWeight: " << this->BendWeight << "\n"
      << indent << "FixWeight: " << this->FixWeight << "\n"
      << indent << "ConstraintWeight: " << this->ConstraintWeight << "\n"
+     << indent << "ExactTargets: " << this->ExactTargets << "\n"
+     << indent << "TargetBlendRadius: " << this->TargetBlendRadius << "\n"
      << indent << "ConstraintFormulation: " << this->ConstraintFormulation << "\n"
      << indent << "MaxIterations: " << this->MaxIterations << "\n"
      << indent << "Tolerance: " << this->Tolerance << "\n"

@@ -14,7 +14,7 @@
  * Output: the input's structure and types, points moved by d(x), point array "Displacement", and
  * field data NumberOfSamples (k), NumberOfIntegrationPoints (N), SetupTime and SolveTime (s),
  * HandleResidual and FixedResidual (the largest, over the regions of that role, of the RMS
- * distance of the region's points from their targets), ReciprocalCondition, Resampled and
+ * distance of the region's output points from their targets), TargetCorrection (ExactTargets), ReciprocalCondition, Resampled and
  * Refactorized (whether this update rebuilt the subspace or refactorized), and per constraint
  * region its type, points, residual, iterations and convergence. With MeshQuality on and volume
  * cells in the input (unstructured grids), the mesh quality of paper section 7.3 before and after
@@ -110,6 +110,25 @@ public:
   /// gamma_c, weight of the geometric constraints of the Regions inputs (eq. 17; default 10).
   vtkSetClampMacro(ConstraintWeight, double, 0.0, 1e9);
   vtkGetMacro(ConstraintWeight, double);
+  ///@}
+
+  ///@{
+  /// Handle and Fixed regions reach their targets exactly (default on): the subspace's
+  /// least-squares solution (eq. 14) leaves a residual at each target (1-3% of a handle's motion on
+  /// CFD cases at the default FixWeight), which a correction field adds back, faded out over
+  /// TargetBlendRadius (Core/Basis/ResidualBlend.h). Off: the paper's penalty solution. Field
+  /// data TargetCorrection holds the largest residual made up.
+  vtkSetMacro(ExactTargets, vtkTypeBool);
+  vtkGetMacro(ExactTargets, vtkTypeBool);
+  vtkBooleanMacro(ExactTargets, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// The distance over which the exact targets' correction fades out, relative to the bounding
+  /// box's diagonal (default 0.2): larger is smoother (the correction's gradient is at most 2.1 x
+  /// the residual / the radius beyond the interpolation's own) and costs more points to correct.
+  vtkSetClampMacro(TargetBlendRadius, double, 1e-6, 10.0);
+  vtkGetMacro(TargetBlendRadius, double);
   ///@}
 
   enum ConstraintFormulations
@@ -239,6 +258,8 @@ protected:
   double BendWeight = 1.0;
   double FixWeight = 1000.0;
   double ConstraintWeight = 10.0;
+  vtkTypeBool ExactTargets = 1;
+  double TargetBlendRadius = 0.2;
   int ConstraintFormulation = Sparse;
   int MaxIterations = 5000;
   double Tolerance = 1e-7;

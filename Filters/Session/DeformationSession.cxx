@@ -34,6 +34,16 @@ std::vector<RegionKey> regionKeys(const std::vector<RegionInput>& regions, bool 
   }
   return keys;
 }
+
+std::vector<PointDisplacementsView> viewsOf(const std::vector<PointDisplacements>& sets)
+{
+  std::vector<PointDisplacementsView> views;
+  for (const PointDisplacements& d : sets)
+  {
+    views.emplace_back(d.data(), d.rows(), 3);
+  }
+  return views;
+}
 }
 
 DeformationSession::DeformationSession(vtkAlgorithm* owner)
@@ -174,6 +184,36 @@ void DeformationSession::updateTargets()
   ++Counts.targets;
 }
 
+void DeformationSession::updateExactTargets(double radius, const Collective& group)
+{
+  ExactTargetsKey key{ PointsVersion, { regionKeys(Regions, false) }, radius };
+  if (!ExactKey.stale(key))
+  {
+    return;
+  }
+  ExactKey.invalidate();
+  Exact.clear();
+  ++ExactBuilds;
+  if (radius > 0)
+  {
+    vtkLogScopeF(TRACE, "MLS Deform: exact targets' blend");
+    agree(group, [&] {
+      PointList targets, projected;
+      for (const RegionInput& r : Regions)
+      {
+        if (!isConstraint(r.role))
+        {
+          const PointList& evaluated = Extruded.evaluated(r.gathered.positions, projected);
+          targets.insert(targets.end(), evaluated.begin(), evaluated.end());
+        }
+      }
+      Exact.build(targets, Extruded.evaluated(Points, projected), radius * Diagonal, { &reportProgress, Owner, 0.9, 0.95 });
+    });
+  }
+  ExactKey.built(std::move(key));
+  checkAbort(Owner, group);
+}
+
 void DeformationSession::updateConstraints(ConstraintFormulation formulation)
 {
   ConstraintsKey key{ regionKeys(Regions, true), formulation };
@@ -227,7 +267,27 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
 {
   vtkLogScopeF(TRACE, "MLS Deform: solve");
   Last = SpaceDeformation::Solution();
-  Last = Model->solve(gatherPrescribed(Regions, Prescribed, group), settings);
+  LastField = PointField();
+  const std::vector<PointDisplacementsView> prescribed = gatherPrescribed(Regions, Prescribed, group);
+  Last = Model->solve(prescribed, settings);
+  LastField.w = Last.w;
+  if (Exact.active())
+  {
+    const PointDisplacements reached = Model->regionDisplacements(Last.w);
+    LastField.r = Exact.residuals(prescribed, reached);
+    // the regions' residuals are the output's: the misses where targets disagree
+    const std::vector<double> miss = Exact.misses(prescribed, reached, LastField.r);
+    std::size_t i = 0;
+    for (std::size_t r = 0; r < prescribed.size(); ++r)
+    {
+      double squared = 0;
+      for (long j = 0; j < prescribed[r].rows(); ++j, ++i)
+      {
+        squared += miss[i] * miss[i];
+      }
+      Last.rmsResidual[r] = std::sqrt(squared / prescribed[r].rows());
+    }
+  }
   if (Design.size() > 0)
   {
     Derivatives.gather(Regions, Design, group);
@@ -236,21 +296,32 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   return Last;
 }
 
-Displacements DeformationSession::tangent(const std::vector<double>& seeds) const
+double DeformationSession::targetCorrection() const
 {
-  const std::vector<PointDisplacements> along = Derivatives.along(seeds);
-  std::vector<PointDisplacementsView> views;
-  for (const PointDisplacements& d : along)
-  {
-    views.emplace_back(d.data(), d.rows(), 3);
-  }
-  return Model->tangent(views, Last);
+  return LastField.r.rows() > 0 ? LastField.r.rowwise().norm().maxCoeff() : 0.0;
 }
 
-void DeformationSession::pointDerivative(const Displacements& dw, long offset, long n, double* out) const
+PointField DeformationSession::tangent(const std::vector<double>& seeds) const
 {
-  const PointDisplacements rows = dw; // row-major, as writeOutput's w
-  multiplyRows(PointRows, rows, offset, offset + n, out);
+  const std::vector<PointDisplacements> along = Derivatives.along(seeds);
+  const std::vector<PointDisplacementsView> views = viewsOf(along);
+  PointField t;
+  t.w = Model->tangent(views, Last);
+  if (Exact.active())
+  {
+    t.r = Exact.residuals(views, Model->regionDisplacements(t.w));
+  }
+  return t;
+}
+
+void DeformationSession::displacement(const PointField& field, long offset, long n, double* out) const
+{
+  const PointDisplacements w = field.w; // row-major: a shape function's x, y, z share a cache line
+  multiplyRows(PointRows, w, offset, offset + n, out);
+  if (field.r.rows() > 0)
+  {
+    Exact.add(field.r, offset, offset + n, out);
+  }
   slideOnPlanes(Slips, Points, offset, n, out);
 }
 
@@ -260,7 +331,7 @@ void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& out
   {
     std::vector<double> seeds(Design.size(), 0.0);
     seeds[v] = 1;
-    const Displacements dw = tangent(seeds);
+    const PointField t = tangent(seeds);
     long offset = 0;
     for (vtkPointSet* set : outSets)
     {
@@ -271,7 +342,7 @@ void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& out
       derivative->SetNumberOfTuples(n);
       if (n > 0)
       {
-        pointDerivative(dw, offset, n, derivative->GetPointer(0));
+        displacement(t, offset, n, derivative->GetPointer(0));
       }
       set->GetPointData()->AddArray(derivative);
       offset += n;
@@ -284,36 +355,47 @@ std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double>
   // g -> S^T g (the slide's transpose), then H = Phi^T S^T g over the canonical positions
   slideOnPlanes(Slips, Points, 0, static_cast<long>(Points.size()), gradient.data(), true);
   const GatheredGradient g = gatherGradient(Points, gradient, group);
-  if (Gradient.subspace != Counts.subspace || Gradient.points != PointsVersion || Gradient.positions != g.positions)
+  if (Gradient.subspace != Counts.subspace || Gradient.points != PointsVersion || Gradient.exactBuild != ExactBuilds ||
+    Gradient.positions != g.positions)
   {
-    // rows at input points are stage 2's, viewed (the same bits as evaluating them)
+    // rows at input points are stage 2's (3b's), viewed (the same bits as evaluating them)
     PointList projected;
-    Gradient.rows = gatherRows(Model->basis(), Extruded.evaluated(g.positions, projected), { &PointRows, positionsAmong(Points, g.positions) });
+    const PointList& evaluated = Extruded.evaluated(g.positions, projected);
+    const std::vector<long> among = positionsAmong(Points, g.positions);
+    Gradient.rows = gatherRows(Model->basis(), evaluated, { &PointRows, among });
+    Gradient.blend = Exact.active() ? Exact.rowsAt(evaluated, among) : GatheredRows();
     Gradient.positions = g.positions;
     Gradient.subspace = Counts.subspace;
     Gradient.points = PointsVersion;
+    Gradient.exactBuild = ExactBuilds;
   }
-  const Displacements H = multiplyTransposed(Gradient.rows, 0, Gradient.rows.rows(), g.values);
+  // dJ = (Phi^T g - Phi_T^T e) . dw + e . d(dbar) (ExactTargets.h; e = 0 for the penalty solution)
+  Displacements H = multiplyTransposed(Gradient.rows, 0, Gradient.rows.rows(), g.values);
+  PointDisplacements e;
+  if (Exact.active())
+  {
+    e = Exact.pull(Gradient.blend, g.values);
+    H -= Model->regionTransposed(e);
+  }
   if (Model->isLinear())
   {
     method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";
-    return Derivatives.contract(Model->prescribedGradient(H));
+    PointDisplacements dJdTargets = Model->prescribedGradient(H);
+    if (e.rows() > 0)
+    {
+      dJdTargets += e;
+    }
+    return Derivatives.contract(dJdTargets);
   }
   method = "implicit differentiation of the constraint iteration's fixed point (GMRES, the projections' derivatives by central "
            "differences): one tangent per variable";
-  std::vector<double> dJdp(Design.size(), 0.0);
+  std::vector<double> dJdp = e.rows() > 0 ? Derivatives.contract(e) : std::vector<double>(Design.size(), 0.0);
   for (std::size_t v = 0; v < Design.size(); ++v)
   {
     std::vector<double> seeds(Design.size(), 0.0);
     seeds[v] = 1;
-    const Displacements dw = tangent(seeds);
-    for (long j = 0; j < dw.rows(); ++j)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        dJdp[v] += H(j, c) * dw(j, c);
-      }
-    }
+    const Displacements dw = tangent(seeds).w;
+    dJdp[v] += (H.array() * dw.array()).sum();
   }
   return dJdp;
 }
@@ -321,7 +403,7 @@ std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double>
 void DeformationSession::deformedPoints(double* out) const
 {
   const long n = static_cast<long>(Points.size());
-  pointDerivative(Last.w, 0, n, out); // d(x), as writeOutput computes it
+  displacement(LastField, 0, n, out); // d(x), as writeOutput computes it
   for (long i = 0; i < n; ++i)
   {
     for (int c = 0; c < 3; ++c)
@@ -331,12 +413,10 @@ void DeformationSession::deformedPoints(double* out) const
   }
 }
 
-void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
-  const SpaceDeformation::Solution& solution)
+void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets)
 {
   vtkLogScopeF(TRACE, "MLS Deform: output points");
-  const PointDisplacements w = solution.w; // row-major: a shape function's x, y, z share a cache line
-  Output.write(inSets, outSets, Points, PointRows, w, Slips);
+  Output.write(inSets, outSets, Points, [&](long offset, long n, double* out) { displacement(LastField, offset, n, out); });
 }
 
 void DeformationSession::reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,

@@ -9,8 +9,10 @@
 //   1 updateSubspace       SubspaceKey: subclass's dependencies,        2, 3, 4, 5
 //                          cells and points (if it samples the input)
 //   2 updatePointRows      the points' version                          3 (whose rows view these)
-//   3 updateTargets        TargetsKey: (version, role, weight) per      5
+//   3 updateTargets        TargetsKey: (version, role, weight) per      3b, 5
 //                          Handle/Fixed region
+//  3b updateExactTargets   the points' version, TargetsKey, the blend    -
+//                          radius (ExactTargets.h; none: the penalty)
 //   4 updateConstraints    ConstraintsKey: (version, role, weight) per  5
 //                          constraint region, the formulation
 //   5 updateFactorization  the weights (SpaceDeformation knows which    -
@@ -28,6 +30,7 @@
 #include "Common/Collective.h"
 #include "Session/DeformedOutput.h"
 #include "Session/DesignSensitivities.h"
+#include "Session/ExactTargets.h"
 #include "Session/Extrusion.h"
 #include "Session/MeshQualityReport.h"
 #include "Session/RegionInputs.h"
@@ -80,6 +83,23 @@ struct ConstraintsKey
   bool operator==(const ConstraintsKey& o) const { return regions == o.regions && formulation == o.formulation; }
 };
 
+/// Stage 3b: exact targets' blend over the targets, at the points.
+struct ExactTargetsKey
+{
+  long points = 0;
+  TargetsKey targets;
+  double radius = 0; // relative to the diagonal; 0: none (the penalty solution)
+  bool operator==(const ExactTargetsKey& o) const { return points == o.points && targets == o.targets && radius == o.radius; }
+};
+
+/// A displacement of the points, d = S (Phi w + B r): the subspace's coefficients w and the
+/// exact targets' residuals r (empty for the penalty solution).
+struct PointField
+{
+  mlsdeform::Displacements w;
+  mlsdeform::PointDisplacements r;
+};
+
 /// A stage's key as last built (none: not built, or invalidated).
 template <typename Key>
 class Stage
@@ -128,6 +148,10 @@ public:
   /// position is an input point) and their normal matrices.
   void updateTargets();
 
+  /// Stage 3b: exact targets (ExactTargets.h) with the blend's fade radius R = radius x the
+  /// diagonal; radius 0: the penalty solution of eq. 14 alone. Progress from 0.9 to 0.95.
+  void updateExactTargets(double radius, const mlsdeform::Collective& group);
+
   /// Stage 4: the geometric constraints (section 6). Throws InvalidInputException for a
   /// constraint other than Slip in an extruded deformation.
   void updateConstraints(mlsdeform::ConstraintFormulation formulation);
@@ -137,12 +161,14 @@ public:
   bool updateFactorization(const mlsdeform::EnergyWeights& weights);
 
   /// Stage 6: the solve for the targets' prescribed displacements of this update (kept: the
-  /// design sensitivities below are those of the last solve).
+  /// design sensitivities below are those of the last solve). With exact targets, the solution's
+  /// rmsResidual is the output's (zero to round-off but where targets at one position disagree).
   mlsdeform::SpaceDeformation::Solution solve(const mlsdeform::IterationSettings& settings, const mlsdeform::Collective& group);
+  /// The largest residual the exact targets' blend made up (0 for the penalty solution).
+  double targetCorrection() const;
 
-  /// x + d(x) and Displacement into the output point sets (d = Phi w, slid onto the slip planes).
-  void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
-    const mlsdeform::SpaceDeformation::Solution& solution);
+  /// x + d(x) and Displacement into the output point sets for the last solve.
+  void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets);
 
   /// The volume mesh's quality before and after, into field (MeshQualityReport.h).
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
@@ -151,10 +177,11 @@ public:
   /// Design sensitivities of the last solve (DesignSensitivities.h). The design variables of this
   /// update's Handle regions:
   const DesignTable& design() const { return Design; }
-  /// Forward mode: the coefficients' derivative dw along seeds (one per design variable).
-  mlsdeform::Displacements tangent(const std::vector<double>& seeds) const;
-  /// S Phi dw (slid like the displacement) at this process's points [offset, offset + n), into out.
-  void pointDerivative(const mlsdeform::Displacements& dw, long offset, long n, double* out) const;
+  /// Forward mode: the output displacement's derivative along seeds (one per design variable).
+  PointField tangent(const std::vector<double>& seeds) const;
+  /// S (Phi w + B r) at this process's points [offset, offset + n), into out: the displacement
+  /// of the last solve or a derivative (tangent).
+  void displacement(const PointField& field, long offset, long n, double* out) const;
   /// The point arrays dX/d<variable> of every design variable into the output point sets.
   void writeSensitivities(const std::vector<vtkPointSet*>& outSets) const;
   /// Reverse mode: dJ/dp per design variable from g = dJ/dX at this process's points (3 values
@@ -199,6 +226,9 @@ private:
   mlsdeform::RowBlocks PointRows;
   Stage<TargetsKey> Targets;
   Stage<ConstraintsKey> Constraints;
+  Stage<ExactTargetsKey> ExactKey;
+  ExactTargets Exact;
+  int ExactBuilds = 0; // the blend's version, for the rows cached below
   double SetupTime = 0;
 
   // stage 6
@@ -206,6 +236,7 @@ private:
   DesignTable Design;
   PrescribedDerivatives Derivatives;
   mlsdeform::SpaceDeformation::Solution Last;
+  PointField LastField;
   // Phi at the gathered positions of the last gradient (an optimizer's dJ/dX keeps its support
   // from call to call), for the subspace and points it was evaluated with
   struct GradientRows
@@ -214,6 +245,8 @@ private:
     int subspace = -1;
     long points = -1;
     mlsdeform::GatheredRows rows; // views of PointRows' rows where the positions are input points
+    int exactBuild = -1;
+    mlsdeform::GatheredRows blend; // B there (exact targets)
   } Gradient;
   DeformedOutput Output;
   MeshQualityReport Quality;

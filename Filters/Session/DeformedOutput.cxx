@@ -56,7 +56,7 @@ Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
 }
 
 void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const PointList& points,
-  const RowBlocks& phi, const PointDisplacements& w, const std::vector<SlipPlane>& slips)
+  const DisplacementField& displace)
 {
   Moved.resize(inSets.size());
   Displacement.resize(inSets.size());
@@ -73,8 +73,7 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
     displacement->SetName(fields::Displacement);
     displacement->SetNumberOfComponents(3);
     displacement->SetNumberOfTuples(n);
-    multiplyRows(phi, w, offset, offset + n, displacement->GetPointer(0));
-    slideOnPlanes(slips, points, offset, n, displacement->GetPointer(0));
+    displace(offset, n, displacement->GetPointer(0));
     displacement->Modified();
     vtkPoints* moved = reusable(Moved[s], Moved[s] && Moved[s]->GetNumberOfPoints() == n && Moved[s]->GetDataType() == type);
     moved->SetDataType(type);

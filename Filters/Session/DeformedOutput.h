@@ -4,11 +4,10 @@
 #pragma once
 
 #include "Common/CoreTypes.h"
-#include "Basis/SubspaceOperators.h"
-#include "Session/SlipPlanes.h"
 
 #include <vtkSmartPointer.h>
 
+#include <functional>
 #include <vector>
 
 class vtkDataObject;
@@ -25,10 +24,13 @@ void copyInput(vtkDataObject* input, vtkDataObject* output);
 class DeformedOutput
 {
 public:
-  /// Writes x + d(x), d(x) = Phi(x) w (slid onto the slip planes), into the output point sets
-  /// (outSets[s] matching inSets[s]; points concatenated over the sets, Phi's rows in that order).
+  /// The displacement d at the points [offset, offset + n) into out (3 per point).
+  using DisplacementField = std::function<void(long offset, long n, double* out)>;
+
+  /// Writes x + d(x) and d into the output point sets (outSets[s] matching inSets[s]; points
+  /// concatenated over the sets).
   void write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const mlsdeform::PointList& points,
-    const mlsdeform::RowBlocks& phi, const mlsdeform::PointDisplacements& w, const std::vector<SlipPlane>& slips);
+    const DisplacementField& d);
 
 private:
   std::vector<vtkSmartPointer<vtkPoints>> Moved;

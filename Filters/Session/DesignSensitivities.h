@@ -6,7 +6,7 @@
 // the slip planes. Reverse mode: dJ/dp = sum_i g_i . dX_i/dp = tr(H^T dw) with H = Phi^T S^T g,
 // and for a linear solution dJ/dp = sum_r dJ/d(dbar_r) . d(dbar_r)/dp with dJ/d(dbar) from one
 // back-substitution (SpaceDeformation::prescribedGradient): independent of the number of
-// variables.
+// variables. Exact targets add their correction's terms to both (ExactTargets.h).
 //
 // Under MPI, H must equal the serial one bitwise although a process boundary's points appear on
 // several processes: g is summed over the copies of a position on one process (the blocks of one

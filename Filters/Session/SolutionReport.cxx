@@ -84,6 +84,7 @@ double reportSolution(vtkFieldData* field, const SpaceDeformation& model, const 
   addField(field, "SolveTime", figures.solveTime);
   addField(field, "HandleResidual", handleResidual);
   addField(field, "FixedResidual", fixedResidual);
+  addField(field, "TargetCorrection", figures.targetCorrection);
   addField(field, "ReciprocalCondition", model.reciprocalCondition());
   addField(field, "Resampled", figures.resampled ? 1 : 0);
   addField(field, "Refactorized", figures.refactorized ? 1 : 0);

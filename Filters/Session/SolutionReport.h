@@ -20,6 +20,7 @@ struct SolutionFigures
   double setupTime = 0, solveTime = 0; // seconds
   bool resampled = false, refactorized = false;
   double diagonal = 1; // of the bounding box of all processes' points: the constraint residuals' unit
+  double targetCorrection = 0; // the largest residual of the penalty solution that exact targets made up
 };
 
 /// Adds the figures of the solution of model for regions to field (one tuple per region of

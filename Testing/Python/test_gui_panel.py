@@ -24,6 +24,7 @@ def check(condition, what):
 GROUPS = {
     'MLSDeform': [
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight', 'EnergyDiscretization']),
+        ('Targets', ['ExactTargets', 'TargetBlendRadius']),
         ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
         ('Mesh Quality', ['MeshQuality']),
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray']),
@@ -33,6 +34,7 @@ GROUPS = {
         ('2D Case', ['ExtrusionAxis'])],
     'ShellDeform': [
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight']),
+        ('Targets', ['ExactTargets', 'TargetBlendRadius']),
         ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
         ('Mesh Quality', ['MeshQuality']),
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray'])],
@@ -54,8 +56,8 @@ GROUPS = {
 ADVANCED = {
     'MLSDeform': {'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration', 'EnergyDiscretization',
                   'VolumeSampleFraction', 'IntegrationPointRatio', 'LloydIterations', 'Cover', 'RandomSeed',
-                  'FollowMeshGrading'},
-    'ShellDeform': {'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration'},
+                  'FollowMeshGrading', 'TargetBlendRadius'},
+    'ShellDeform': {'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration', 'TargetBlendRadius'},
     'ConstraintRegion': set(),
     'MLSSampler': {'IntegrationPointRatio', 'LloydIterations', 'Cover', 'RandomSeed', 'FollowMeshGrading',
                    'SurfaceWeight', 'DenseSamplesPerSample', 'BoundsPadding'},

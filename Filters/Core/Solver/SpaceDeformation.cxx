@@ -447,4 +447,16 @@ PointDisplacements SpaceDeformation::prescribedGradient(const Displacements& H) 
   return gradient;
 }
 
+PointDisplacements SpaceDeformation::regionDisplacements(const Displacements& w) const
+{
+  PointDisplacements d(RegionSubspace.rows(), 3);
+  multiplyRows(RegionSubspace, w, 0, RegionSubspace.rows(), d.data());
+  return d;
+}
+
+Displacements SpaceDeformation::regionTransposed(const PointDisplacements& e) const
+{
+  return multiplyTransposed(RegionSubspace, 0, RegionSubspace.rows(), e);
+}
+
 } // namespace mlsdeform

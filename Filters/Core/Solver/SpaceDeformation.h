@@ -149,6 +149,12 @@ public:
   /// the solution is not linear (isLinear()).
   PointDisplacements prescribedGradient(const Displacements& H) const;
 
+  /// Phi w at every region position (stacked in the order of setRegions): where the solution
+  /// puts the targets (their residuals are dbar - Phi w).
+  PointDisplacements regionDisplacements(const Displacements& w) const;
+  /// Phi_T^T e for one row of e per region position (the transpose of regionDisplacements).
+  Displacements regionTransposed(const PointDisplacements& e) const;
+
   /// The model's length l (for MLS samples, the largest side of the sampled box).
   double lengthScale() const { return Length; }
 

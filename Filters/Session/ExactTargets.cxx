@@ -1,0 +1,87 @@
+#include "Session/ExactTargets.h"
+
+using namespace mlsdeform;
+
+namespace mlsvtk
+{
+void ExactTargets::build(const PointList& targets, const PointList& points, double radius, const Progress& progress)
+{
+  clear();
+  const PointList sites = uniqueSites(targets, SiteOf);
+  SiteCount.assign(sites.size(), 0.0);
+  for (long s : SiteOf)
+  {
+    SiteCount[s] += 1;
+  }
+  auto blend = std::make_unique<ResidualBlend>(sites, radius);
+  PointRows = subspaceBlocks(*blend, points, nullptr, progress); // rows beyond R stay empty
+  Blend = std::move(blend);
+}
+
+void ExactTargets::clear()
+{
+  Blend.reset();
+  SiteOf.clear();
+  SiteCount.clear();
+  PointRows = RowBlocks();
+}
+
+PointDisplacements ExactTargets::residuals(const std::vector<PointDisplacementsView>& prescribed, const PointDisplacements& reached) const
+{
+  PointDisplacements r = PointDisplacements::Zero(static_cast<long>(SiteCount.size()), 3);
+  long i = 0;
+  for (const PointDisplacementsView& dbar : prescribed)
+  {
+    for (long j = 0; j < dbar.rows(); ++j, ++i)
+    {
+      r.row(SiteOf[i]) += (dbar.row(j) - reached.row(i)) / SiteCount[SiteOf[i]];
+    }
+  }
+  return r;
+}
+
+std::vector<double> ExactTargets::misses(
+  const std::vector<PointDisplacementsView>& prescribed, const PointDisplacements& reached, const PointDisplacements& r) const
+{
+  std::vector<double> miss;
+  long i = 0;
+  for (const PointDisplacementsView& dbar : prescribed)
+  {
+    for (long j = 0; j < dbar.rows(); ++j, ++i)
+    {
+      miss.push_back((dbar.row(j) - reached.row(i) - r.row(SiteOf[i])).norm());
+    }
+  }
+  return miss;
+}
+
+void ExactTargets::add(const PointDisplacements& r, long begin, long end, double* out) const
+{
+#pragma omp parallel for schedule(static)
+  for (long i = begin; i < end; ++i)
+  {
+    double c[3];
+    multiplyRow(PointRows, i, r, c);
+    for (int a = 0; a < 3; ++a)
+    {
+      out[3 * (i - begin) + a] += c[a];
+    }
+  }
+}
+
+GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> among) const
+{
+  return gatherRows(*Blend, positions, { &PointRows, std::move(among) });
+}
+
+PointDisplacements ExactTargets::pull(const GatheredRows& rows, const PointDisplacements& g) const
+{
+  const Displacements h = multiplyTransposed(rows, 0, rows.rows(), g);
+  PointDisplacements e(static_cast<long>(SiteOf.size()), 3);
+  for (std::size_t i = 0; i < SiteOf.size(); ++i)
+  {
+    e.row(i) = h.row(SiteOf[i]) / SiteCount[SiteOf[i]];
+  }
+  return e;
+}
+} // namespace mlsvtk

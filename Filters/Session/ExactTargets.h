@@ -1,0 +1,59 @@
+// Exact targets: the output displacement is d(x) = S (Phi(x) w + B(x) r), with B the blend
+// functions over the Handle and Fixed regions' distinct positions (Basis/ResidualBlend.h) and r
+// the residuals there, r_s = mean over the targets i at site s of dbar_i - Phi(x_i) w, so that
+// every target is met to round-off (targets at one position that disagree meet their mean: a
+// conflict, reported as the regions' residual). The penalty solution of eq. 14 is the special
+// case without B.
+//
+// Derivatives: the output is linear in (w, dbar), so dX = S (Phi dw + B dr) with dr the same
+// mean of d(dbar) - Phi dw. Reverse mode: for g = S^T dJ/dX at gathered positions, h = B^T g per
+// site and e_i = h_s / m_s per target (m_s targets at site s) give
+//   dJ = (Phi^T g - Phi_T^T e) . dw + e . d(dbar).
+// B's rows at the gathered gradient's positions are evaluated on every process alike, so under
+// MPI h is the serial one bitwise (DesignSensitivities.h).
+#pragma once
+
+#include "Basis/ResidualBlend.h"
+#include "Basis/SubspaceOperators.h"
+
+#include <memory>
+
+namespace mlsvtk
+{
+class ExactTargets
+{
+public:
+  /// The blend over the targets' positions (stacked over the target regions, as Phi is evaluated
+  /// at them) with fade radius R, and its rows at the points (as Phi is evaluated at them).
+  void build(const mlsdeform::PointList& targets, const mlsdeform::PointList& points, double radius, const mlsdeform::Progress& progress);
+  /// The penalty solution: no correction.
+  void clear();
+  bool active() const { return Blend != nullptr; }
+
+  /// r per site from the prescribed displacements (one set per target region) and Phi w at the
+  /// stacked targets (SpaceDeformation::regionDisplacements); also the derivative's dr.
+  mlsdeform::PointDisplacements residuals(
+    const std::vector<mlsdeform::PointDisplacementsView>& prescribed, const mlsdeform::PointDisplacements& reached) const;
+
+  /// The output's miss at each stacked target, |dbar_i - Phi w_i - r_s|: zero but where targets
+  /// at one position disagree.
+  std::vector<double> misses(const std::vector<mlsdeform::PointDisplacementsView>& prescribed, const mlsdeform::PointDisplacements& reached,
+    const mlsdeform::PointDisplacements& r) const;
+
+  /// Rows begin..end of B r added to out (3 per point).
+  void add(const mlsdeform::PointDisplacements& r, long begin, long end, double* out) const;
+
+  /// B at positions (as Phi is evaluated at them), viewed from the points' rows where
+  /// among[i] names the point at positions[i] (positionsAmong).
+  mlsdeform::GatheredRows rowsAt(const mlsdeform::PointList& positions, std::vector<long> among) const;
+
+  /// e (one row per stacked target) for g given at the positions of rows (rowsAt).
+  mlsdeform::PointDisplacements pull(const mlsdeform::GatheredRows& rows, const mlsdeform::PointDisplacements& g) const;
+
+private:
+  std::unique_ptr<mlsdeform::ResidualBlend> Blend;
+  std::vector<long> SiteOf;      // per stacked target
+  std::vector<double> SiteCount; // m_s
+  mlsdeform::RowBlocks PointRows;
+};
+} // namespace mlsvtk
