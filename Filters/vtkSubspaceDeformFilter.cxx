@@ -180,6 +180,12 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     {
       session.reportQuality(inSets, outSets, output->GetFieldData(), group);
     }
+    if (!session.targetConflicts().empty())
+    {
+      vtkWarningMacro(<< "Targets disagree where regions share points: Regions inputs " << session.targetConflicts()
+                      << " prescribe different displacements at the same positions; those points meet the mean of their "
+                         "targets (HandleResidual and FixedResidual say by how much).");
+    }
     if (!solution.converged)
     {
       vtkWarningMacro(<< "The constraints did not converge in MaxIterations = " << this->MaxIterations

@@ -233,6 +233,11 @@ void DeformationSession::updateConstraints(ConstraintFormulation formulation)
     addConstraintSets(*r, shapes);
   }
   Model->setConstraints(shapes, formulation);
+  ConstraintPositions.clear();
+  for (const ShapeConstraint& shape : shapes)
+  {
+    ConstraintPositions.insert(ConstraintPositions.end(), shape.positions.begin(), shape.positions.end());
+  }
   Constraints.built(std::move(key));
   ++Counts.constraints;
 }
@@ -268,6 +273,7 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   vtkLogScopeF(TRACE, "MLS Deform: solve");
   Last = SpaceDeformation::Solution();
   LastField = PointField();
+  TargetConflicts.clear();
   const std::vector<PointDisplacementsView> prescribed = gatherPrescribed(Regions, Prescribed, group);
   Last = Model->solve(prescribed, settings);
   LastField.w = Last.w;
@@ -275,17 +281,10 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   {
     const PointDisplacements reached = Model->regionDisplacements(Last.w);
     LastField.r = Exact.residuals(prescribed, reached);
-    // the regions' residuals are the output's: the misses where targets disagree
-    const std::vector<double> miss = Exact.misses(prescribed, reached, LastField.r);
-    std::size_t i = 0;
-    for (std::size_t r = 0; r < prescribed.size(); ++r)
+    measureTargets(prescribed, Exact.misses(prescribed, reached, LastField.r));
+    if (!ConstraintPositions.empty())
     {
-      double squared = 0;
-      for (long j = 0; j < prescribed[r].rows(); ++j, ++i)
-      {
-        squared += miss[i] * miss[i];
-      }
-      Last.rmsResidual[r] = std::sqrt(squared / prescribed[r].rows());
+      measureConstraints();
     }
   }
   if (Design.size() > 0)
@@ -294,6 +293,46 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   }
   ++Counts.solve;
   return Last;
+}
+
+void DeformationSession::measureTargets(const std::vector<PointDisplacementsView>& prescribed, const std::vector<double>& miss)
+{
+  std::size_t i = 0, r = 0;
+  for (std::size_t c = 0; c < Regions.size(); ++c)
+  {
+    if (isConstraint(Regions[c].role))
+    {
+      continue;
+    }
+    double squared = 0, largest = 0;
+    for (long j = 0; j < prescribed[r].rows(); ++j, ++i)
+    {
+      squared += miss[i] * miss[i];
+      largest = std::max(largest, miss[i]);
+    }
+    Last.rmsResidual[r] = std::sqrt(squared / prescribed[r].rows());
+    // a target of exact arithmetic misses by round-off of |dbar| at most
+    if (largest > 1e-9 * Diagonal)
+    {
+      TargetConflicts += (TargetConflicts.empty() ? "" : ", ") + std::string("#") + std::to_string(c) + " (" +
+        regionRole(Regions[c].role).name + ", up to " + std::to_string(largest) + ")";
+    }
+    ++r;
+  }
+}
+
+void DeformationSession::measureConstraints()
+{
+  if (ConstraintBlend.exactBuild != ExactBuilds || ConstraintBlend.constraints != Counts.constraints)
+  {
+    PointList projected;
+    ConstraintBlend.rows = Exact.rowsAt(Extruded.evaluated(ConstraintPositions, projected), positionsAmong(Points, ConstraintPositions));
+    ConstraintBlend.exactBuild = ExactBuilds;
+    ConstraintBlend.constraints = Counts.constraints;
+  }
+  PointDisplacements added(ConstraintBlend.rows.rows(), 3);
+  multiplyRows(ConstraintBlend.rows, LastField.r, 0, ConstraintBlend.rows.rows(), added.data());
+  Last.constraintResidual = Model->constraintResiduals(Last.w, added, Last.axes);
 }
 
 double DeformationSession::targetCorrection() const

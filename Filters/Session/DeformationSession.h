@@ -162,10 +162,15 @@ public:
 
   /// Stage 6: the solve for the targets' prescribed displacements of this update (kept: the
   /// design sensitivities below are those of the last solve). With exact targets, the solution's
-  /// rmsResidual is the output's (zero to round-off but where targets at one position disagree).
+  /// rmsResidual is the output's (zero to round-off but where targets at one position disagree),
+  /// and so is constraintResidual (the constrained points moved by the correction too).
   mlsdeform::SpaceDeformation::Solution solve(const mlsdeform::IterationSettings& settings, const mlsdeform::Collective& group);
   /// The largest residual the exact targets' blend made up (0 for the penalty solution).
   double targetCorrection() const;
+  /// The target regions whose points share positions with other targets that prescribe another
+  /// displacement (exact targets meet their mean there): "#c (Role, up to distance), ..." by
+  /// Regions input; empty when none.
+  const std::string& targetConflicts() const { return TargetConflicts; }
 
   /// x + d(x) and Displacement into the output point sets for the last solve.
   void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets);
@@ -205,6 +210,12 @@ public:
   void setSetupTime(double seconds) { SetupTime = seconds; }
 
 private:
+  /// With exact targets: the target regions' residuals of the output (the misses of ExactTargets
+  /// per stacked target) and the regions whose targets disagree.
+  void measureTargets(const std::vector<mlsdeform::PointDisplacementsView>& prescribed, const std::vector<double>& miss);
+  /// With exact targets: the constraint residuals of the output, the correction included.
+  void measureConstraints();
+
   vtkAlgorithm* Owner;
   Runs Counts;
   long NextVersion = 0;
@@ -229,6 +240,12 @@ private:
   Stage<ExactTargetsKey> ExactKey;
   ExactTargets Exact;
   int ExactBuilds = 0; // the blend's version, for the rows cached below
+  mlsdeform::PointList ConstraintPositions; // every constraint set's positions, in the model's order
+  struct ConstraintBlendRows // the blend at them, for the output's constraint residuals
+  {
+    int exactBuild = -1, constraints = -1;
+    mlsdeform::GatheredRows rows;
+  } ConstraintBlend;
   double SetupTime = 0;
 
   // stage 6
@@ -237,6 +254,7 @@ private:
   PrescribedDerivatives Derivatives;
   mlsdeform::SpaceDeformation::Solution Last;
   PointField LastField;
+  std::string TargetConflicts;
   // Phi at the gathered positions of the last gradient (an optimizer's dJ/dX keeps its support
   // from call to call), for the subspace and points it was evaluated with
   struct GradientRows

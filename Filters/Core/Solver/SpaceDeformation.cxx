@@ -447,6 +447,28 @@ PointDisplacements SpaceDeformation::prescribedGradient(const Displacements& H) 
   return gradient;
 }
 
+std::vector<double> SpaceDeformation::constraintResiduals(const Displacements& w, const PointDisplacements& added, std::vector<Vec3> axes) const
+{
+  if (!Constraints)
+  {
+    return {};
+  }
+  std::vector<PointList> positions = Constraints->positions(w);
+  long row = 0;
+  for (PointList& set : positions)
+  {
+    for (Vec3& y : set)
+    {
+      y += added.row(row++).transpose();
+    }
+  }
+  if (axes.empty())
+  {
+    axes = Constraints->restAxes();
+  }
+  return ShapeConstraints::largestDistances(positions, Constraints->project(positions, axes));
+}
+
 PointDisplacements SpaceDeformation::regionDisplacements(const Displacements& w) const
 {
   PointDisplacements d(RegionSubspace.rows(), 3);

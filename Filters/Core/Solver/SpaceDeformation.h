@@ -149,6 +149,12 @@ public:
   /// the solution is not linear (isLinear()).
   PointDisplacements prescribedGradient(const Displacements& H) const;
 
+  /// Per constraint set: the largest distance of its points, moved by Phi w plus added (one row
+  /// per point of every set, the sets in the order given to setConstraints), from their
+  /// projection (the cylinder fits starting from axes; empty: from the rest fits). The residual
+  /// of a displacement that is more than Phi w (the exact targets' correction).
+  std::vector<double> constraintResiduals(const Displacements& w, const PointDisplacements& added, std::vector<Vec3> axes) const;
+
   /// Phi w at every region position (stacked in the order of setRegions): where the solution
   /// puts the targets (their residuals are dbar - Phi w).
   PointDisplacements regionDisplacements(const Displacements& w) const;
