@@ -8,66 +8,15 @@ fandisk_constraints.png (original, unconstrained, constrained) and the constrain
 import os
 import sys
 
-from paraview.simple import FeatureEdges, ProgrammableFilter, SaveData
-from paraview import servermanager
+from paraview.simple import SaveData
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fandisk_scene as scene  # noqa: E402
 
 part, bounds, out_dir = scene.open_fandisk()
-xmin, xmax, ymin, ymax, zmin, zmax = bounds
-height = zmax - zmin
-margin = 0.01 * height
 fixed, handle = scene.fixed_and_handle(part, bounds)
-
-# Feature lines: the sharp edges (feature angle 30 degrees), split into lines at their junctions
-# (a point array LineId, -1 at junctions), and every line lying in the band that bends.
-SPLIT_LINES = """
-import numpy as np
-from vtk.util.numpy_support import numpy_to_vtk
-edges = self.GetInputDataObject(0, 0)
-n = edges.GetNumberOfPoints()
-neighbours = [[] for _ in range(n)]
-for c in range(edges.GetNumberOfCells()):
-    ids = edges.GetCell(c).GetPointIds()
-    for j in range(ids.GetNumberOfIds() - 1):
-        a, b = ids.GetId(j), ids.GetId(j + 1)
-        neighbours[a].append(b)
-        neighbours[b].append(a)
-line = -np.ones(n)
-count = 0
-for start in range(n):
-    if line[start] >= 0 or len(neighbours[start]) != 2:
-        continue
-    stack = [start]
-    line[start] = count
-    while stack:
-        for q in neighbours[stack.pop()]:
-            if line[q] < 0 and len(neighbours[q]) == 2:
-                line[q] = count
-                stack.append(q)
-    count += 1
-output = self.GetOutputDataObject(0)
-output.ShallowCopy(edges)
-array = numpy_to_vtk(line, deep=1)
-array.SetName('LineId')
-output.GetPointData().AddArray(array)
-"""
-edges = ProgrammableFilter(Input=FeatureEdges(Input=part, BoundaryEdges=0, FeatureEdges=1, NonManifoldEdges=0,
-                                              ManifoldEdges=0, FeatureAngle=30), Script=SPLIT_LINES)
-lines = servermanager.Fetch(edges)
-line_id = lines.GetPointData().GetArray('LineId')
-z_of = {}
-for i in range(lines.GetNumberOfPoints()):
-    z_of.setdefault(int(line_id.GetValue(i)), []).append(lines.GetPoint(i)[2])
-band = (zmin + 0.15 * height, zmax - 0.3 * height)
-features = [scene.ConstraintRegion(Input=edges, Role='FeatureLine', SelectionMode='ArrayRange',
-                             SelectionArray=['POINTS', 'LineId'], Range=[line, line])
-            for line, zs in sorted(z_of.items())
-            if line >= 0 and len(zs) >= 8 and band[0] <= min(zs) and max(zs) <= band[1]]
-# Planarity: the upper half of the planar face at x = xmin.
-planar = scene.box_region(part, 'Planarity', [xmin - margin, ymin - margin, (zmin + zmax) / 2],
-                          [xmin + 1e-3 * height, ymax + margin, zmax - 0.25 * height])
+planar, features = scene.fig8_constraints(part, bounds)
+height = bounds[5] - bounds[4]
 
 free = scene.MLSDeform(Input=part, Regions=[fixed, handle])
 scene.update_deformation(free)

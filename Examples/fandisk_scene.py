@@ -44,6 +44,67 @@ def fixed_and_handle(part, bounds):
     return fixed, handle
 
 
+# Feature lines: the sharp edges (feature angle 30 degrees), split into lines at their junctions
+# (a point array LineId, -1 at junctions).
+SPLIT_LINES = """
+import numpy as np
+from vtk.util.numpy_support import numpy_to_vtk
+edges = self.GetInputDataObject(0, 0)
+n = edges.GetNumberOfPoints()
+neighbours = [[] for _ in range(n)]
+for c in range(edges.GetNumberOfCells()):
+    ids = edges.GetCell(c).GetPointIds()
+    for j in range(ids.GetNumberOfIds() - 1):
+        a, b = ids.GetId(j), ids.GetId(j + 1)
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+line = -np.ones(n)
+count = 0
+for start in range(n):
+    if line[start] >= 0 or len(neighbours[start]) != 2:
+        continue
+    stack = [start]
+    line[start] = count
+    while stack:
+        for q in neighbours[stack.pop()]:
+            if line[q] < 0 and len(neighbours[q]) == 2:
+                line[q] = count
+                stack.append(q)
+    count += 1
+output = self.GetOutputDataObject(0)
+output.ShallowCopy(edges)
+array = numpy_to_vtk(line, deep=1)
+array.SetName('LineId')
+output.GetPointData().AddArray(array)
+"""
+
+
+def fig8_constraints(part, bounds):
+    """Paper Fig. 8's constraints: FeatureLine regions on every sharp feature line (8 points or
+    more) that lies in the band that bends, and a Planarity region on the upper half of the planar
+    face at x = xmin. Returns the planar region and the list of feature-line regions."""
+    from paraview import servermanager
+    from paraview.simple import FeatureEdges, ProgrammableFilter
+    xmin, xmax, ymin, ymax, zmin, zmax = bounds
+    height = zmax - zmin
+    margin = 0.01 * height
+    edges = ProgrammableFilter(Input=FeatureEdges(Input=part, BoundaryEdges=0, FeatureEdges=1, NonManifoldEdges=0,
+                                                  ManifoldEdges=0, FeatureAngle=30), Script=SPLIT_LINES)
+    lines = servermanager.Fetch(edges)
+    line_id = lines.GetPointData().GetArray('LineId')
+    z_of = {}
+    for i in range(lines.GetNumberOfPoints()):
+        z_of.setdefault(int(line_id.GetValue(i)), []).append(lines.GetPoint(i)[2])
+    band = (zmin + 0.15 * height, zmax - 0.3 * height)
+    features = [ConstraintRegion(Input=edges, Role='FeatureLine', SelectionMode='ArrayRange',  # noqa: F821
+                                 SelectionArray=['POINTS', 'LineId'], Range=[line, line])
+                for line, zs in sorted(z_of.items())
+                if line >= 0 and len(zs) >= 8 and band[0] <= min(zs) and max(zs) <= band[1]]
+    planar = box_region(part, 'Planarity', [xmin - margin, ymin - margin, (zmin + zmax) / 2],
+                        [xmin + 1e-3 * height, ymax + margin, zmax - 0.25 * height])
+    return planar, features
+
+
 def update_deformation(deformed):
     """Updates a deformation (MLS Deform, Shell Deform) and raises RuntimeError with the filter's
     message if it failed: a failed deformation's output is its unchanged input carrying a

@@ -153,8 +153,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       [&] { return this->BuildSubspace(inSets, inputVector); }, group);
     session.updatePointRows(group);
     session.updateTargets();
-    session.updateExactTargets(this->ExactTargets ? this->TargetBlendRadius : 0.0, group);
     session.updateConstraints(static_cast<mlsdeform::ConstraintFormulation>(this->ConstraintFormulation));
+    session.updateExactTargets(this->ExactTargets ? this->TargetBlendRadius : 0.0, this->ExactConstraints, group);
     figures.refactorized =
       session.updateFactorization({ this->StretchWeight, this->BendWeight, this->FixWeight, this->ConstraintWeight });
     if (figures.resampled || figures.refactorized)
@@ -185,6 +185,12 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       vtkWarningMacro(<< "Targets disagree where regions share points: Regions inputs " << session.targetConflicts()
                       << " prescribe different displacements at the same positions; those points meet the mean of their "
                          "targets (HandleResidual and FixedResidual say by how much).");
+    }
+    if (!session.constraintConflicts().empty())
+    {
+      vtkWarningMacro(<< "The constraints contradict each other or the targets: Regions inputs " << session.constraintConflicts()
+                      << " cannot all hold exactly; the output keeps the targets and is the soft (least-squares) compromise "
+                         "of the constraints there (ConstraintResidual says by how much).");
     }
     if (!solution.converged)
     {
@@ -354,6 +360,7 @@ void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "ConstraintWeight: " << this->ConstraintWeight << "\n"
      << indent << "ExactTargets: " << this->ExactTargets << "\n"
      << indent << "TargetBlendRadius: " << this->TargetBlendRadius << "\n"
+     << indent << "ExactConstraints: " << this->ExactConstraints << "\n"
      << indent << "ConstraintFormulation: " << this->ConstraintFormulation << "\n"
      << indent << "MaxIterations: " << this->MaxIterations << "\n"
      << indent << "Tolerance: " << this->Tolerance << "\n"

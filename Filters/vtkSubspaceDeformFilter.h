@@ -124,6 +124,18 @@ public:
   ///@}
 
   ///@{
+  /// The Planarity, Circularity, Cylinder, FeatureLine and Rigid regions hold exactly (default
+  /// on, with ExactTargets): from the soft solution of section 6, alternating projections find
+  /// positions on every constraint that keep the targets (Core/Solver/ConstraintIntersection.h),
+  /// and the same correction field as the targets' adds them. Slip regions are exact by their
+  /// slide. Constraints that contradict each other or the targets are named in the output window
+  /// and stay soft. Off: the paper's soft constraints.
+  vtkSetMacro(ExactConstraints, vtkTypeBool);
+  vtkGetMacro(ExactConstraints, vtkTypeBool);
+  vtkBooleanMacro(ExactConstraints, vtkTypeBool);
+  ///@}
+
+  ///@{
   /// The distance over which the exact targets' correction fades out, relative to the bounding
   /// box's diagonal (default 0.2): larger is smoother (the correction's gradient is at most 2.1 x
   /// the residual / the radius beyond the interpolation's own) and costs more points to correct.
@@ -260,6 +272,7 @@ protected:
   double ConstraintWeight = 10.0;
   vtkTypeBool ExactTargets = 1;
   double TargetBlendRadius = 0.2;
+  vtkTypeBool ExactConstraints = 1;
   int ConstraintFormulation = Sparse;
   int MaxIterations = 5000;
   double Tolerance = 1e-7;

@@ -9,12 +9,13 @@
 //   1 updateSubspace       SubspaceKey: subclass's dependencies,        2, 3, 4, 5
 //                          cells and points (if it samples the input)
 //   2 updatePointRows      the points' version                          3 (whose rows view these)
-//   3 updateTargets        TargetsKey: (version, role, weight) per      3b, 5
+//   3 updateTargets        TargetsKey: (version, role, weight) per      4b, 5
 //                          Handle/Fixed region
-//  3b updateExactTargets   the points' version, TargetsKey, the blend    -
-//                          radius (ExactTargets.h; none: the penalty)
-//   4 updateConstraints    ConstraintsKey: (version, role, weight) per  5
+//   4 updateConstraints    ConstraintsKey: (version, role, weight) per  4b, 5
 //                          constraint region, the formulation
+//  4b updateExactTargets   the points' version, the target and          -
+//                          constraint regions, the blend radius, whether
+//                          constraints are exact (ExactTargets.h)
 //   5 updateFactorization  the weights (SpaceDeformation knows which    -
 //                          weights its factor is for)
 //   6 solve, writeOutput   none: every update (a new handle motion costs a right-hand side,
@@ -36,6 +37,7 @@
 #include "Session/RegionInputs.h"
 #include "Session/SlipPlanes.h"
 #include "Session/SubspaceDependencies.h"
+#include "Solver/ConstraintIntersection.h"
 #include "Solver/SpaceDeformation.h"
 
 #include <functional>
@@ -83,13 +85,17 @@ struct ConstraintsKey
   bool operator==(const ConstraintsKey& o) const { return regions == o.regions && formulation == o.formulation; }
 };
 
-/// Stage 3b: exact targets' blend over the targets, at the points.
+/// Stage 4b: the exact targets' (and constraints') blend over the sites, at the points.
 struct ExactTargetsKey
 {
   long points = 0;
   TargetsKey targets;
+  std::vector<RegionKey> constraints; // none when constraints are not exact
   double radius = 0; // relative to the diagonal; 0: none (the penalty solution)
-  bool operator==(const ExactTargetsKey& o) const { return points == o.points && targets == o.targets && radius == o.radius; }
+  bool operator==(const ExactTargetsKey& o) const
+  {
+    return points == o.points && targets == o.targets && constraints == o.constraints && radius == o.radius;
+  }
 };
 
 /// A displacement of the points, d = S (Phi w + B r): the subspace's coefficients w and the
@@ -148,13 +154,15 @@ public:
   /// position is an input point) and their normal matrices.
   void updateTargets();
 
-  /// Stage 3b: exact targets (ExactTargets.h) with the blend's fade radius R = radius x the
-  /// diagonal; radius 0: the penalty solution of eq. 14 alone. Progress from 0.9 to 0.95.
-  void updateExactTargets(double radius, const mlsdeform::Collective& group);
-
   /// Stage 4: the geometric constraints (section 6). Throws InvalidInputException for a
   /// constraint other than Slip in an extruded deformation.
   void updateConstraints(mlsdeform::ConstraintFormulation formulation);
+
+  /// Stage 4b: exact targets (ExactTargets.h) with the blend's fade radius R = radius x the
+  /// diagonal, and exact constraints when asked (the shape constraints other than Slip, which
+  /// the slide keeps exactly); radius 0: the penalty solution of eq. 14 alone. Progress from 0.9
+  /// to 0.95.
+  void updateExactTargets(double radius, bool exactConstraints, const mlsdeform::Collective& group);
 
   /// Stage 5: the factorization of eq. 14 (17); returns whether it ran (the output's
   /// "Refactorized"). Throws SolverException for a singular system.
@@ -171,6 +179,10 @@ public:
   /// displacement (exact targets meet their mean there): "#c (Role, up to distance), ..." by
   /// Regions input; empty when none.
   const std::string& targetConflicts() const { return TargetConflicts; }
+  /// With exact constraints that the targets and the other constraints contradict (the
+  /// alternating projections did not meet): the constraint regions with their gaps, "#c (Role,
+  /// gap distance), ..."; the output is then the soft solution there. Empty when none.
+  const std::string& constraintConflicts() const { return ConstraintConflicts; }
 
   /// x + d(x) and Displacement into the output point sets for the last solve.
   void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets);
@@ -215,6 +227,13 @@ private:
   void measureTargets(const std::vector<mlsdeform::PointDisplacementsView>& prescribed, const std::vector<double>& miss);
   /// With exact targets: the constraint residuals of the output, the correction included.
   void measureConstraints();
+  /// The positions on every exact constraint (Solver/ConstraintIntersection.h) reached from the
+  /// positions x + Phi w, the target sites kept at x + Phi w + r.
+  mlsdeform::IntersectionResult intersect(const mlsdeform::Displacements& w, const mlsdeform::PointDisplacements& r) const;
+  /// The constraint regions whose sets the intersection left apart (constraintConflicts).
+  void reportConflicts(const mlsdeform::IntersectionResult& z);
+  /// r at the constraint sites from an intersection's positions (z - x - Phi w).
+  void constraintResiduals(const mlsdeform::IntersectionResult& z, const mlsdeform::Displacements& w, mlsdeform::PointDisplacements& r) const;
 
   vtkAlgorithm* Owner;
   Runs Counts;
@@ -241,6 +260,9 @@ private:
   ExactTargets Exact;
   int ExactBuilds = 0; // the blend's version, for the rows cached below
   mlsdeform::PointList ConstraintPositions; // every constraint set's positions, in the model's order
+  std::vector<long> SetBegin;                  // each model set's first row in ConstraintPositions, and the end
+  std::vector<char> SetIsSlip;                 // per model set: a Slip set (kept by the slide, no site)
+  std::vector<std::vector<long>> SiteSets;     // per model set: its points' sites (empty: no exact constraint)
   struct ConstraintBlendRows // the blend at them, for the output's constraint residuals
   {
     int exactBuild = -1, constraints = -1;
@@ -255,6 +277,8 @@ private:
   mlsdeform::SpaceDeformation::Solution Last;
   PointField LastField;
   std::string TargetConflicts;
+  std::string ConstraintConflicts;
+  bool Intersected = false; // the constraint sites' residuals are an intersection's (exact constraints met)
   // Phi at the gathered positions of the last gradient (an optimizer's dJ/dX keeps its support
   // from call to call), for the subspace and points it was evaluated with
   struct GradientRows

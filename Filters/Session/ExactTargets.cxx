@@ -4,16 +4,19 @@ using namespace mlsdeform;
 
 namespace mlsvtk
 {
-void ExactTargets::build(const PointList& targets, const PointList& points, double radius, const Progress& progress)
+void ExactTargets::build(const PointList& targets, const PointList& constrained, const PointList& points, double radius, const Progress& progress)
 {
   clear();
-  const PointList sites = uniqueSites(targets, SiteOf);
-  SiteCount.assign(sites.size(), 0.0);
-  for (long s : SiteOf)
+  PointList stacked = targets;
+  stacked.insert(stacked.end(), constrained.begin(), constrained.end());
+  Targets = static_cast<long>(targets.size());
+  Sites = uniqueSites(stacked, SiteOf);
+  SiteCount.assign(Sites.size(), 0.0);
+  for (long i = 0; i < Targets; ++i)
   {
-    SiteCount[s] += 1;
+    SiteCount[SiteOf[i]] += 1;
   }
-  auto blend = std::make_unique<ResidualBlend>(sites, radius);
+  auto blend = std::make_unique<ResidualBlend>(Sites, radius);
   PointRows = subspaceBlocks(*blend, points, nullptr, progress); // rows beyond R stay empty
   Blend = std::move(blend);
 }
@@ -21,6 +24,8 @@ void ExactTargets::build(const PointList& targets, const PointList& points, doub
 void ExactTargets::clear()
 {
   Blend.reset();
+  Sites.clear();
+  Targets = 0;
   SiteOf.clear();
   SiteCount.clear();
   PointRows = RowBlocks();
@@ -76,9 +81,13 @@ GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> 
 
 PointDisplacements ExactTargets::pull(const GatheredRows& rows, const PointDisplacements& g) const
 {
-  const Displacements h = multiplyTransposed(rows, 0, rows.rows(), g);
-  PointDisplacements e(static_cast<long>(SiteOf.size()), 3);
-  for (std::size_t i = 0; i < SiteOf.size(); ++i)
+  return multiplyTransposed(rows, 0, rows.rows(), g);
+}
+
+PointDisplacements ExactTargets::targetShare(const PointDisplacements& h) const
+{
+  PointDisplacements e(Targets, 3);
+  for (long i = 0; i < Targets; ++i)
   {
     e.row(i) = h.row(SiteOf[i]) / SiteCount[SiteOf[i]];
   }

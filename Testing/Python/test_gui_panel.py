@@ -25,7 +25,8 @@ GROUPS = {
     'MLSDeform': [
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight', 'EnergyDiscretization']),
         ('Targets', ['ExactTargets', 'TargetBlendRadius']),
-        ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
+        ('Constraints', ['ExactConstraints', 'ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance',
+                         'Acceleration']),
         ('Mesh Quality', ['MeshQuality']),
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray']),
         ('Sampling', ['NumberOfSamples', 'VolumeSampleFraction', 'IntegrationPointRatio', 'LloydIterations', 'Cover',
@@ -35,7 +36,8 @@ GROUPS = {
     'ShellDeform': [
         ('Energies', ['StretchWeight', 'BendWeight', 'FixWeight']),
         ('Targets', ['ExactTargets', 'TargetBlendRadius']),
-        ('Constraints', ['ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance', 'Acceleration']),
+        ('Constraints', ['ExactConstraints', 'ConstraintWeight', 'ConstraintFormulation', 'MaxIterations', 'Tolerance',
+                         'Acceleration']),
         ('Mesh Quality', ['MeshQuality']),
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray'])],
     'ConstraintRegion': [

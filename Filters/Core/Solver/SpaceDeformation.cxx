@@ -447,6 +447,24 @@ PointDisplacements SpaceDeformation::prescribedGradient(const Displacements& H) 
   return gradient;
 }
 
+std::vector<PointList> SpaceDeformation::constraintPositions(const Displacements& w) const
+{
+  return Constraints ? Constraints->positions(w) : std::vector<PointList>();
+}
+
+std::vector<PointList> SpaceDeformation::projectConstraints(const std::vector<PointList>& positions, std::vector<Vec3> axes) const
+{
+  if (!Constraints)
+  {
+    return {};
+  }
+  if (axes.empty())
+  {
+    axes = Constraints->restAxes();
+  }
+  return Constraints->project(positions, axes);
+}
+
 std::vector<double> SpaceDeformation::constraintResiduals(const Displacements& w, const PointDisplacements& added, std::vector<Vec3> axes) const
 {
   if (!Constraints)

@@ -149,6 +149,11 @@ public:
   /// the solution is not linear (isLinear()).
   PointDisplacements prescribedGradient(const Displacements& H) const;
 
+  /// Every constraint set's positions x_t + Phi_t w (sets in the order given to setConstraints).
+  std::vector<PointList> constraintPositions(const Displacements& w) const;
+  /// Every set's projection of positions (the local step; the cylinder fits start from axes).
+  std::vector<PointList> projectConstraints(const std::vector<PointList>& positions, std::vector<Vec3> axes) const;
+
   /// Per constraint set: the largest distance of its points, moved by Phi w plus added (one row
   /// per point of every set, the sets in the order given to setConstraints), from their
   /// projection (the cylinder fits starting from axes; empty: from the rest fits). The residual
