@@ -47,7 +47,8 @@ static_assert(vtkConstraintRegion::Handle == mlsvtk::roles::Handle && vtkConstra
     vtkConstraintRegion::Planarity == mlsvtk::roles::Planarity && vtkConstraintRegion::Circularity == mlsvtk::roles::Circularity &&
     vtkConstraintRegion::Cylinder == mlsvtk::roles::Cylinder && vtkConstraintRegion::FeatureLine == mlsvtk::roles::FeatureLine &&
     vtkConstraintRegion::Rigid == mlsvtk::roles::Rigid && vtkConstraintRegion::FromPrimitive == mlsvtk::roles::FromPrimitive &&
-    vtkConstraintRegion::Slip == mlsvtk::roles::Slip && vtkConstraintRegion::Slip + 1 == mlsvtk::roles::Table.size(),
+    vtkConstraintRegion::Slip == mlsvtk::roles::Slip && vtkConstraintRegion::Symmetric == mlsvtk::roles::Symmetric &&
+    vtkConstraintRegion::Symmetric + 1 == mlsvtk::roles::Table.size(),
   "vtkConstraintRegion::Roles follows mlsvtk::roles");
 
 static_assert(vtkConstraintRegion::TranslateVariable == mlsvtk::Translate && vtkConstraintRegion::RotateVariable == mlsvtk::Rotate &&
@@ -532,8 +533,8 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
       GetRoleName(role) + " (remove its design variables or make it a Handle)");
   }
   mlsvtk::checkDesignVariables(this->Designs->variables);
-  // a shape constraint per cell: the constraint roles other than Slip (a place, not a shape)
-  const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && r != Slip; };
+  // a shape constraint per cell: the constraint roles other than Slip and Symmetric (places, not shapes)
+  const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && !mlsdeform::measuresPlaces(*mlsvtk::regionRole(r).constraint); };
   if (this->CellSets && !perCell(role))
   {
     std::string roles;
@@ -657,6 +658,16 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
   output->GetFieldData()->AddArray(roleArray);
   output->GetFieldData()->AddArray(roleName);
   output->GetFieldData()->AddArray(weight);
+  if (role == Symmetric)
+  {
+    vtkNew<vtkDoubleArray> mirror;
+    mirror->SetName(mlsvtk::fields::SymmetryPlane);
+    mirror->SetNumberOfComponents(6);
+    const double plane[6] = { this->SymmetryOrigin[0], this->SymmetryOrigin[1], this->SymmetryOrigin[2], this->SymmetryNormal[0],
+      this->SymmetryNormal[1], this->SymmetryNormal[2] };
+    mirror->InsertNextTuple(plane);
+    output->GetFieldData()->AddArray(mirror);
+  }
   if (!variables.empty())
   {
     output->GetPointData()->AddArray(derivatives);

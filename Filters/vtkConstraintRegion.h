@@ -9,6 +9,10 @@
  *  - Planarity, Circularity, Cylinder, FeatureLine, Rigid: geometric constraints (section 6);
  *  - Slip: the positions stay on their (least-squares) rest plane and slide freely within it: a
  *    ground, symmetry, inlet or outlet plane of a CFD domain;
+ *  - Symmetric: the positions' displacements are mirror-symmetric about the plane through
+ *    SymmetryOrigin with normal SymmetryNormal (a car's or a hull's symmetry plane), so that an
+ *    asymmetric handle motion gives a symmetric variant; every position needs its mirror image
+ *    among the region's positions;
  *  - FromPrimitive (with SelectionMode Primitive): the constraint that keeps the selected
  *    primitive of a vtkPrimitiveDetector output (section 6.3): Planarity for a plane, Cylinder for
  *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
@@ -27,7 +31,8 @@
  *
  * Output: vtkPolyData with the selected positions as vertices, point array
  * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
- * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight".
+ * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight"
+ * (and for Symmetric "SymmetryPlane": origin and normal).
  * With CellSets, each cell's points in turn (a point of several cells once per cell) and point
  * array "ConstraintSet" (the set a position belongs to). Plug it into MLSDeform's Regions input.
  */
@@ -64,7 +69,8 @@ public:
     FeatureLine,
     Rigid,
     FromPrimitive,
-    Slip // after FromPrimitive: the values of saved states stay
+    Slip, // after FromPrimitive: the values of saved states stay
+    Symmetric
   };
   static const char* GetRoleName(int role);
 
@@ -79,7 +85,7 @@ public:
 
   ///@{
   /// The region's role (default Handle).
-  vtkSetClampMacro(Role, int, Handle, Slip);
+  vtkSetClampMacro(Role, int, Handle, Symmetric);
   vtkGetMacro(Role, int);
   ///@}
 
@@ -191,6 +197,15 @@ public:
   vtkGetMacro(Weight, double);
   ///@}
 
+  ///@{
+  /// The mirror plane of a Symmetric region: a point on it and its normal (default the plane
+  /// y = 0, a vehicle's usual symmetry plane).
+  vtkSetVector3Macro(SymmetryOrigin, double);
+  vtkGetVector3Macro(SymmetryOrigin, double);
+  vtkSetVector3Macro(SymmetryNormal, double);
+  vtkGetVector3Macro(SymmetryNormal, double);
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
   ///@{
@@ -221,6 +236,8 @@ protected:
   bool UseCentroid = true;
   double Pivot[3] = { 0.0, 0.0, 0.0 };
   double Weight = 1.0;
+  double SymmetryOrigin[3] = { 0.0, 0.0, 0.0 };
+  double SymmetryNormal[3] = { 0.0, 1.0, 0.0 };
   int NumberOfSelections = 0;
 
 private:

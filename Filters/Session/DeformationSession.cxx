@@ -31,7 +31,8 @@ std::vector<RegionKey> regionKeys(const std::vector<RegionInput>& regions, bool 
   {
     if (isConstraint(r.role) == constraints)
     {
-      keys.push_back({ r.version, r.role, r.weight });
+      keys.push_back({ r.version, r.role, r.weight,
+        { r.mirror.point.x(), r.mirror.point.y(), r.mirror.point.z(), r.mirror.normal.x(), r.mirror.normal.y(), r.mirror.normal.z() } });
     }
   }
   return keys;
@@ -109,7 +110,7 @@ void DeformationSession::readInputs(const std::vector<vtkPointSet*>& sets, vtkIn
   std::vector<RegionKey> slipKey;
   for (const RegionInput& r : Regions)
   {
-    slipKey.push_back({ r.version, r.role, 0.0 }); // a plane depends on the positions and the role only
+    slipKey.push_back({ r.version, r.role, 0.0, {} }); // a plane depends on the positions and the role only
   }
   if (SlipKey.stale(slipKey))
   {

@@ -58,7 +58,8 @@ struct RegionKey
   long version; // of its gathered positions (and sets)
   int role;
   double weight;
-  bool operator==(const RegionKey& o) const { return version == o.version && role == o.role && weight == o.weight; }
+  std::vector<double> plane; // a Symmetric region's mirror plane (point, normal)
+  bool operator==(const RegionKey& o) const { return version == o.version && role == o.role && weight == o.weight && plane == o.plane; }
 };
 
 /// Stage 1: what the subspace was built from.

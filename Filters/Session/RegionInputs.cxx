@@ -85,6 +85,18 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     region.displacement = displacement;
     vtkDataArray* weight = data->GetFieldData()->GetArray(fields::Weight);
     region.weight = weight ? weight->GetTuple1(0) : 1.0;
+    if (region.role == roles::Symmetric)
+    {
+      vtkDataArray* plane = data->GetFieldData()->GetArray(fields::SymmetryPlane);
+      const double* p = plane && plane->GetNumberOfComponents() == 6 && plane->GetNumberOfTuples() == 1 ? plane->GetTuple(0) : nullptr;
+      const Vec3 normal = p ? Vec3(p[3], p[4], p[5]) : Vec3::Zero();
+      if (!p || !Vec3(p[0], p[1], p[2]).allFinite() || !normal.allFinite() || !(normal.norm() > 0))
+      {
+        throw InvalidInputException(which + " (Symmetric) has no symmetry plane: SymmetryOrigin and a non-zero, finite SymmetryNormal");
+      }
+      region.mirror.point = Vec3(p[0], p[1], p[2]);
+      region.mirror.normal = normal.normalized();
+    }
     Stamp stamp = pointsStamp({ data });
     if (stamp != region.stamp)
     {
@@ -158,7 +170,7 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   const ConstraintType type = *regionRole(region.role).constraint;
   if (region.gathered.sets.empty())
   {
-    shapes.push_back({ type, region.gathered.positions, region.weight });
+    shapes.push_back({ type, region.gathered.positions, region.weight, region.mirror });
     return;
   }
   std::map<int, PointList> sets;
@@ -170,7 +182,7 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   for (auto& [id, positions] : sets)
   {
     const double weight = share * static_cast<double>(positions.size());
-    shapes.push_back({ type, std::move(positions), weight });
+    shapes.push_back({ type, std::move(positions), weight, region.mirror });
   }
 }
 

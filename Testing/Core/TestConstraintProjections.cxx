@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <random>
 
 using namespace mlsdeform;
@@ -162,6 +163,48 @@ TEST(SimilarityAndRigidProjections)
   // ratios: round-off as above; the scale fitted to 50 points with noise sigma = 0.05 about the rms
   // radius 1.04 of the rest shape scatters by sigma / (sqrt(n) x 1.04) = 6.8e-3: 0.035 is 5 of that
   CHECK(ratio < 1e-12 && std::abs(scale - 1.3) < 0.035);
+}
+
+TEST(SymmetricProjection)
+{
+  // pairs of points mirrored in a tilted plane, and one point on it: the projection keeps a
+  // symmetric displacement field, maps any field onto a symmetric one, is idempotent and
+  // orthogonal (the residual is orthogonal to every symmetric field)
+  Plane mirror;
+  mirror.point = Offset;
+  mirror.normal = Tilt * Vec3(0, 1, 0);
+  const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() - 2 * mirror.normal * mirror.normal.transpose();
+  const auto reflect = [&](const Vec3& x) { return Vec3(mirror.point + R * (x - mirror.point)); };
+  PointList rest = perturbed(PointList(20, Offset), 1.0, 7);
+  const std::size_t half = rest.size();
+  for (std::size_t i = 0; i < half; ++i)
+    rest.push_back(reflect(rest[i]));
+  rest.push_back(mirror.project(Offset + Vec3(0.3, 0.2, 0.1)));
+  const std::vector<int> partner = mirrorPartners(rest, mirror, 1e-9);
+  CHECK(std::count(partner.begin(), partner.end(), -1) == 0);
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    CHECK(partner[partner[i]] == static_cast<int>(i));
+  CHECK(partner.back() == static_cast<int>(rest.size()) - 1);
+
+  const PointList moved = perturbed(rest, 0.1, 8);
+  const PointList projected = projectToSymmetric(rest, moved, partner, mirror);
+  double asymmetry = 0;
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    asymmetry = std::max(asymmetry, ((projected[i] - rest[i]) - R * (projected[partner[i]] - rest[partner[i]])).norm());
+  CHECK(asymmetry <= 1e-14);
+  CHECK(maxDistance(projectToSymmetric(rest, projected, partner, mirror), projected) <= 1e-14);
+  // orthogonal: (moved - projected) . (s - rest) = 0 for the symmetric field s = projected
+  double inner = 0, scale = 0;
+  for (std::size_t i = 0; i < rest.size(); ++i)
+  {
+    inner += (moved[i] - projected[i]).dot(projected[i] - rest[i]);
+    scale += (moved[i] - projected[i]).norm() * (projected[i] - rest[i]).norm();
+  }
+  CHECK(std::abs(inner) <= 1e-12 * scale);
+  // a point without its image
+  rest.push_back(Offset + Tilt * Vec3(0, 3, 0));
+  const std::vector<int> missing = mirrorPartners(rest, mirror, 1e-9);
+  CHECK(missing.back() == -1);
 }
 
 TEST_MAIN

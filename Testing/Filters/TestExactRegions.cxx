@@ -341,4 +341,104 @@ TEST(ContradictingConstraintsAreNamedAndStaySoft)
   CHECK(fieldValue(out, "InvertedCells") == 0);
 }
 
+namespace
+{
+// The channel is symmetric about y = 0.5: a Symmetric region of all its points with that plane.
+vtkSmartPointer<vtkConstraintRegion> symmetricChannel(ChannelScene& scene)
+{
+  auto region = vtkSmartPointer<vtkConstraintRegion>::New();
+  region->SetInputConnection(scene.source->GetOutputPort());
+  region->SetSelectionMode(vtkConstraintRegion::AllPoints);
+  region->SetRole(vtkConstraintRegion::Symmetric);
+  region->SetSymmetryOrigin(0, 0.5, 0);
+  region->SetSymmetryNormal(0, 2, 0); // any length
+  return region;
+}
+
+// The largest |d_i - R d_j| over the points i and their mirror images j (y -> 1 - y).
+double largestAsymmetry(vtkPointSet* rest, vtkDataArray* d)
+{
+  double largest = 0;
+  for (vtkIdType i = 0; i < rest->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    rest->GetPoint(i, x);
+    double image[3] = { x[0], 1 - x[1], x[2] };
+    const vtkIdType j = rest->FindPoint(image);
+    const Eigen::Vector3d di(d->GetTuple3(i)), dj(d->GetTuple3(j));
+    largest = std::max(largest, (di - Eigen::Vector3d(dj.x(), -dj.y(), dj.z())).norm());
+  }
+  return largest;
+}
+}
+
+TEST(SymmetricVariantFromAnAsymmetricHandle)
+{
+  // a block on one side of the channel moves towards the wall and up; the Symmetric region makes
+  // its mirror image move the mirrored way, and every point's displacement mirror-symmetric
+  ChannelScene scene;
+  const double left[6] = { 0.74, 1.26, 0.11, 0.39, 0.24, 0.76 };
+  vtkBox::SafeDownCast(scene.body->GetRegion())->SetBounds(left);
+  scene.body->SetRotation(0, 0, 0);
+  scene.body->SetTranslation(0.02, -0.05, 0.06);
+  auto symmetric = symmetricChannel(scene);
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  vtkDataArray* asymmetricD = scene.output()->GetPointData()->GetArray("Displacement");
+  const double without = largestAsymmetry(scene.grid, asymmetricD);
+  scene.deform->AddRegionConnection(symmetric->GetOutputPort());
+  scene.deform->Update();
+  vtkPointSet* out = scene.output();
+  vtkDataArray* d = out->GetPointData()->GetArray("Displacement");
+  const double with = largestAsymmetry(scene.grid, d);
+  // the mirror block's points move by the mirrored motion (0.02, 0.05, 0.06)
+  double mirrored = 0;
+  for (vtkIdType i = 0; i < scene.grid->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    scene.grid->GetPoint(i, x);
+    const double image[3] = { x[0], 1 - x[1], x[2] };
+    if (inside(left, image))
+      mirrored = std::max(mirrored, (Eigen::Vector3d(d->GetTuple3(i)) - Eigen::Vector3d(0.02, 0.05, 0.06)).norm());
+  }
+  std::printf("largest asymmetry / diagonal: %.3g (without the region %.3g); the mirror block off the mirrored motion by %.3g; "
+              "residual %.3g\n",
+    with / Diagonal, without / Diagonal, mirrored / Diagonal, fieldValue(out, "ConstraintResidual"));
+  CHECK(messages->Errors.empty() && messages->Warnings.empty());
+  CHECK(without > 1e-3 * Diagonal);
+  CHECK(with <= 1e-9 * Diagonal && mirrored <= 1e-9 * Diagonal);
+  CHECK(fieldValue(out, "ConstraintResidual") <= 1e-9);
+  CHECK(fieldValue(out, "HandleResidual") <= 1e-9 * Diagonal && fieldValue(out, "InvertedCells") == 0);
+}
+
+TEST(SymmetricRegionThatCannotHold)
+{
+  // the body, its own mirror image, moves across the plane: no symmetric motion does that
+  ChannelScene scene;
+  scene.body->SetRotation(0, 0, 0);
+  scene.body->SetTranslation(0, 0.05, 0);
+  auto symmetric = symmetricChannel(scene);
+  scene.deform->AddRegionConnection(symmetric->GetOutputPort());
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  const std::string warning = messages->Warnings.empty() ? "" : messages->Warnings[0];
+  std::printf("residual %.3g; warning: %s\n", fieldValue(scene.output(), "ConstraintResidual"), warning.c_str());
+  CHECK(messages->Errors.empty() && messages->Warnings.size() == 1 && warning.find("#3 (Symmetric, gap") != std::string::npos);
+  CHECK(fieldValue(scene.output(), "ConstraintResidual") > 1e-6);
+  CHECK(fieldValue(scene.output(), "HandleResidual") <= 1e-9 * Diagonal);
+}
+
+TEST(SymmetricRegionNeedsMirrorImages)
+{
+  // a region that is not symmetric about its plane is refused with the count
+  ChannelScene scene;
+  auto symmetric = symmetricChannel(scene);
+  symmetric->SetSymmetryOrigin(0, 0.45, 0);
+  scene.deform->AddRegionConnection(symmetric->GetOutputPort());
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  CHECK(messages->errorContains("have no mirror image among its points"));
+  CHECK(scene.deform->GetErrorCode() != 0);
+}
+
 TEST_MAIN

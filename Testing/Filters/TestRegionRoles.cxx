@@ -158,13 +158,14 @@ TEST(XMLDecoratorsByRole)
   std::set<int> cellSets{ mlsvtk::roles::FromPrimitive };
   for (int role = 0; role < static_cast<int>(mlsvtk::roles::Table.size()); ++role)
   {
-    if (mlsvtk::isConstraint(role) && role != mlsvtk::roles::Slip)
+    if (mlsvtk::isConstraint(role) && !mlsdeform::measuresPlaces(*mlsvtk::regionRole(role).constraint))
     {
       cellSets.insert(role);
     }
   }
   const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } },
-    { "DesignVariables", { mlsvtk::roles::Handle } } };
+    { "DesignVariables", { mlsvtk::roles::Handle } }, { "SymmetryOrigin", { mlsvtk::roles::Symmetric } },
+    { "SymmetryNormal", { mlsvtk::roles::Symmetric } } };
   for (const auto& [name, roles] : shownFor)
   {
     std::printf("shown by Role: %s\n", name.c_str());
@@ -176,8 +177,9 @@ TEST(XMLDecoratorsByRole)
 TEST(UnknownRoleThrows)
 {
   CHECK_THROWS(mlsvtk::regionRole(-1), mlsdeform::InvalidInputException);
-  CHECK_THROWS(mlsvtk::regionRole(9), mlsdeform::InvalidInputException);
-  CHECK_THROWS(mlsvtk::isConstraint(9), mlsdeform::InvalidInputException);
+  const int beyond = static_cast<int>(mlsvtk::roles::Table.size());
+  CHECK_THROWS(mlsvtk::regionRole(beyond), mlsdeform::InvalidInputException);
+  CHECK_THROWS(mlsvtk::isConstraint(beyond), mlsdeform::InvalidInputException);
   CHECK_THROWS(mlsvtk::fewestPoints(-1), mlsdeform::InvalidInputException);
 }
 
@@ -189,7 +191,8 @@ TEST(ConstraintsAndFewestPoints)
   using mlsdeform::ConstraintType;
   const std::map<int, ConstraintType> constraints{ { Planarity, ConstraintType::Planarity },
     { Circularity, ConstraintType::Circularity }, { Cylinder, ConstraintType::Cylinder },
-    { FeatureLine, ConstraintType::FeatureLine }, { Rigid, ConstraintType::Rigid }, { Slip, ConstraintType::Slip } };
+    { FeatureLine, ConstraintType::FeatureLine }, { Rigid, ConstraintType::Rigid }, { Slip, ConstraintType::Slip },
+    { Symmetric, ConstraintType::Symmetric } };
   for (int role = 0; role < static_cast<int>(Table.size()); ++role)
   {
     const bool constraint = constraints.count(role) > 0;
@@ -225,7 +228,7 @@ TEST(ConstraintRegionNames)
     CHECK(std::string(vtkConstraintRegion::GetRoleName(role)) == mlsvtk::roles::Table[role].name);
   }
   CHECK(std::string(vtkConstraintRegion::GetRoleName(-1)) == "Unknown");
-  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Slip + 1)) == "Unknown");
+  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Symmetric + 1)) == "Unknown");
 }
 
 TEST_MAIN

@@ -1,5 +1,7 @@
 #include "Solver/ConstraintProjections.h"
 
+#include "Common/KdTree.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -278,5 +280,30 @@ PointList projectToSimilarity(const PointList& rest, const PointList& x)
 PointList projectToRigid(const PointList& rest, const PointList& x)
 {
   return rest.size() < 2 ? x : transformed(Eigen::umeyama(toMatrix(rest), toMatrix(x), false), rest);
+}
+
+std::vector<int> mirrorPartners(const PointList& rest, const Plane& mirror, double tolerance)
+{
+  const KdTree tree(rest);
+  std::vector<int> partner(rest.size(), -1);
+  for (std::size_t i = 0; i < rest.size(); ++i)
+  {
+    const Vec3 image = rest[i] - 2 * mirror.normal.dot(rest[i] - mirror.point) * mirror.normal;
+    const int j = tree.nearest(image);
+    partner[i] = j >= 0 && (rest[j] - image).norm() <= tolerance ? j : -1;
+  }
+  return partner;
+}
+
+PointList projectToSymmetric(const PointList& rest, const PointList& x, const std::vector<int>& partner, const Plane& mirror)
+{
+  const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() - 2 * mirror.normal * mirror.normal.transpose();
+  PointList projected(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    const std::size_t j = static_cast<std::size_t>(partner[i]);
+    projected[i] = rest[i] + 0.5 * ((x[i] - rest[i]) + R * (x[j] - rest[j]));
+  }
+  return projected;
 }
 } // namespace mlsdeform

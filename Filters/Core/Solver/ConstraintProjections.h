@@ -48,4 +48,14 @@ PointList projectToSimilarity(const PointList& rest, const PointList& x);
 /// The best rigid transform (rotation, translation) of the rest positions onto x, applied to the
 /// rest positions (Kabsch / Umeyama without scale): the rigid constraint.
 PointList projectToRigid(const PointList& rest, const PointList& x);
+
+/// The mirror image of every rest position among the rest positions: partner[i] is the index of
+/// the position nearest to x_i reflected in the plane, or -1 when that one lies farther than
+/// tolerance (the positions are not symmetric about the plane there).
+std::vector<int> mirrorPartners(const PointList& rest, const Plane& mirror, double tolerance);
+
+/// The nearest displacement field that is mirror-symmetric about the plane: with d = x - rest and
+/// R = I - 2 n n^T, position i gets rest_i + (d_i + R d_partner(i)) / 2 (an orthogonal projection:
+/// the pairs are an involution). The symmetric constraint.
+PointList projectToSymmetric(const PointList& rest, const PointList& x, const std::vector<int>& partner, const Plane& mirror);
 } // namespace mlsdeform

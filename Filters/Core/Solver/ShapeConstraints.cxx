@@ -68,6 +68,17 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     {
       projectToCylinder(c.positions, set.restAxis); // a zero axis: the fit searches all directions
     }
+    if (c.type == ConstraintType::Symmetric)
+    {
+      // mirror images within round-off of float coordinates (1e-6 of the set's extent)
+      set.partner = mirrorPartners(c.positions, c.mirror, 1e-6 * boundingBox(c.positions).size().norm());
+      const long missing = std::count(set.partner.begin(), set.partner.end(), -1);
+      if (missing > 0)
+      {
+        throw InvalidInputException(which(t) + ": " + std::to_string(missing) + " of its " + std::to_string(n) +
+          " points have no mirror image among its points: select a region that is symmetric about the plane");
+      }
+    }
     if (c.type == ConstraintType::Slip)
     {
       set.restPlane = fitPlane(c.positions);
@@ -90,14 +101,14 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     };
     // 1^T Phi_t / n, the mean row of the mean-centered formulation: dense over the set's samples.
     Eigen::SparseVector<double> meanRow(Subspace.cols());
-    if (formulation == ConstraintFormulation::MeanCentered && c.type != ConstraintType::Slip)
+    if (formulation == ConstraintFormulation::MeanCentered && !measuresPlaces(c.type))
     {
       const Eigen::VectorXd dense = Subspace.middleRows(set.begin, n).transpose() * Eigen::VectorXd::Constant(n, 1.0 / n);
       meanRow = dense.sparseView();
     }
     for (long i = 0; i < n; ++i)
     {
-      if (c.type == ConstraintType::Slip)
+      if (measuresPlaces(c.type))
       {
         addRow(i, 1.0); // x_i itself: C_t = I
       }
@@ -191,6 +202,9 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
       case ConstraintType::Slip:
         projections[t] = projectTo(set.restPlane, y);
         break;
+      case ConstraintType::Symmetric:
+        projections[t] = projectToSymmetric(rest, y, set.partner, set.constraint.mirror);
+        break;
     }
   }
   return projections;
@@ -217,7 +231,7 @@ Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& posi
     {
       v.row(i) = (projections[t][i] - rest[i]).transpose();
     }
-    if (set.constraint.type != ConstraintType::Slip) // Slip: C_t = I, v = P_t - x_t
+    if (!measuresPlaces(set.constraint.type)) // Slip, Symmetric: C_t = I, v = P_t - x_t
     {
       const Eigen::RowVector3d mean = v.colwise().mean();
       v.rowwise() -= mean;

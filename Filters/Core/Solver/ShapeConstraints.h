@@ -19,6 +19,12 @@
 // so the local step asks for the tangential part of the current displacement only. A slip plane
 // normal to a coordinate axis a is exact and needs no iteration: its term asks d_a = 0 at its
 // points, which touches the system of coordinate a only (axisNormal(a)).
+//
+// The symmetric constraint (a car's or a hull's symmetry plane) is about displacements too: the
+// region's displacement field is the mirror image of itself in a plane the user gives, so that
+// an asymmetric handle motion gives a symmetric variant. Its C_t is the identity as well (a
+// translation across the plane is not symmetric), and P_t averages each point's displacement with
+// the mirrored displacement of its mirror image.
 #pragma once
 
 #include "Solver/ConstraintProjections.h"
@@ -33,7 +39,8 @@ enum class ConstraintType
   Cylinder,
   FeatureLine,
   Rigid,
-  Slip
+  Slip,
+  Symmetric
 };
 /// One row per constraint type: its name and the fewest points its projection needs. A new type
 /// is a row here, a value above and its projection (ConstraintProjections.h).
@@ -43,9 +50,9 @@ struct ConstraintTypeRow
   std::size_t fewestPoints;
 };
 inline constexpr ConstraintTypeRow ConstraintTypes[] = {
-  { "Planarity", 3 }, { "Circularity", 3 }, { "Cylinder", 6 }, { "FeatureLine", 2 }, { "Rigid", 2 }, { "Slip", 3 },
+  { "Planarity", 3 }, { "Circularity", 3 }, { "Cylinder", 6 }, { "FeatureLine", 2 }, { "Rigid", 2 }, { "Slip", 3 }, { "Symmetric", 1 },
 };
-static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Slip) + 1,
+static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Symmetric) + 1,
   "one row per constraint type");
 inline const char* constraintName(ConstraintType type)
 {
@@ -68,7 +75,14 @@ struct ShapeConstraint
   ConstraintType type = ConstraintType::Planarity;
   PointList positions;
   double weight = 1.0;
+  Plane mirror; // a Symmetric set's plane
 };
+
+/// Whether a constraint measures its points' places, not their shape: C_t = I (Slip, Symmetric).
+inline bool measuresPlaces(ConstraintType type)
+{
+  return type == ConstraintType::Slip || type == ConstraintType::Symmetric;
+}
 
 class ShapeConstraints
 {
@@ -123,6 +137,7 @@ private:
     Vec3 restAxis = Vec3::Zero();     // the cylinder fit's axis of the rest positions
     Plane restPlane;                  // the slip constraint's plane of the rest positions
     int slipAxis = -1;                // the axis a slip plane is normal to, or -1
+    std::vector<int> partner;         // a Symmetric set's mirror image of each point
   };
 
   std::vector<Set> Sets;
