@@ -174,6 +174,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     figures.setupTime = session.setupTime();
     figures.diagonal = session.diagonal();
     figures.targetCorrection = session.targetCorrection();
+    figures.targetConflicts = session.targetConflicts();
+    figures.constraintConflicts = session.constraintConflicts();
 
     const double constraintResidual = reportSolution(output->GetFieldData(), session.model(), session.regions(), session.iteratedConstraints(), solution, figures);
     if (this->MeshQuality)

@@ -336,7 +336,8 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
         reportConflicts(z);
       }
     }
-    if (!ConstraintPositions.empty())
+    // (Slip sets alone: the slide puts their points on their planes; the iteration's residuals stand)
+    if (std::count(SetIsSlip.begin(), SetIsSlip.end(), 0) > 0)
     {
       measureConstraints();
     }

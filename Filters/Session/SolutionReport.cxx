@@ -1,5 +1,6 @@
 #include "Session/SolutionReport.h"
 
+#include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 
 #include <vtkDoubleArray.h>
@@ -85,6 +86,17 @@ double reportSolution(vtkFieldData* field, const SpaceDeformation& model, const 
   addField(field, "HandleResidual", handleResidual);
   addField(field, "FixedResidual", fixedResidual);
   addField(field, "TargetCorrection", figures.targetCorrection);
+  for (const auto& [name, text] : { std::make_pair(fields::TargetConflicts, &figures.targetConflicts),
+         std::make_pair(fields::ConstraintConflicts, &figures.constraintConflicts) })
+  {
+    if (!text->empty())
+    {
+      vtkNew<vtkStringArray> conflicts;
+      conflicts->SetName(name);
+      conflicts->InsertNextValue(*text);
+      field->AddArray(conflicts);
+    }
+  }
   addField(field, "ReciprocalCondition", model.reciprocalCondition());
   addField(field, "Resampled", figures.resampled ? 1 : 0);
   addField(field, "Refactorized", figures.refactorized ? 1 : 0);

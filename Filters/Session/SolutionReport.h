@@ -6,6 +6,7 @@
 #include "Session/RegionInputs.h"
 #include "Solver/SpaceDeformation.h"
 
+#include <string>
 #include <vector>
 
 class vtkFieldData;
@@ -21,6 +22,7 @@ struct SolutionFigures
   bool resampled = false, refactorized = false;
   double diagonal = 1; // of the bounding box of all processes' points: the constraint residuals' unit
   double targetCorrection = 0; // the largest residual of the penalty solution that exact targets made up
+  std::string targetConflicts, constraintConflicts; // the regions that cannot hold exactly (DeformationSession)
 };
 
 /// Adds the figures of the solution of model for regions to field (one tuple per region of

@@ -19,6 +19,8 @@ constexpr const char* DesignVariableBounds = "DesignVariableBounds"; // field da
 constexpr const char* PrescribedDerivatives = "PrescribedDisplacementDerivatives"; // point data: d(dbar)/dp, 3 per variable
 // MLS Deform / Shell Deform output
 constexpr const char* Displacement = "Displacement";       // point data, 3 components
+constexpr const char* TargetConflicts = "TargetConflicts";         // field data, string: regions whose targets disagree
+constexpr const char* ConstraintConflicts = "ConstraintConflicts"; // field data, string: constraint regions that cannot hold exactly
 constexpr const char* SensitivityPrefix = "dX/d";          // point data "dX/d<variable>", 3 components (ComputeSensitivities)
 constexpr const char* ObjectiveSensitivity = "ObjectiveSensitivity"; // field data: dJ/dp per variable (ObjectiveGradientArray)
 constexpr const char* SensitivityMethod = "SensitivityMethod";       // field data, string: how the derivatives were computed

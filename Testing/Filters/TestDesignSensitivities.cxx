@@ -384,17 +384,18 @@ vtkSmartPointer<vtkPolyData> tube()
   return mesh;
 }
 
-TEST(CylinderConstraint)
+// The tube bent sideways at its top, a band (Cylinder) or a ring (Circularity) in the middle kept
+// by its constraint: the sensitivities and the constraint exact.
+void checkTubeConstraint(int role, double halfHeight)
 {
-  // a tube bent sideways at its top, its middle band kept cylindrical
   vtkNew<vtkTrivialProducer> source;
   source->SetOutput(tube());
   auto fixed = region(source->GetOutputPort(), vtkConstraintRegion::Fixed, { -1, 1, -1, 1, -0.01, 0.01 });
   auto handle = region(source->GetOutputPort(), vtkConstraintRegion::Handle, { -1, 1, -1, 1, 1.99, 2.01 });
-  auto band = region(source->GetOutputPort(), vtkConstraintRegion::Cylinder, { -1, 1, -1, 1, 0.79, 1.21 });
+  auto kept = region(source->GetOutputPort(), role, { -1, 1, -1, 1, 1 - halfHeight, 1 + halfHeight });
   vtkNew<vtkMLSDeformFilter> deform;
   deform->SetInputConnection(source->GetOutputPort());
-  for (auto* r : { fixed.Get(), handle.Get(), band.Get() })
+  for (auto* r : { fixed.Get(), handle.Get(), kept.Get() })
     deform->AddRegionConnection(r->GetOutputPort());
   deform->SetNumberOfSamples(200);
   deform->SetTolerance(1e-12);
@@ -403,6 +404,16 @@ TEST(CylinderConstraint)
     { { "sway", 0, { { handle, { 1, 0, 0 } } }, 0.1, -0.3, 0.3, 1e-3 }, { "flare", 2, { { handle, { 1, 1, 0 } } }, 0.1, -0.3, 0.3, 1e-3 } },
     IterativeBound);
   checkConstraintExact(deform);
+}
+
+TEST(CylinderConstraint)
+{
+  checkTubeConstraint(vtkConstraintRegion::Cylinder, 0.21); // five rings
+}
+
+TEST(CircularityConstraint)
+{
+  checkTubeConstraint(vtkConstraintRegion::Circularity, 0.01); // one ring
 }
 
 // A deformation of the box with a handle; regions and filter for the bad-input tests.

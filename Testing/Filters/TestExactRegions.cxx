@@ -8,6 +8,7 @@
 
 #include <vtkIdList.h>
 #include <vtkMath.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <Eigen/Dense>
@@ -172,6 +173,8 @@ TEST(TargetsThatDisagreeMeetHalfWayAndAreReported)
   std::printf("warning: %s\n", warning.c_str());
   CHECK(warning.find("#1 (Fixed, up to 0.04") != std::string::npos && warning.find("#2 (Handle, up to 0.04") != std::string::npos &&
     warning.find("#0") == std::string::npos);
+  auto* conflicts = vtkStringArray::SafeDownCast(scene.output()->GetFieldData()->GetAbstractArray("TargetConflicts"));
+  CHECK(conflicts && conflicts->GetValue(0) == "#1 (Fixed, up to 0.040000), #2 (Handle, up to 0.040000)");
   vtkPointSet* out = scene.output();
   scene.body->Update();
   scene.outlet->Update();
@@ -336,6 +339,9 @@ TEST(ContradictingConstraintsAreNamedAndStaySoft)
   std::printf("residual %.3g of the diagonal; warning: %s\n", fieldValue(out, "ConstraintResidual"), warning.c_str());
   CHECK(messages->Errors.empty() && messages->Warnings.size() == 1);
   CHECK(warning.find("#3 (Planarity, gap") != std::string::npos);
+  // the same in field data, for a script
+  auto* conflicts = vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("ConstraintConflicts"));
+  CHECK(conflicts && conflicts->GetValue(0).find("#3 (Planarity, gap") == 0);
   CHECK(fieldValue(out, "ConstraintResidual") > 1e-6);
   CHECK(fieldValue(out, "HandleResidual") <= 1e-9 * Diagonal && fieldValue(out, "FixedResidual") <= 1e-9 * Diagonal);
   CHECK(fieldValue(out, "InvertedCells") == 0);
