@@ -48,7 +48,7 @@ static_assert(vtkConstraintRegion::Handle == mlsvtk::roles::Handle && vtkConstra
     vtkConstraintRegion::Cylinder == mlsvtk::roles::Cylinder && vtkConstraintRegion::FeatureLine == mlsvtk::roles::FeatureLine &&
     vtkConstraintRegion::Rigid == mlsvtk::roles::Rigid && vtkConstraintRegion::FromPrimitive == mlsvtk::roles::FromPrimitive &&
     vtkConstraintRegion::Slip == mlsvtk::roles::Slip && vtkConstraintRegion::Symmetric == mlsvtk::roles::Symmetric &&
-    vtkConstraintRegion::Symmetric + 1 == mlsvtk::roles::Table.size(),
+    vtkConstraintRegion::Coplanar == mlsvtk::roles::Coplanar && vtkConstraintRegion::Coplanar + 1 == mlsvtk::roles::Table.size(),
   "vtkConstraintRegion::Roles follows mlsvtk::roles");
 
 static_assert(vtkConstraintRegion::TranslateVariable == mlsvtk::Translate && vtkConstraintRegion::RotateVariable == mlsvtk::Rotate &&
@@ -667,6 +667,13 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
       this->SymmetryNormal[1], this->SymmetryNormal[2] };
     mirror->InsertNextTuple(plane);
     output->GetFieldData()->AddArray(mirror);
+  }
+  if (role == Coplanar)
+  {
+    vtkNew<vtkIntArray> group;
+    group->SetName(mlsvtk::fields::CoplanarGroup);
+    group->InsertNextValue(this->CoplanarGroup);
+    output->GetFieldData()->AddArray(group);
   }
   if (!variables.empty())
   {

@@ -13,6 +13,8 @@
  *    SymmetryOrigin with normal SymmetryNormal (a car's or a hull's symmetry plane), so that an
  *    asymmetric handle motion gives a symmetric variant; every position needs its mirror image
  *    among the region's positions;
+ *  - Coplanar: the positions of every Coplanar region with the same CoplanarGroup stay on one
+ *    common plane (wheel contact patches, a split flange);
  *  - FromPrimitive (with SelectionMode Primitive): the constraint that keeps the selected
  *    primitive of a vtkPrimitiveDetector output (section 6.3): Planarity for a plane, Cylinder for
  *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
@@ -32,7 +34,7 @@
  * Output: vtkPolyData with the selected positions as vertices, point array
  * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
  * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight"
- * (and for Symmetric "SymmetryPlane": origin and normal).
+ * (and for Symmetric "SymmetryPlane": origin and normal; for Coplanar "CoplanarGroup").
  * With CellSets, each cell's points in turn (a point of several cells once per cell) and point
  * array "ConstraintSet" (the set a position belongs to). Plug it into MLSDeform's Regions input.
  */
@@ -70,7 +72,8 @@ public:
     Rigid,
     FromPrimitive,
     Slip, // after FromPrimitive: the values of saved states stay
-    Symmetric
+    Symmetric,
+    Coplanar
   };
   static const char* GetRoleName(int role);
 
@@ -85,7 +88,7 @@ public:
 
   ///@{
   /// The region's role (default Handle).
-  vtkSetClampMacro(Role, int, Handle, Symmetric);
+  vtkSetClampMacro(Role, int, Handle, Coplanar);
   vtkGetMacro(Role, int);
   ///@}
 
@@ -206,6 +209,12 @@ public:
   vtkGetVector3Macro(SymmetryNormal, double);
   ///@}
 
+  ///@{
+  /// The group of a Coplanar region: the Coplanar regions of one group share a plane (default 0).
+  vtkSetClampMacro(CoplanarGroup, int, 0, VTK_INT_MAX);
+  vtkGetMacro(CoplanarGroup, int);
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
   ///@{
@@ -236,6 +245,7 @@ protected:
   bool UseCentroid = true;
   double Pivot[3] = { 0.0, 0.0, 0.0 };
   double Weight = 1.0;
+  int CoplanarGroup = 0;
   double SymmetryOrigin[3] = { 0.0, 0.0, 0.0 };
   double SymmetryNormal[3] = { 0.0, 1.0, 0.0 };
   int NumberOfSelections = 0;

@@ -32,7 +32,8 @@ std::vector<RegionKey> regionKeys(const std::vector<RegionInput>& regions, bool 
     if (isConstraint(r.role) == constraints)
     {
       keys.push_back({ r.version, r.role, r.weight,
-        { r.mirror.point.x(), r.mirror.point.y(), r.mirror.point.z(), r.mirror.normal.x(), r.mirror.normal.y(), r.mirror.normal.z() } });
+        { r.mirror.point.x(), r.mirror.point.y(), r.mirror.point.z(), r.mirror.normal.x(), r.mirror.normal.y(), r.mirror.normal.z(),
+          static_cast<double>(r.group) } });
     }
   }
   return keys;

@@ -58,8 +58,8 @@ struct RegionKey
   long version; // of its gathered positions (and sets)
   int role;
   double weight;
-  std::vector<double> plane; // a Symmetric region's mirror plane (point, normal)
-  bool operator==(const RegionKey& o) const { return version == o.version && role == o.role && weight == o.weight && plane == o.plane; }
+  std::vector<double> parameters; // a Symmetric region's mirror plane (point, normal), a Coplanar region's group
+  bool operator==(const RegionKey& o) const { return version == o.version && role == o.role && weight == o.weight && parameters == o.parameters; }
 };
 
 /// Stage 1: what the subspace was built from.

@@ -97,6 +97,8 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
       region.mirror.point = Vec3(p[0], p[1], p[2]);
       region.mirror.normal = normal.normalized();
     }
+    vtkDataArray* group = data->GetFieldData()->GetArray(fields::CoplanarGroup);
+    region.group = region.role == roles::Coplanar && group ? static_cast<int>(group->GetTuple1(0)) : 0;
     Stamp stamp = pointsStamp({ data });
     if (stamp != region.stamp)
     {
@@ -170,7 +172,7 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   const ConstraintType type = *regionRole(region.role).constraint;
   if (region.gathered.sets.empty())
   {
-    shapes.push_back({ type, region.gathered.positions, region.weight, region.mirror });
+    shapes.push_back({ type, region.gathered.positions, region.weight, region.mirror, region.group });
     return;
   }
   std::map<int, PointList> sets;
@@ -182,7 +184,7 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   for (auto& [id, positions] : sets)
   {
     const double weight = share * static_cast<double>(positions.size());
-    shapes.push_back({ type, std::move(positions), weight, region.mirror });
+    shapes.push_back({ type, std::move(positions), weight, region.mirror, region.group });
   }
 }
 

@@ -22,6 +22,7 @@ struct RegionInput
   int role = 0; // Vocabulary/RegionRoles.h
   double weight = 1;
   mlsdeform::Plane mirror; // a Symmetric region's plane (unit normal)
+  int group = 0;           // a Coplanar region's group
   Stamp stamp;
   mlsdeform::PointList localPositions;
   std::vector<int> localSets;           // a ConstraintSet per local position (CellSets), or empty

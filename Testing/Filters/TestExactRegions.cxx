@@ -9,6 +9,8 @@
 #include <vtkIdList.h>
 #include <vtkMath.h>
 #include <vtkStringArray.h>
+
+#include "Solver/ConstraintProjections.h"
 #include <vtkUnstructuredGrid.h>
 
 #include <Eigen/Dense>
@@ -445,6 +447,74 @@ TEST(SymmetricRegionNeedsMirrorImages)
   scene.deform->Update();
   CHECK(messages->errorContains("have no mirror image among its points"));
   CHECK(scene.deform->GetErrorCode() != 0);
+}
+
+namespace
+{
+const double RightPlate[6] = { 1.36, 1.64, 0.24, 0.76, 0.49, 0.51 }; // the plate's twin behind the body
+
+// The largest distance of the output points in the boxes from the least-squares plane of all of them.
+double largestOffCommonPlane(vtkPointSet* rest, vtkDataArray* d, std::initializer_list<const double*> boxes)
+{
+  mlsdeform::PointList y;
+  for (vtkIdType i = 0; i < rest->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    rest->GetPoint(i, x);
+    for (const double* box : boxes)
+      if (inside(box, x))
+        y.push_back(mlsdeform::Vec3(x) + mlsdeform::Vec3(d->GetTuple3(i)));
+  }
+  const mlsdeform::Plane plane = mlsdeform::fitPlane(y);
+  return plane.farthest;
+}
+}
+
+TEST(CoplanarRegionsShareOnePlane)
+{
+  // two plates in the plane z = 0.5, before and behind the body that rises and turns: the soft
+  // solution bends them apart, the exact one keeps them on one plane
+  double off[2];
+  for (int exact = 0; exact < 2; ++exact)
+  {
+    ChannelScene scene;
+    auto left = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, Plate);
+    auto right = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, RightPlate);
+    scene.deform->AddRegionConnection(left->GetOutputPort());
+    scene.deform->AddRegionConnection(right->GetOutputPort());
+    scene.deform->SetExactConstraints(exact);
+    auto messages = MessageCollector::watch(scene.deform);
+    scene.deform->Update();
+    CHECK(messages->Errors.empty() && messages->Warnings.empty());
+    off[exact] = largestOffCommonPlane(scene.grid, scene.output()->GetPointData()->GetArray("Displacement"), { Plate, RightPlate });
+    if (exact)
+    {
+      CHECK(fieldValue(scene.output(), "ConstraintResidual") <= 1e-9);
+      CHECK(fieldValue(scene.output(), "InvertedCells") == 0);
+    }
+  }
+  std::printf("the two plates off their common plane / diagonal: exact %.3g, soft %.3g\n", off[1] / Diagonal, off[0] / Diagonal);
+  CHECK(off[1] <= 1e-9 * Diagonal);
+  CHECK(off[0] > 1e-6 * Diagonal);
+}
+
+TEST(CoplanarRegionsOnParallelWallsConflict)
+{
+  // patches of the fixed inlet (x = 0) and outlet (x = 2) planes cannot share a plane
+  ChannelScene scene;
+  const double inletPatch[6] = { -0.01, 0.01, 0.24, 0.76, 0.24, 0.76 }, outletPatch[6] = { 1.99, 2.01, 0.24, 0.76, 0.24, 0.76 };
+  auto a = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, inletPatch);
+  auto b = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, outletPatch);
+  scene.deform->AddRegionConnection(a->GetOutputPort());
+  scene.deform->AddRegionConnection(b->GetOutputPort());
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  auto* conflicts = vtkStringArray::SafeDownCast(scene.output()->GetFieldData()->GetAbstractArray("ConstraintConflicts"));
+  const std::string named = conflicts ? conflicts->GetValue(0) : "";
+  std::printf("conflicts: %s\n", named.c_str());
+  CHECK(messages->Errors.empty() && messages->Warnings.size() == 1);
+  CHECK(named.find("#3 (Coplanar, gap") != std::string::npos && named.find("#4 (Coplanar, gap") != std::string::npos);
+  CHECK(fieldValue(scene.output(), "FixedResidual") <= 1e-9 * Diagonal);
 }
 
 TEST_MAIN

@@ -165,7 +165,7 @@ TEST(XMLDecoratorsByRole)
   }
   const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } },
     { "DesignVariables", { mlsvtk::roles::Handle } }, { "SymmetryOrigin", { mlsvtk::roles::Symmetric } },
-    { "SymmetryNormal", { mlsvtk::roles::Symmetric } } };
+    { "SymmetryNormal", { mlsvtk::roles::Symmetric } }, { "CoplanarGroup", { mlsvtk::roles::Coplanar } } };
   for (const auto& [name, roles] : shownFor)
   {
     std::printf("shown by Role: %s\n", name.c_str());
@@ -192,7 +192,7 @@ TEST(ConstraintsAndFewestPoints)
   const std::map<int, ConstraintType> constraints{ { Planarity, ConstraintType::Planarity },
     { Circularity, ConstraintType::Circularity }, { Cylinder, ConstraintType::Cylinder },
     { FeatureLine, ConstraintType::FeatureLine }, { Rigid, ConstraintType::Rigid }, { Slip, ConstraintType::Slip },
-    { Symmetric, ConstraintType::Symmetric } };
+    { Symmetric, ConstraintType::Symmetric }, { Coplanar, ConstraintType::Coplanar } };
   for (int role = 0; role < static_cast<int>(Table.size()); ++role)
   {
     const bool constraint = constraints.count(role) > 0;
@@ -228,7 +228,7 @@ TEST(ConstraintRegionNames)
     CHECK(std::string(vtkConstraintRegion::GetRoleName(role)) == mlsvtk::roles::Table[role].name);
   }
   CHECK(std::string(vtkConstraintRegion::GetRoleName(-1)) == "Unknown");
-  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Symmetric + 1)) == "Unknown");
+  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Coplanar + 1)) == "Unknown");
 }
 
 TEST_MAIN

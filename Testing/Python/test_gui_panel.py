@@ -42,6 +42,7 @@ GROUPS = {
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray'])],
     'ConstraintRegion': [
         ('Role and Weight', ['Role', 'Weight']),
+        ('Coplanar Group', ['CoplanarGroup']),
         ('Symmetry Plane', ['SymmetryOrigin', 'SymmetryNormal']),
         ('Selection', ['SelectionMode', 'NumberOfLayers', 'CellSets', 'PrimitiveId', 'Region', 'InsideOut',
                        'SelectionArray', 'Range']),

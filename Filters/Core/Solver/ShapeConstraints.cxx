@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace mlsdeform
 {
@@ -25,6 +26,19 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     }
     requireFinite(c.positions, (which(t) + " positions").c_str());
     all.insert(all.end(), c.positions.begin(), c.positions.end());
+  }
+  std::map<int, std::size_t> coplanar; // points per Coplanar group
+  for (const ShapeConstraint& c : constraints)
+  {
+    coplanar[c.group] += c.type == ConstraintType::Coplanar ? c.positions.size() : 0;
+  }
+  for (const auto& [group, count] : coplanar)
+  {
+    if (count > 0 && count < 3)
+    {
+      throw InvalidInputException("Coplanar group " + std::to_string(group) + " has " + std::to_string(count) +
+        " point(s) in all its regions; a common plane needs at least 3");
+    }
   }
   std::vector<int> outside;
   Subspace = subspaceMatrix(basis, all, &outside);
@@ -174,6 +188,21 @@ std::vector<Vec3> ShapeConstraints::restAxes() const
 
 std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& positions, std::vector<Vec3>& axes) const
 {
+  // a Coplanar group's common plane: the least-squares plane of all its current positions
+  std::map<int, PointList> groupPositions;
+  for (std::size_t t = 0; t < Sets.size(); ++t)
+  {
+    if (Sets[t].constraint.type == ConstraintType::Coplanar)
+    {
+      PointList& all = groupPositions[Sets[t].constraint.group];
+      all.insert(all.end(), positions[t].begin(), positions[t].end());
+    }
+  }
+  std::map<int, Plane> groupPlanes;
+  for (const auto& [group, all] : groupPositions)
+  {
+    groupPlanes[group] = fitPlane(all);
+  }
   // each set on its own: in parallel over the sets, the same result on any number of threads
   std::vector<PointList> projections(Sets.size());
 #pragma omp parallel for schedule(dynamic, 16)
@@ -204,6 +233,9 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
         break;
       case ConstraintType::Symmetric:
         projections[t] = projectToSymmetric(rest, y, set.partner, set.constraint.mirror);
+        break;
+      case ConstraintType::Coplanar:
+        projections[t] = projectTo(groupPlanes.at(set.constraint.group), y);
         break;
     }
   }

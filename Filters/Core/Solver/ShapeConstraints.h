@@ -25,6 +25,11 @@
 // an asymmetric handle motion gives a symmetric variant. Its C_t is the identity as well (a
 // translation across the plane is not symmetric), and P_t averages each point's displacement with
 // the mirrored displacement of its mirror image.
+//
+// The coplanar constraint keeps several regions on one common plane (wheel contact patches, a
+// split flange): every Coplanar set of one group is projected onto the least-squares plane of all
+// of the group's current positions, and its C_t is the identity too (a set's offset from the
+// common plane must cost, which a mean-centered C_t would not see).
 #pragma once
 
 #include "Solver/ConstraintProjections.h"
@@ -40,7 +45,8 @@ enum class ConstraintType
   FeatureLine,
   Rigid,
   Slip,
-  Symmetric
+  Symmetric,
+  Coplanar
 };
 /// One row per constraint type: its name and the fewest points its projection needs. A new type
 /// is a row here, a value above and its projection (ConstraintProjections.h).
@@ -50,9 +56,9 @@ struct ConstraintTypeRow
   std::size_t fewestPoints;
 };
 inline constexpr ConstraintTypeRow ConstraintTypes[] = {
-  { "Planarity", 3 }, { "Circularity", 3 }, { "Cylinder", 6 }, { "FeatureLine", 2 }, { "Rigid", 2 }, { "Slip", 3 }, { "Symmetric", 1 },
+  { "Planarity", 3 }, { "Circularity", 3 }, { "Cylinder", 6 }, { "FeatureLine", 2 }, { "Rigid", 2 }, { "Slip", 3 }, { "Symmetric", 1 }, { "Coplanar", 1 },
 };
-static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Symmetric) + 1,
+static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Coplanar) + 1,
   "one row per constraint type");
 inline const char* constraintName(ConstraintType type)
 {
@@ -76,12 +82,14 @@ struct ShapeConstraint
   PointList positions;
   double weight = 1.0;
   Plane mirror; // a Symmetric set's plane
+  int group = 0; // the Coplanar sets of one group share a plane (at least 3 points together)
 };
 
-/// Whether a constraint measures its points' places, not their shape: C_t = I (Slip, Symmetric).
+/// Whether a constraint measures its points' places, not their shape: C_t = I (Slip, Symmetric,
+/// Coplanar).
 inline bool measuresPlaces(ConstraintType type)
 {
-  return type == ConstraintType::Slip || type == ConstraintType::Symmetric;
+  return type == ConstraintType::Slip || type == ConstraintType::Symmetric || type == ConstraintType::Coplanar;
 }
 
 class ShapeConstraints
