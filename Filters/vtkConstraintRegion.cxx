@@ -48,7 +48,8 @@ static_assert(vtkConstraintRegion::Handle == mlsvtk::roles::Handle && vtkConstra
     vtkConstraintRegion::Cylinder == mlsvtk::roles::Cylinder && vtkConstraintRegion::FeatureLine == mlsvtk::roles::FeatureLine &&
     vtkConstraintRegion::Rigid == mlsvtk::roles::Rigid && vtkConstraintRegion::FromPrimitive == mlsvtk::roles::FromPrimitive &&
     vtkConstraintRegion::Slip == mlsvtk::roles::Slip && vtkConstraintRegion::Symmetric == mlsvtk::roles::Symmetric &&
-    vtkConstraintRegion::Coplanar == mlsvtk::roles::Coplanar && vtkConstraintRegion::Coplanar + 1 == mlsvtk::roles::Table.size(),
+    vtkConstraintRegion::Coplanar == mlsvtk::roles::Coplanar && vtkConstraintRegion::Distance == mlsvtk::roles::Distance &&
+    vtkConstraintRegion::Offset == mlsvtk::roles::Offset && vtkConstraintRegion::Offset + 1 == mlsvtk::roles::Table.size(),
   "vtkConstraintRegion::Roles follows mlsvtk::roles");
 
 static_assert(vtkConstraintRegion::TranslateVariable == mlsvtk::Translate && vtkConstraintRegion::RotateVariable == mlsvtk::Rotate &&
@@ -455,7 +456,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     {
       vtkWarningMacro(<< GetRoleName(role) << " region selects no point.");
     }
-    this->WriteOutput(output, role);
+    this->WriteOutput(output, role, in);
   }
   catch (const std::exception& e)
   {
@@ -486,6 +487,10 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
   if (this->SelectionMode == CellLayers && surfacePoints[0] == 0)
   {
     throw mlsdeform::InvalidInputException("SelectionMode CellLayers needs a Surface input with points (e.g. the wall patch whose layer cells are selected)");
+  }
+  if (this->Role == Offset && surfacePoints[0] == 0)
+  {
+    throw mlsdeform::InvalidInputException("Role Offset needs a Surface input: the fixed reference surface its points keep their distance from");
   }
   int role = this->Role;
   std::string problem; // a check on this process's data: every process stops if one fails
@@ -603,7 +608,7 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
   }
 }
 
-void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
+void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role, const Inputs& in)
 {
   Selection& selection = *this->Selected;
   const mlsdeform::PointList& selected = selection.positions;
@@ -668,12 +673,28 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role)
     mirror->InsertNextTuple(plane);
     output->GetFieldData()->AddArray(mirror);
   }
-  if (role == Coplanar)
+  if (role == Coplanar || role == Distance)
   {
     vtkNew<vtkIntArray> group;
-    group->SetName(mlsvtk::fields::CoplanarGroup);
-    group->InsertNextValue(this->CoplanarGroup);
+    group->SetName(mlsvtk::fields::ConstraintGroup);
+    group->InsertNextValue(this->ConstraintGroup);
     output->GetFieldData()->AddArray(group);
+  }
+  if (role == Distance)
+  {
+    vtkNew<vtkDoubleArray> axis;
+    axis->SetName(mlsvtk::fields::DistanceAxis);
+    axis->SetNumberOfComponents(3);
+    axis->InsertNextTuple(this->DistanceAxis);
+    output->GetFieldData()->AddArray(axis);
+  }
+  if (role == Offset)
+  {
+    vtkNew<vtkDoubleArray> bound;
+    bound->SetName(mlsvtk::fields::MinimumDistance);
+    bound->InsertNextValue(this->MinimumDistance);
+    output->GetFieldData()->AddArray(bound);
+    output->GetFieldData()->AddArray(mlsvtk::triangleCorners(in.surfaceSets, mlsvtk::fields::ReferenceTriangles));
   }
   if (!variables.empty())
   {

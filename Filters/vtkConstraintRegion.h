@@ -13,8 +13,13 @@
  *    SymmetryOrigin with normal SymmetryNormal (a car's or a hull's symmetry plane), so that an
  *    asymmetric handle motion gives a symmetric variant; every position needs its mirror image
  *    among the region's positions;
- *  - Coplanar: the positions of every Coplanar region with the same CoplanarGroup stay on one
+ *  - Coplanar: the positions of every Coplanar region with the same ConstraintGroup stay on one
  *    common plane (wheel contact patches, a split flange);
+ *  - Distance: the two Distance regions of one ConstraintGroup keep the distance of their
+ *    centroids (a wheelbase, a bolt spacing), or along DistanceAxis if it is not zero;
+ *  - Offset: the positions stay at least MinimumDistance away from the Surface input (port 1; a
+ *    fixed reference surface such as an inner part: a minimum wall thickness), a lower bound
+ *    active only where violated;
  *  - FromPrimitive (with SelectionMode Primitive): the constraint that keeps the selected
  *    primitive of a vtkPrimitiveDetector output (section 6.3): Planarity for a plane, Cylinder for
  *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
@@ -34,7 +39,9 @@
  * Output: vtkPolyData with the selected positions as vertices, point array
  * "PrescribedDisplacement" (the handle transform's displacement; zero for other roles) and field
  * data "Role" (the Role value; for FromPrimitive the role it stands for), "RoleName" and "Weight"
- * (and for Symmetric "SymmetryPlane": origin and normal; for Coplanar "CoplanarGroup").
+ * (and for Symmetric "SymmetryPlane": origin and normal; for Coplanar "ConstraintGroup"; for
+ * Distance "ConstraintGroup" and "DistanceAxis"; for Offset "MinimumDistance" and
+ * "ReferenceTriangles", the Surface input's polygons as triangles, 9 coordinates each).
  * With CellSets, each cell's points in turn (a point of several cells once per cell) and point
  * array "ConstraintSet" (the set a position belongs to). Plug it into MLSDeform's Regions input.
  */
@@ -73,7 +80,9 @@ public:
     FromPrimitive,
     Slip, // after FromPrimitive: the values of saved states stay
     Symmetric,
-    Coplanar
+    Coplanar,
+    Distance,
+    Offset
   };
   static const char* GetRoleName(int role);
 
@@ -88,7 +97,7 @@ public:
 
   ///@{
   /// The region's role (default Handle).
-  vtkSetClampMacro(Role, int, Handle, Coplanar);
+  vtkSetClampMacro(Role, int, Handle, Offset);
   vtkGetMacro(Role, int);
   ///@}
 
@@ -210,9 +219,24 @@ public:
   ///@}
 
   ///@{
-  /// The group of a Coplanar region: the Coplanar regions of one group share a plane (default 0).
-  vtkSetClampMacro(CoplanarGroup, int, 0, VTK_INT_MAX);
-  vtkGetMacro(CoplanarGroup, int);
+  /// The group of a Coplanar or Distance region (default 0): the Coplanar regions of one group
+  /// share a plane; the two Distance regions of one group keep their distance.
+  vtkSetClampMacro(ConstraintGroup, int, 0, VTK_INT_MAX);
+  vtkGetMacro(ConstraintGroup, int);
+  ///@}
+
+  ///@{
+  /// The axis of a Distance region (default 0, 0, 0: the distance between the two regions'
+  /// centroids; otherwise their distance along this direction).
+  vtkSetVector3Macro(DistanceAxis, double);
+  vtkGetVector3Macro(DistanceAxis, double);
+  ///@}
+
+  ///@{
+  /// The least distance of an Offset region's points from the Surface input (default 0: the
+  /// region's least distance at rest, so that the wall gets no thinner than it is).
+  vtkSetClampMacro(MinimumDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MinimumDistance, double);
   ///@}
 
   vtkMTimeType GetMTime() override;
@@ -245,7 +269,9 @@ protected:
   bool UseCentroid = true;
   double Pivot[3] = { 0.0, 0.0, 0.0 };
   double Weight = 1.0;
-  int CoplanarGroup = 0;
+  int ConstraintGroup = 0;
+  double DistanceAxis[3] = { 0.0, 0.0, 0.0 };
+  double MinimumDistance = 0.0;
   double SymmetryOrigin[3] = { 0.0, 0.0, 0.0 };
   double SymmetryNormal[3] = { 0.0, 1.0, 0.0 };
   int NumberOfSelections = 0;
@@ -262,7 +288,7 @@ private:
   void UpdateSelection(const Inputs& in, const mlsdeform::Collective& group);
   /// The selected positions with their prescribed displacements (the handle motion about the
   /// pivot, with the design variables) and their derivatives, and the role's field data.
-  void WriteOutput(vtkPolyData* output, int role);
+  void WriteOutput(vtkPolyData* output, int role, const Inputs& in);
 
   struct Selection;
   std::unique_ptr<Selection> Selected;

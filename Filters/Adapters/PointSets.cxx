@@ -6,6 +6,8 @@
 #include <vtkCompositeDataIterator.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
@@ -76,6 +78,38 @@ mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets)
     copyPoints(set, out.data() + offset);
   }
   return out;
+}
+
+vtkSmartPointer<vtkDoubleArray> triangleCorners(const std::vector<vtkPointSet*>& sets, const char* name)
+{
+  auto corners = vtkSmartPointer<vtkDoubleArray>::New();
+  corners->SetName(name);
+  corners->SetNumberOfComponents(9);
+  vtkNew<vtkGenericCell> cell;
+  vtkNew<vtkIdList> ids;
+  vtkNew<vtkPoints> points;
+  for (vtkPointSet* set : sets)
+  {
+    for (vtkIdType c = 0; c < set->GetNumberOfCells(); ++c)
+    {
+      set->GetCell(c, cell);
+      if (cell->GetCellDimension() != 2)
+      {
+        continue;
+      }
+      cell->Triangulate(0, ids, points); // 3 points per triangle
+      for (vtkIdType k = 0; k + 2 < points->GetNumberOfPoints(); k += 3)
+      {
+        double triangle[9];
+        for (int j = 0; j < 3; ++j)
+        {
+          points->GetPoint(k + j, triangle + 3 * j);
+        }
+        corners->InsertNextTuple(triangle);
+      }
+    }
+  }
+  return corners;
 }
 
 vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& positions,

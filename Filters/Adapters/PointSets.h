@@ -9,6 +9,7 @@
 #include <vector>
 
 class vtkDataObject;
+class vtkDoubleArray;
 class vtkPointSet;
 class vtkPolyData;
 
@@ -24,6 +25,10 @@ void copyPoints(vtkPointSet* set, mlsdeform::Vec3* out);
 
 /// All points of the point sets, concatenated.
 mlsdeform::PointList points(const std::vector<vtkPointSet*>& sets);
+
+/// The cells of dimension 2 of the point sets (polygons, triangles, quads, strips) as triangles
+/// (vtkCell::Triangulate): an array of 9 coordinates per triangle, named name.
+vtkSmartPointer<vtkDoubleArray> triangleCorners(const std::vector<vtkPointSet*>& sets, const char* name);
 
 /// Points (with vertices) carrying the given point arrays, one value per point.
 vtkSmartPointer<vtkPolyData> pointCloud(const mlsdeform::PointList& points,

@@ -33,7 +33,7 @@ std::vector<RegionKey> regionKeys(const std::vector<RegionInput>& regions, bool 
     {
       keys.push_back({ r.version, r.role, r.weight,
         { r.mirror.point.x(), r.mirror.point.y(), r.mirror.point.z(), r.mirror.normal.x(), r.mirror.normal.y(), r.mirror.normal.z(),
-          static_cast<double>(r.group) } });
+          static_cast<double>(r.group), r.axis.x(), r.axis.y(), r.axis.z(), r.minimumDistance } });
     }
   }
   return keys;

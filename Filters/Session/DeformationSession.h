@@ -58,7 +58,7 @@ struct RegionKey
   long version; // of its gathered positions (and sets)
   int role;
   double weight;
-  std::vector<double> parameters; // a Symmetric region's mirror plane (point, normal), a Coplanar region's group
+  std::vector<double> parameters; // a Symmetric region's mirror plane (point, normal), a Coplanar or Distance region's group, a Distance axis, an Offset bound
   bool operator==(const RegionKey& o) const { return version == o.version && role == o.role && weight == o.weight && parameters == o.parameters; }
 };
 

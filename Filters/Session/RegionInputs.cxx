@@ -14,6 +14,8 @@
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -97,8 +99,32 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
       region.mirror.point = Vec3(p[0], p[1], p[2]);
       region.mirror.normal = normal.normalized();
     }
-    vtkDataArray* group = data->GetFieldData()->GetArray(fields::CoplanarGroup);
-    region.group = region.role == roles::Coplanar && group ? static_cast<int>(group->GetTuple1(0)) : 0;
+    vtkFieldData* fieldData = data->GetFieldData();
+    vtkDataArray* group = fieldData->GetArray(fields::ConstraintGroup);
+    region.group = (region.role == roles::Coplanar || region.role == roles::Distance) && group ? static_cast<int>(group->GetTuple1(0)) : 0;
+    vtkDataArray* axis = fieldData->GetArray(fields::DistanceAxis);
+    region.axis = region.role == roles::Distance && axis && axis->GetNumberOfComponents() == 3 ? Vec3(axis->GetTuple3(0)) : Vec3::Zero();
+    if (!region.axis.allFinite())
+    {
+      throw InvalidInputException(which + " (Distance) has an axis that is not finite");
+    }
+    vtkDataArray* bound = fieldData->GetArray(fields::MinimumDistance);
+    region.minimumDistance = region.role == roles::Offset && bound ? bound->GetTuple1(0) : 0.0;
+    region.localReference.clear();
+    if (region.role == roles::Offset)
+    {
+      vtkDataArray* triangles = fieldData->GetArray(fields::ReferenceTriangles);
+      if (!triangles || triangles->GetNumberOfComponents() != 9 || !std::isfinite(region.minimumDistance))
+      {
+        throw InvalidInputException(which + " (Offset) has no reference surface (" + fields::ReferenceTriangles +
+          ", 9 coordinates per triangle) or no finite " + fields::MinimumDistance);
+      }
+      region.localReference.resize(9 * static_cast<std::size_t>(triangles->GetNumberOfTuples()));
+      for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
+      {
+        triangles->GetTuple(t, region.localReference.data() + 9 * t);
+      }
+    }
     Stamp stamp = pointsStamp({ data });
     if (stamp != region.stamp)
     {
@@ -152,6 +178,33 @@ void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const C
       region.localChanged = false;
     }
   }
+  for (std::size_t c = 0; c < regions.size(); ++c)
+  {
+    RegionInput& region = regions[c];
+    if (region.role != roles::Offset)
+    {
+      continue;
+    }
+    std::vector<double> reference = group.gather(region.localReference);
+    if (reference != region.gatheredReference || !region.reference)
+    {
+      PointList corners;
+      for (std::size_t i = 0; i + 2 < reference.size(); i += 3)
+      {
+        corners.emplace_back(reference[i], reference[i + 1], reference[i + 2]);
+      }
+      try
+      {
+        region.reference = std::make_shared<ReferenceSurface>(std::move(corners));
+      }
+      catch (const InvalidInputException& e)
+      {
+        throw InvalidInputException("Regions input #" + std::to_string(c) + " (Offset): " + e.what());
+      }
+      region.gatheredReference = std::move(reference);
+      region.version = nextVersion++;
+    }
+  }
   bool handle = false;
   for (std::size_t c = 0; c < regions.size(); ++c)
   {
@@ -169,10 +222,18 @@ void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const C
 
 void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& shapes)
 {
-  const ConstraintType type = *regionRole(region.role).constraint;
+  ShapeConstraint shape;
+  shape.type = *regionRole(region.role).constraint;
+  shape.weight = region.weight;
+  shape.mirror = region.mirror;
+  shape.group = region.group;
+  shape.axis = region.axis;
+  shape.minimumDistance = region.minimumDistance;
+  shape.reference = region.reference;
   if (region.gathered.sets.empty())
   {
-    shapes.push_back({ type, region.gathered.positions, region.weight, region.mirror, region.group });
+    shape.positions = region.gathered.positions;
+    shapes.push_back(std::move(shape));
     return;
   }
   std::map<int, PointList> sets;
@@ -183,8 +244,9 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   const double share = region.weight / static_cast<double>(region.gathered.positions.size());
   for (auto& [id, positions] : sets)
   {
-    const double weight = share * static_cast<double>(positions.size());
-    shapes.push_back({ type, std::move(positions), weight, region.mirror, region.group });
+    shape.weight = share * static_cast<double>(positions.size());
+    shape.positions = std::move(positions);
+    shapes.push_back(shape);
   }
 }
 

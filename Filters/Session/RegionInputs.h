@@ -9,6 +9,7 @@
 #include "Common/GatheredPositions.h"
 #include "Solver/ShapeConstraints.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,12 @@ struct RegionInput
   int role = 0; // Vocabulary/RegionRoles.h
   double weight = 1;
   mlsdeform::Plane mirror; // a Symmetric region's plane (unit normal)
-  int group = 0;           // a Coplanar region's group
+  int group = 0;           // a Coplanar or Distance region's group
+  mlsdeform::Vec3 axis = mlsdeform::Vec3::Zero(); // a Distance region's axis (zero: none)
+  double minimumDistance = 0; // an Offset region's bound (0: its least rest distance)
+  std::vector<double> localReference; // an Offset region's reference triangles here, 9 coordinates each
+  std::vector<double> gatheredReference; // of all processes
+  std::shared_ptr<const mlsdeform::ReferenceSurface> reference; // built from them
   Stamp stamp;
   mlsdeform::PointList localPositions;
   std::vector<int> localSets;           // a ConstraintSet per local position (CellSets), or empty
@@ -42,8 +48,8 @@ struct RegionInput
 /// non-finite positions or arrays of the wrong length.
 void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& regions);
 
-/// Gathers the regions' positions from all processes when one process's changed; a region whose
-/// gathered values change gets the version nextVersion++. Throws InvalidInputException for a
+/// Gathers the regions' positions (and an Offset region's reference surface) from all processes
+/// when one process's changed; a region whose gathered values change gets the version nextVersion++. Throws InvalidInputException for a
 /// region that selects no point anywhere and when no region is a Handle.
 void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const mlsdeform::Collective& group);
 

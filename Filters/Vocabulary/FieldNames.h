@@ -11,7 +11,10 @@ constexpr const char* Weight = "Weight";                   // field data, double
 constexpr const char* PrescribedDisplacement = "PrescribedDisplacement"; // point data, 3 components
 constexpr const char* ConstraintSet = "ConstraintSet";     // point data: the constraint set of a position (CellSets)
 constexpr const char* SymmetryPlane = "SymmetryPlane";     // field data, 6 components: a Symmetric region's origin and normal
-constexpr const char* CoplanarGroup = "CoplanarGroup";     // field data, int: a Coplanar region's group
+constexpr const char* ConstraintGroup = "ConstraintGroup"; // field data, int: a Coplanar or Distance region's group
+constexpr const char* DistanceAxis = "DistanceAxis";       // field data, 3 components: a Distance region's axis (zero: none)
+constexpr const char* MinimumDistance = "MinimumDistance"; // field data, double: an Offset region's bound (0: its rest distance)
+constexpr const char* ReferenceTriangles = "ReferenceTriangles"; // field data, 9 components: an Offset region's reference surface
 // design variables (Adapters/DesignVariables.h): on a Handle region's output and, for all
 // regions together, on MLS Deform's output
 constexpr const char* DesignVariableNames = "DesignVariableNames";   // field data, string per variable

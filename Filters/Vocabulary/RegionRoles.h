@@ -31,7 +31,7 @@ constexpr std::array<double, 3> TargetRed{ 0.9, 0.1, 0.1 }, TargetBlue{ 0.15, 0.
   Orange{ 1.0, 0.6, 0.0 };
 using mlsdeform::ConstraintType;
 /// Indexed by the role's value. Slip comes after FromPrimitive so that saved states keep their values.
-inline constexpr std::array<RegionRole, 11> Table{ {
+inline constexpr std::array<RegionRole, 13> Table{ {
   { "Handle", TargetRed, std::nullopt },
   { "Fixed", TargetBlue, std::nullopt },
   { "Planarity", Green, ConstraintType::Planarity },
@@ -43,11 +43,13 @@ inline constexpr std::array<RegionRole, 11> Table{ {
   { "Slip", Orange, ConstraintType::Slip },
   { "Symmetric", Green, ConstraintType::Symmetric },
   { "Coplanar", Green, ConstraintType::Coplanar },
+  { "Distance", Green, ConstraintType::Distance },
+  { "Offset", Green, ConstraintType::Offset },
 } };
 /// The values by name (vtkConstraintRegion's enum static_asserts that it has the same).
 constexpr int Handle = 0, Fixed = 1, Planarity = 2, Circularity = 3, Cylinder = 4, FeatureLine = 5, Rigid = 6, FromPrimitive = 7,
-              Slip = 8, Symmetric = 9, Coplanar = 10;
-static_assert(Table.size() == Coplanar + 1, "one row per role");
+              Slip = 8, Symmetric = 9, Coplanar = 10, Distance = 11, Offset = 12;
+static_assert(Table.size() == Offset + 1, "one row per role");
 }
 
 /// The row of a role value; throws mlsdeform::InvalidInputException for an unknown value.

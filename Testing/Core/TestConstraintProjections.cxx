@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <random>
 
 using namespace mlsdeform;
@@ -205,6 +207,103 @@ TEST(SymmetricProjection)
   rest.push_back(Offset + Tilt * Vec3(0, 3, 0));
   const std::vector<int> missing = mirrorPartners(rest, mirror, 1e-9);
   CHECK(missing.back() == -1);
+}
+
+TEST(DistanceTranslation)
+{
+  // two sets of 4 and 12 points: after the translations their centroids are at the asked distance,
+  // the smaller set moved three times as far; along an axis only that component counts
+  const PointList a = perturbed(PointList(4, Vec3(0, 0, 0)), 0.1, 1);
+  const PointList b = perturbed(PointList(12, Vec3(2, 1, 0)), 0.1, 2);
+  for (const Vec3 axis : { Vec3(0, 0, 0), Vec3(1, 0, 0) })
+  {
+    const Vec3 ta = distanceTranslation(a, b, axis, 1.5);
+    const Vec3 tb = -ta * 4.0 / 12.0;
+    const Vec3 e = centroid(b) + tb - centroid(a) - ta;
+    CHECK_NEAR(axis.squaredNorm() > 0 ? e.dot(axis) : e.norm(), 1.5, 1e-14);
+    CHECK_NEAR(ta.norm(), 3 * tb.norm(), 1e-14);
+    const Vec3 kept = distanceTranslation(perturbed(a, 0, 3), b, axis, axis.squaredNorm() > 0 ? (centroid(b) - centroid(a)).dot(axis)
+                                                                                        : (centroid(b) - centroid(a)).norm());
+    CHECK(kept.norm() <= 1e-14);
+  }
+}
+
+namespace
+{
+// The closed surface of the unit cube [0, 1]^3, two outward triangles per face, in shuffled order.
+PointList cubeTriangles(unsigned seed)
+{
+  std::vector<std::array<Vec3, 3>> triangles;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+    {
+      const Vec3 n = (side ? 1.0 : -1.0) * Vec3::Unit(axis);
+      const Vec3 u = Vec3::Unit((axis + 1) % 3), v = Vec3::Unit((axis + 2) % 3);
+      const Vec3 o = side * Vec3::Unit(axis);
+      Vec3 c[4] = { o, o + u, o + u + v, o + v };
+      if (u.cross(v).dot(n) < 0)
+        std::swap(c[1], c[3]);
+      triangles.push_back({ c[0], c[1], c[2] });
+      triangles.push_back({ c[0], c[2], c[3] });
+    }
+  std::shuffle(triangles.begin(), triangles.end(), std::mt19937(seed));
+  PointList corners;
+  for (const auto& t : triangles)
+    corners.insert(corners.end(), t.begin(), t.end());
+  return corners;
+}
+
+// The distance from x to the cube's surface, in closed form.
+double distanceToCube(const Vec3& x)
+{
+  const Vec3 outside = (x - Vec3::Ones()).cwiseMax(-x).cwiseMax(0.0);
+  if (outside.squaredNorm() > 0)
+    return outside.norm();
+  return std::min(x.minCoeff(), (Vec3::Ones() - x).minCoeff());
+}
+}
+
+TEST(ReferenceSurfaceNearestPoint)
+{
+  // against the closed form on points inside, outside and near edges and corners; the same in
+  // any order of the triangles
+  const ReferenceSurface surface(cubeTriangles(1)), shuffled(cubeTriangles(2));
+  CHECK(surface.triangles() == 12);
+  std::mt19937 random(4);
+  std::uniform_real_distribution<double> uniform(-0.5, 1.5);
+  for (int i = 0; i < 2000; ++i)
+  {
+    const Vec3 x(uniform(random), uniform(random), uniform(random));
+    const ReferenceSurface::Nearest q = surface.nearest(x);
+    CHECK_NEAR(q.distance, distanceToCube(x), 1e-14);
+    CHECK_NEAR(distanceToCube(q.point), 0, 1e-14);
+    CHECK(shuffled.nearest(x).point == q.point);
+  }
+}
+
+TEST(ReferenceSurfaceRefusesBadTriangles)
+{
+  CHECK_THROWS(ReferenceSurface{ PointList(6, Vec3(1, 2, 3)) }, InvalidInputException); // zero area
+  PointList corners = cubeTriangles(1);
+  corners[5].x() = std::nan("");
+  CHECK_THROWS(ReferenceSurface{ corners }, InvalidInputException);
+}
+
+TEST(OffsetProjection)
+{
+  // points outside the cube (side +1): those nearer than 0.2 go to 0.2 along their direction from
+  // the surface, those that crossed into it back out along the face normal, the others stay
+  const ReferenceSurface cube(cubeTriangles(1));
+  const PointList x{ Vec3(0.5, 0.5, 1.3), Vec3(0.5, 0.5, 1.1), Vec3(0.5, 0.5, 0.95), Vec3(1.1, 1.1, 0.5) };
+  const PointList y = projectOutside(cube, x, std::vector<double>(4, 1.0), 0.2);
+  CHECK(y[0] == x[0]);
+  CHECK_NEAR((y[1] - Vec3(0.5, 0.5, 1.2)).norm(), 0, 1e-15);
+  CHECK_NEAR((y[2] - Vec3(0.5, 0.5, 1.2)).norm(), 0, 1e-15);
+  CHECK_NEAR(distanceToCube(y[3]), 0.2, 1e-15);
+  CHECK_NEAR((y[3] - Vec3(1, 1, 0.5)).normalized().dot(Vec3(1, 1, 0).normalized()), 1, 1e-15);
+  // a point inside that must stay inside (side -1) is kept 0.2 from the walls
+  const PointList inside = projectOutside(cube, { Vec3(0.5, 0.5, 0.9) }, { -1.0 }, 0.2);
+  CHECK_NEAR((inside[0] - Vec3(0.5, 0.5, 0.8)).norm(), 0, 1e-15);
 }
 
 TEST_MAIN

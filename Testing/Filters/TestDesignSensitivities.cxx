@@ -13,6 +13,7 @@
 #include <vtkErrorCode.h>
 #include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
+#include <vtkPlaneSource.h>
 #include <vtkStringArray.h>
 #include <vtkTransform.h>
 #include <vtkTransformFilter.h>
@@ -337,17 +338,20 @@ TEST(TiltedSlipPlane)
   checkSlidingBody(30, IterativeBound);
 }
 
-TEST(PlanarityConstraint)
+// A box twisted and lifted at one end with constraint regions made by constraints(its output
+// port): the derivatives against central differences, and the constraints exact. Returns the
+// deformation.
+vtkSmartPointer<vtkMLSDeformFilter> checkTwistedBox(const std::function<std::vector<vtkSmartPointer<vtkConstraintRegion>>(vtkAlgorithmOutput*)>& constraints)
 {
-  // a box twisted and lifted at one end with a planar patch on its front face
   vtkNew<vtkTrivialProducer> source;
   source->SetOutput(tetrahedralBox(6));
   auto fixed = region(source->GetOutputPort(), vtkConstraintRegion::Fixed, { -0.01, 0.01, -0.01, 1.01, -0.01, 1.01 });
   auto handle = region(source->GetOutputPort(), vtkConstraintRegion::Handle, { 1.82, 2.01, -0.01, 1.01, -0.01, 1.01 });
-  auto planar = region(source->GetOutputPort(), vtkConstraintRegion::Planarity, { 0.6, 1.4, -0.01, 0.01, -0.01, 1.01 });
-  vtkNew<vtkMLSDeformFilter> deform;
+  auto deform = vtkSmartPointer<vtkMLSDeformFilter>::New();
   deform->SetInputConnection(source->GetOutputPort());
-  for (auto* r : { fixed.Get(), handle.Get(), planar.Get() })
+  std::vector<vtkSmartPointer<vtkConstraintRegion>> regions = constraints(source->GetOutputPort());
+  regions.insert(regions.begin(), { fixed, handle });
+  for (auto& r : regions)
     deform->AddRegionConnection(r->GetOutputPort());
   deform->SetNumberOfSamples(200);
   deform->SetTolerance(1e-12);
@@ -359,6 +363,54 @@ TEST(PlanarityConstraint)
   CHECK(std::string(vtkStringArray::SafeDownCast(deform->GetOutputDataObject(0)->GetFieldData()->GetAbstractArray("SensitivityMethod"))
                       ->GetValue(0))
           .find("implicit differentiation") != std::string::npos);
+  return deform;
+}
+
+TEST(PlanarityConstraint)
+{
+  // a planar patch on the front face
+  checkTwistedBox([](vtkAlgorithmOutput* box) {
+    return std::vector<vtkSmartPointer<vtkConstraintRegion>>{ region(box, vtkConstraintRegion::Planarity,
+      { 0.6, 1.4, -0.01, 0.01, -0.01, 1.01 }) };
+  });
+}
+
+TEST(DistanceConstraint)
+{
+  // two patches of the front face keep the distance of their centroids
+  checkTwistedBox([](vtkAlgorithmOutput* box) {
+    return std::vector<vtkSmartPointer<vtkConstraintRegion>>{ region(box, vtkConstraintRegion::Distance, { 0.3, 0.7, -0.01, 0.01, -0.01, 1.01 }),
+      region(box, vtkConstraintRegion::Distance, { 1.3, 1.7, -0.01, 0.01, -0.01, 1.01 }) };
+  });
+}
+
+TEST(OffsetConstraint)
+{
+  // the top face's middle keeps 0.35 from a plane above it (0.4 at rest; the lift pushes the
+  // part near the handle nearer: active there, not at the other end)
+  const auto deform = checkTwistedBox([](vtkAlgorithmOutput* box) {
+    auto skin = region(box, vtkConstraintRegion::Offset, { 0.9, 1.7, -0.01, 1.01, 0.99, 1.01 });
+    vtkNew<vtkPlaneSource> reference;
+    reference->SetOrigin(-1, -1, 1.4);
+    reference->SetPoint1(3, -1, 1.4);
+    reference->SetPoint2(-1, 2, 1.4);
+    reference->Update();
+    skin->SetInputData(1, reference->GetOutput()); // held by the region (a port would not hold its source)
+    skin->SetMinimumDistance(0.35);
+    return std::vector<vtkSmartPointer<vtkConstraintRegion>>{ skin };
+  });
+  // active: the skin's highest point sits on the bound
+  auto* out = vtkPointSet::SafeDownCast(deform->GetOutputDataObject(0));
+  double highest = -1;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    out->GetPoint(i, x);
+    if (x[0] > 0.85 && x[0] < 1.75 && x[2] > 0.9)
+      highest = std::max(highest, x[2]);
+  }
+  std::printf("the skin's least distance from the plane: %.9f (bound 0.35)\n", 1.4 - highest);
+  CHECK(std::abs(1.4 - highest - 0.35) <= 1e-6); // the output's float points
 }
 
 // A tube of radius 0.5 about the z axis, height 2, as triangles (rings every 0.1, 32 around).

@@ -7,7 +7,9 @@
 #include "FilterTestUtilities.h"
 
 #include <vtkIdList.h>
+#include <vtkDoubleArray.h>
 #include <vtkMath.h>
+#include <vtkPlaneSource.h>
 #include <vtkStringArray.h>
 
 #include "Solver/ConstraintProjections.h"
@@ -27,6 +29,7 @@ const double Diagonal = std::sqrt(6.0); // of the box [0,2] x [0,1] x [0,1]
 const double Inlet[6] = { -0.01, 0.01, -0.01, 1.01, -0.01, 1.01 };
 const double Outlet[6] = { 1.99, 2.01, -0.01, 1.01, -0.01, 1.01 };
 const double Body[6] = { 0.74, 1.26, 0.24, 0.76, 0.24, 0.76 };
+const double InletPatch[6] = { -0.01, 0.01, 0.24, 0.76, 0.24, 0.76 }; // the middle of the inlet plane
 
 bool inside(const double box[6], const double x[3])
 {
@@ -453,6 +456,20 @@ namespace
 {
 const double RightPlate[6] = { 1.36, 1.64, 0.24, 0.76, 0.49, 0.51 }; // the plate's twin behind the body
 
+// The output points (rest plus Displacement) in a box.
+mlsdeform::PointList deformedIn(vtkPointSet* rest, vtkDataArray* d, const double box[6])
+{
+  mlsdeform::PointList y;
+  for (vtkIdType i = 0; i < rest->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    rest->GetPoint(i, x);
+    if (inside(box, x))
+      y.push_back(mlsdeform::Vec3(x) + mlsdeform::Vec3(d->GetTuple3(i)));
+  }
+  return y;
+}
+
 // The largest distance of the output points in the boxes from the least-squares plane of all of them.
 double largestOffCommonPlane(vtkPointSet* rest, vtkDataArray* d, std::initializer_list<const double*> boxes)
 {
@@ -468,6 +485,22 @@ double largestOffCommonPlane(vtkPointSet* rest, vtkDataArray* d, std::initialize
   const mlsdeform::Plane plane = mlsdeform::fitPlane(y);
   return plane.farthest;
 }
+
+// Updates a scene whose constraints contradict each other or the targets: one warning, no error,
+// the targets still exact; returns the regions named in ConstraintConflicts.
+std::string namedConflicts(ChannelScene& scene)
+{
+  auto messages = MessageCollector::watch(scene.deform);
+  scene.deform->Update();
+  auto* conflicts = vtkStringArray::SafeDownCast(scene.output()->GetFieldData()->GetAbstractArray("ConstraintConflicts"));
+  const std::string named = conflicts ? conflicts->GetValue(0) : "";
+  std::printf("conflicts: %s\n", named.c_str());
+  CHECK(messages->Errors.empty() && messages->Warnings.size() == 1);
+  CHECK(fieldValue(scene.output(), "HandleResidual") <= 1e-9 * Diagonal);
+  CHECK(fieldValue(scene.output(), "FixedResidual") <= 1e-9 * Diagonal);
+  return named;
+}
+
 }
 
 TEST(CoplanarRegionsShareOnePlane)
@@ -502,19 +535,161 @@ TEST(CoplanarRegionsOnParallelWallsConflict)
 {
   // patches of the fixed inlet (x = 0) and outlet (x = 2) planes cannot share a plane
   ChannelScene scene;
-  const double inletPatch[6] = { -0.01, 0.01, 0.24, 0.76, 0.24, 0.76 }, outletPatch[6] = { 1.99, 2.01, 0.24, 0.76, 0.24, 0.76 };
-  auto a = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, inletPatch);
+  const double outletPatch[6] = { 1.99, 2.01, 0.24, 0.76, 0.24, 0.76 };
+  auto a = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, InletPatch);
   auto b = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Coplanar, outletPatch);
   scene.deform->AddRegionConnection(a->GetOutputPort());
   scene.deform->AddRegionConnection(b->GetOutputPort());
+  const std::string named = namedConflicts(scene);
+  CHECK(named.find("#3 (Coplanar, gap") != std::string::npos && named.find("#4 (Coplanar, gap") != std::string::npos);
+}
+
+TEST(DistanceRegionsKeepTheirDistance)
+{
+  // the two plates beside the body that rises and turns: their centroids' distance (and along x)
+  // changes in the soft solution and holds in the exact one
+  for (const Eigen::Vector3d axis : { Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0) })
+  {
+    double change[2];
+    for (int exact = 0; exact < 2; ++exact)
+    {
+      ChannelScene scene;
+      auto left = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Distance, Plate);
+      auto right = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Distance, RightPlate);
+      for (auto* r : { left.Get(), right.Get() })
+      {
+        r->SetDistanceAxis(axis.data());
+        scene.deform->AddRegionConnection(r->GetOutputPort());
+      }
+      scene.deform->SetExactConstraints(exact);
+      auto messages = MessageCollector::watch(scene.deform);
+      scene.deform->Update();
+      CHECK(messages->Errors.empty() && messages->Warnings.empty());
+      vtkDataArray* d = scene.output()->GetPointData()->GetArray("Displacement");
+      vtkNew<vtkDoubleArray> zero;
+      zero->SetNumberOfComponents(3);
+      zero->SetNumberOfTuples(scene.grid->GetNumberOfPoints());
+      zero->Fill(0);
+      auto distance = [&](vtkDataArray* displacement) {
+        const mlsdeform::Vec3 e = mlsdeform::centroid(deformedIn(scene.grid, displacement, RightPlate)) -
+          mlsdeform::centroid(deformedIn(scene.grid, displacement, Plate));
+        return axis.squaredNorm() > 0 ? e.dot(axis) : e.norm();
+      };
+      change[exact] = std::abs(distance(d) - distance(zero));
+      if (exact)
+      {
+        CHECK(fieldValue(scene.output(), "ConstraintResidual") <= 1e-9);
+        CHECK(fieldValue(scene.output(), "InvertedCells") == 0);
+      }
+    }
+    std::printf("axis (%g %g %g): the plates' distance changed by / diagonal: exact %.3g, soft %.3g\n", axis.x(), axis.y(), axis.z(),
+      change[1] / Diagonal, change[0] / Diagonal);
+    CHECK(change[1] <= 1e-9 * Diagonal);
+    CHECK(change[0] > 1e-6 * Diagonal);
+  }
+}
+
+TEST(DistanceBetweenAFixedAndAMovedRegionConflicts)
+{
+  // the inlet stays and the body moves 0.02 along x: their distance along x cannot hold
+  ChannelScene scene;
+  auto a = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Distance, InletPatch);
+  auto b = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Distance, Body);
+  for (auto* r : { a.Get(), b.Get() })
+  {
+    r->SetDistanceAxis(1, 0, 0);
+    scene.deform->AddRegionConnection(r->GetOutputPort());
+  }
+  const std::string named = namedConflicts(scene);
+  CHECK(named.find("(Distance, gap") != std::string::npos);
+}
+
+TEST(DistanceGroupOfOneRegionIsRefused)
+{
+  ChannelScene scene;
+  auto lone = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Distance, Plate);
+  scene.deform->AddRegionConnection(lone->GetOutputPort());
   auto messages = MessageCollector::watch(scene.deform);
   scene.deform->Update();
-  auto* conflicts = vtkStringArray::SafeDownCast(scene.output()->GetFieldData()->GetAbstractArray("ConstraintConflicts"));
-  const std::string named = conflicts ? conflicts->GetValue(0) : "";
-  std::printf("conflicts: %s\n", named.c_str());
-  CHECK(messages->Errors.empty() && messages->Warnings.size() == 1);
-  CHECK(named.find("#3 (Coplanar, gap") != std::string::npos && named.find("#4 (Coplanar, gap") != std::string::npos);
-  CHECK(fieldValue(scene.output(), "FixedResidual") <= 1e-9 * Diagonal);
+  CHECK(messages->Errors.size() == 1 && messages->Errors[0].find("Distance group 0 has 1 point set(s)") != std::string::npos);
+}
+
+// The layer of points above the body (z = 0.875) and the channel's top wall (z = 1) as a
+// reference surface: the body rises 0.08 and pushes the layer towards the wall.
+const double AboveBody[6] = { 0.74, 1.26, 0.24, 0.76, 0.87, 0.88 };
+vtkSmartPointer<vtkPlaneSource> topWall()
+{
+  auto wall = vtkSmartPointer<vtkPlaneSource>::New();
+  wall->SetOrigin(-0.5, -0.5, 1);
+  wall->SetPoint1(2.5, -0.5, 1);
+  wall->SetPoint2(-0.5, 1.5, 1);
+  wall->SetResolution(6, 4);
+  return wall;
+}
+
+// The least distance of the output points in a box from the plane z = 1.
+double leastDistanceFromTop(ChannelScene& scene, const double box[6])
+{
+  double least = std::numeric_limits<double>::infinity();
+  for (const mlsdeform::Vec3& y : deformedIn(scene.grid, scene.output()->GetPointData()->GetArray("Displacement"), box))
+    least = std::min(least, 1 - y.z());
+  return least;
+}
+
+TEST(OffsetRegionKeepsItsWallThickness)
+{
+  const double bound = 0.11; // rest distance 0.125; without the constraint the layer comes nearer
+  double without = 0, least[2];
+  for (int run = 0; run < 3; ++run) // without the region, soft, exact
+  {
+    ChannelScene scene;
+    auto wall = topWall();
+    auto skin = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Offset, AboveBody);
+    skin->SetInputConnection(1, wall->GetOutputPort());
+    skin->SetMinimumDistance(bound);
+    if (run > 0)
+      scene.deform->AddRegionConnection(skin->GetOutputPort());
+    scene.deform->SetExactConstraints(run == 2);
+    auto messages = MessageCollector::watch(scene.deform);
+    scene.deform->Update();
+    CHECK(messages->Errors.empty() && messages->Warnings.empty());
+    (run == 0 ? without : least[run - 1]) = leastDistanceFromTop(scene, AboveBody);
+    if (run == 2)
+    {
+      CHECK(fieldValue(scene.output(), "ConstraintResidual") <= 1e-9);
+      CHECK(fieldValue(scene.output(), "InvertedCells") == 0);
+      CHECK(fieldValue(scene.output(), "HandleResidual") <= 1e-9 * Diagonal);
+    }
+  }
+  std::printf("least distance from the wall (bound %g): without %.6f, soft %.6f, exact %.12f\n", bound, without, least[0], least[1]);
+  CHECK(without < bound - 1e-3); // the scene does violate the bound without the constraint
+  CHECK(least[1] >= bound - 1e-9 * Diagonal);
+  CHECK(least[1] <= bound + 1e-9 * Diagonal); // a lower bound: the points it pushed sit on it, no farther
+}
+
+TEST(OffsetThatFixedPointsViolateConflicts)
+{
+  // the fixed inlet patch lies 0.3 from a reference plane at x = -0.3 and must keep 0.5
+  ChannelScene scene;
+  auto wall = vtkSmartPointer<vtkPlaneSource>::New();
+  wall->SetOrigin(-0.3, -0.5, -0.5);
+  wall->SetPoint1(-0.3, 1.5, -0.5);
+  wall->SetPoint2(-0.3, -0.5, 1.5);
+  auto skin = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Offset, InletPatch);
+  skin->SetInputConnection(1, wall->GetOutputPort());
+  skin->SetMinimumDistance(0.5);
+  scene.deform->AddRegionConnection(skin->GetOutputPort());
+  const std::string named = namedConflicts(scene);
+  CHECK(named.find("#3 (Offset, gap") != std::string::npos);
+}
+
+TEST(OffsetNeedsAReferenceSurface)
+{
+  ChannelScene scene;
+  auto skin = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Offset, AboveBody);
+  auto messages = MessageCollector::watch(skin);
+  skin->Update();
+  CHECK(messages->Errors.size() == 1 && messages->Errors[0].find("Role Offset needs a Surface input") != std::string::npos);
 }
 
 TEST_MAIN

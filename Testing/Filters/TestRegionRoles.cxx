@@ -165,7 +165,8 @@ TEST(XMLDecoratorsByRole)
   }
   const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } },
     { "DesignVariables", { mlsvtk::roles::Handle } }, { "SymmetryOrigin", { mlsvtk::roles::Symmetric } },
-    { "SymmetryNormal", { mlsvtk::roles::Symmetric } }, { "CoplanarGroup", { mlsvtk::roles::Coplanar } } };
+    { "SymmetryNormal", { mlsvtk::roles::Symmetric } }, { "ConstraintGroup", { mlsvtk::roles::Coplanar, mlsvtk::roles::Distance } },
+    { "DistanceAxis", { mlsvtk::roles::Distance } }, { "MinimumDistance", { mlsvtk::roles::Offset } }, { "Surface", { mlsvtk::roles::Offset } } };
   for (const auto& [name, roles] : shownFor)
   {
     std::printf("shown by Role: %s\n", name.c_str());
@@ -192,7 +193,8 @@ TEST(ConstraintsAndFewestPoints)
   const std::map<int, ConstraintType> constraints{ { Planarity, ConstraintType::Planarity },
     { Circularity, ConstraintType::Circularity }, { Cylinder, ConstraintType::Cylinder },
     { FeatureLine, ConstraintType::FeatureLine }, { Rigid, ConstraintType::Rigid }, { Slip, ConstraintType::Slip },
-    { Symmetric, ConstraintType::Symmetric }, { Coplanar, ConstraintType::Coplanar } };
+    { Symmetric, ConstraintType::Symmetric }, { Coplanar, ConstraintType::Coplanar },
+    { Distance, ConstraintType::Distance }, { Offset, ConstraintType::Offset } };
   for (int role = 0; role < static_cast<int>(Table.size()); ++role)
   {
     const bool constraint = constraints.count(role) > 0;
@@ -228,7 +230,7 @@ TEST(ConstraintRegionNames)
     CHECK(std::string(vtkConstraintRegion::GetRoleName(role)) == mlsvtk::roles::Table[role].name);
   }
   CHECK(std::string(vtkConstraintRegion::GetRoleName(-1)) == "Unknown");
-  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Coplanar + 1)) == "Unknown");
+  CHECK(std::string(vtkConstraintRegion::GetRoleName(vtkConstraintRegion::Offset + 1)) == "Unknown");
 }
 
 TEST_MAIN

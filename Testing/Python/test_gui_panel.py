@@ -42,7 +42,7 @@ GROUPS = {
         ('Design Sensitivities', ['ComputeSensitivities', 'ObjectiveGradientArray'])],
     'ConstraintRegion': [
         ('Role and Weight', ['Role', 'Weight']),
-        ('Coplanar Group', ['CoplanarGroup']),
+        ('Constraint Group', ['ConstraintGroup', 'DistanceAxis', 'MinimumDistance']),
         ('Symmetry Plane', ['SymmetryOrigin', 'SymmetryNormal']),
         ('Selection', ['SelectionMode', 'NumberOfLayers', 'CellSets', 'PrimitiveId', 'Region', 'InsideOut',
                        'SelectionArray', 'Range']),

@@ -199,6 +199,16 @@ void KdTree::kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vect
     indices, squaredDistances);
 }
 
+int KdTree::nearestObject(const Vec3& x, const std::function<double(int)>& squaredDistance) const
+{
+  std::vector<int> indices;
+  std::vector<double> keys;
+  kSmallest(
+    1, [&](int i) { return squaredDistance(Order[i]); },
+    [&](const Node& node) { return (node.reachLower - x).cwiseMax(x - node.reachUpper).cwiseMax(0.0).squaredNorm(); }, indices, keys);
+  return indices.empty() ? -1 : indices.front();
+}
+
 void KdTree::leastRelativeCandidates(const Vec3& lower, const Vec3& upper, int k, std::vector<int>& candidates) const
 {
   candidates.clear();

@@ -4,6 +4,8 @@
 
 #include "Common/CoreTypes.h"
 
+#include <functional>
+
 namespace mlsdeform
 {
 class KdTree
@@ -37,6 +39,10 @@ public:
   /// setRadii): a superset of containing(x) for every x in the box, so that nearby positions share
   /// one search and each filters the list with the exact test |p_i - x| < radius_i.
   void meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const;
+  /// The ball (requires setRadii) holding the object nearest to x, where squaredDistance(i) is the
+  /// squared distance from x to the object inside ball i (a triangle inside the ball around its
+  /// centroid): visits only the nodes whose balls come nearer than the best so far. -1 if empty.
+  int nearestObject(const Vec3& x, const std::function<double(int)>& squaredDistance) const;
 
   std::size_t size() const { return Points.size(); }
 

@@ -306,4 +306,42 @@ PointList projectToSymmetric(const PointList& rest, const PointList& x, const st
   }
   return projected;
 }
+Vec3 centroid(const PointList& x)
+{
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& p : x)
+  {
+    sum += p;
+  }
+  return sum / static_cast<double>(x.size());
+}
+
+Vec3 distanceTranslation(const PointList& a, const PointList& b, const Vec3& axis, double distance)
+{
+  const Vec3 e = centroid(b) - centroid(a);
+  const Vec3 direction = axis.squaredNorm() > 0 ? axis : e.normalized();
+  const double error = e.dot(direction) - distance;
+  // na |ta|^2 + nb |tb|^2 least with (tb - ta) . direction = -error: ta = error nb / (na + nb) direction
+  const double na = static_cast<double>(a.size()), nb = static_cast<double>(b.size());
+  return error * nb / (na + nb) * direction;
+}
+
+PointList projectOutside(const ReferenceSurface& reference, const PointList& x, const std::vector<double>& side, double bound)
+{
+  PointList out = x;
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    const ReferenceSurface::Nearest q = reference.nearest(x[i]);
+    const Vec3 away = x[i] - q.point;
+    if (side[i] * away.dot(q.normal) < 0 || q.distance == 0)
+    {
+      out[i] = q.point + bound * side[i] * q.normal; // crossed: back to its side
+    }
+    else if (q.distance < bound)
+    {
+      out[i] = q.point + bound / q.distance * away;
+    }
+  }
+  return out;
+}
 } // namespace mlsdeform

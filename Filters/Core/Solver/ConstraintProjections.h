@@ -4,6 +4,7 @@
 #pragma once
 
 #include "Common/CoreTypes.h"
+#include "Solver/ReferenceSurface.h"
 
 namespace mlsdeform
 {
@@ -58,4 +59,19 @@ std::vector<int> mirrorPartners(const PointList& rest, const Plane& mirror, doub
 /// R = I - 2 n n^T, position i gets rest_i + (d_i + R d_partner(i)) / 2 (an orthogonal projection:
 /// the pairs are an involution). The symmetric constraint.
 PointList projectToSymmetric(const PointList& rest, const PointList& x, const std::vector<int>& partner, const Plane& mirror);
+
+/// The mean of the points.
+Vec3 centroid(const PointList& x);
+
+/// The translations of two point sets that bring their centroids to the distance a Distance
+/// constraint keeps: along axis (a unit vector; zero: along the line of the centroids) by
+/// distance, shared in inverse proportion to the sets' sizes (the smallest move of all points).
+/// Returns the first set's translation; the second's is minus it times na / nb.
+Vec3 distanceTranslation(const PointList& a, const PointList& b, const Vec3& axis, double distance);
+
+/// Each position that came nearer to the reference surface than bound, or crossed it, moved to
+/// bound from the surface on its rest side (side: +1 or -1 per position, the side of the
+/// triangle's normal it lay on at rest); the others as they are. The Offset constraint: a
+/// lower bound, active only where violated.
+PointList projectOutside(const ReferenceSurface& reference, const PointList& x, const std::vector<double>& side, double bound);
 } // namespace mlsdeform

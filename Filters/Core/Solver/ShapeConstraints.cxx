@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace mlsdeform
@@ -38,6 +39,26 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     {
       throw InvalidInputException("Coplanar group " + std::to_string(group) + " has " + std::to_string(count) +
         " point(s) in all its regions; a common plane needs at least 3");
+    }
+  }
+  std::map<int, std::vector<std::size_t>> distanceGroups; // the sets of each Distance group
+  for (std::size_t t = 0; t < constraints.size(); ++t)
+  {
+    if (constraints[t].type == ConstraintType::Distance)
+    {
+      distanceGroups[constraints[t].group].push_back(t);
+    }
+  }
+  for (const auto& [group, sets] : distanceGroups)
+  {
+    if (sets.size() != 2)
+    {
+      throw InvalidInputException("Distance group " + std::to_string(group) + " has " + std::to_string(sets.size()) +
+        " point set(s); it keeps the distance of exactly two (one region each, without CellSets)");
+    }
+    if (constraints[sets[0]].axis != constraints[sets[1]].axis)
+    {
+      throw InvalidInputException("the two regions of Distance group " + std::to_string(group) + " have different axes");
     }
   }
   std::vector<int> outside;
@@ -91,6 +112,39 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
       {
         throw InvalidInputException(which(t) + ": " + std::to_string(missing) + " of its " + std::to_string(n) +
           " points have no mirror image among its points: select a region that is symmetric about the plane");
+      }
+    }
+    if (c.type == ConstraintType::Distance)
+    {
+      const std::vector<std::size_t>& pair = distanceGroups.at(c.group);
+      set.other = static_cast<long>(pair[0] == t ? pair[1] : pair[0]);
+      const Vec3 axis = c.axis.squaredNorm() > 0 ? Vec3(c.axis.normalized()) : Vec3::Zero();
+      set.constraint.axis = axis;
+      const Vec3 offset = centroid(constraints[pair[1]].positions) - centroid(constraints[pair[0]].positions);
+      set.distance = axis.squaredNorm() > 0 ? offset.dot(axis) : offset.norm();
+      if (axis.squaredNorm() == 0 && !(set.distance > 0))
+      {
+        throw InvalidInputException(which(t) + ": the two regions of Distance group " + std::to_string(c.group) +
+          " have one centroid; give an axis or select regions apart");
+      }
+    }
+    if (c.type == ConstraintType::Offset)
+    {
+      if (!c.reference)
+      {
+        throw InvalidInputException(which(t) + " has no reference surface");
+      }
+      double least = std::numeric_limits<double>::infinity();
+      for (const Vec3& p : c.positions)
+      {
+        const ReferenceSurface::Nearest q = c.reference->nearest(p);
+        set.side.push_back((p - q.point).dot(q.normal) < 0 ? -1.0 : 1.0);
+        least = std::min(least, q.distance);
+      }
+      set.bound = c.minimumDistance > 0 ? c.minimumDistance : least;
+      if (!(set.bound > 0))
+      {
+        throw InvalidInputException(which(t) + ": a point lies on the reference surface at rest; give a Minimum Distance");
       }
     }
     if (c.type == ConstraintType::Slip)
@@ -203,6 +257,18 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
   {
     groupPlanes[group] = fitPlane(all);
   }
+  // a Distance group's translations: the first set's, and the second's from it
+  std::vector<Vec3> translations(Sets.size(), Vec3::Zero());
+  for (std::size_t t = 0; t < Sets.size(); ++t)
+  {
+    const Set& set = Sets[t];
+    if (set.constraint.type == ConstraintType::Distance && static_cast<long>(t) < set.other)
+    {
+      const PointList& second = positions[set.other];
+      translations[t] = distanceTranslation(positions[t], second, set.constraint.axis, set.distance);
+      translations[set.other] = -translations[t] * static_cast<double>(positions[t].size()) / static_cast<double>(second.size());
+    }
+  }
   // each set on its own: in parallel over the sets, the same result on any number of threads
   std::vector<PointList> projections(Sets.size());
 #pragma omp parallel for schedule(dynamic, 16)
@@ -236,6 +302,16 @@ std::vector<PointList> ShapeConstraints::project(const std::vector<PointList>& p
         break;
       case ConstraintType::Coplanar:
         projections[t] = projectTo(groupPlanes.at(set.constraint.group), y);
+        break;
+      case ConstraintType::Distance:
+        projections[t] = y;
+        for (Vec3& p : projections[t])
+        {
+          p += translations[t];
+        }
+        break;
+      case ConstraintType::Offset:
+        projections[t] = projectOutside(*set.constraint.reference, y, set.side, set.bound);
         break;
     }
   }

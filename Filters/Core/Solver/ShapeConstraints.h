@@ -30,10 +30,21 @@
 // split flange): every Coplanar set of one group is projected onto the least-squares plane of all
 // of the group's current positions, and its C_t is the identity too (a set's offset from the
 // common plane must cost, which a mean-centered C_t would not see).
+//
+// The distance constraint keeps two regions of one group at their rest distance (a wheelbase, a
+// bolt spacing): between their centroids, or along an axis. P_t translates both sets along that
+// direction, the smaller set more (the smallest move of all their points), and C_t = I.
+//
+// The offset constraint keeps a region at least a bound away from a fixed reference surface (a
+// minimum wall thickness between an outer skin and an inner part): P_t moves the points that came
+// nearer, or crossed, back to the bound on their rest side and leaves the others (a lower bound,
+// active only where violated); C_t = I.
 #pragma once
 
 #include "Solver/ConstraintProjections.h"
 #include "Basis/ShapeFunctions.h"
+
+#include <memory>
 
 namespace mlsdeform
 {
@@ -46,7 +57,9 @@ enum class ConstraintType
   Rigid,
   Slip,
   Symmetric,
-  Coplanar
+  Coplanar,
+  Distance,
+  Offset
 };
 /// One row per constraint type: its name and the fewest points its projection needs. A new type
 /// is a row here, a value above and its projection (ConstraintProjections.h).
@@ -57,8 +70,9 @@ struct ConstraintTypeRow
 };
 inline constexpr ConstraintTypeRow ConstraintTypes[] = {
   { "Planarity", 3 }, { "Circularity", 3 }, { "Cylinder", 6 }, { "FeatureLine", 2 }, { "Rigid", 2 }, { "Slip", 3 }, { "Symmetric", 1 }, { "Coplanar", 1 },
+  { "Distance", 1 }, { "Offset", 1 },
 };
-static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Coplanar) + 1,
+static_assert(sizeof(ConstraintTypes) / sizeof(ConstraintTypes[0]) == static_cast<std::size_t>(ConstraintType::Offset) + 1,
   "one row per constraint type");
 inline const char* constraintName(ConstraintType type)
 {
@@ -82,14 +96,18 @@ struct ShapeConstraint
   PointList positions;
   double weight = 1.0;
   Plane mirror; // a Symmetric set's plane
-  int group = 0; // the Coplanar sets of one group share a plane (at least 3 points together)
+  int group = 0; // the Coplanar sets of one group share a plane (at least 3 points together); a Distance group has two sets
+  Vec3 axis = Vec3::Zero(); // a Distance set's axis (zero: the distance between the centroids)
+  double minimumDistance = 0; // an Offset set's bound (0: its least distance at rest)
+  std::shared_ptr<const ReferenceSurface> reference; // an Offset set's reference surface
 };
 
 /// Whether a constraint measures its points' places, not their shape: C_t = I (Slip, Symmetric,
-/// Coplanar).
+/// Coplanar, Distance, Offset).
 inline bool measuresPlaces(ConstraintType type)
 {
-  return type == ConstraintType::Slip || type == ConstraintType::Symmetric || type == ConstraintType::Coplanar;
+  return type == ConstraintType::Slip || type == ConstraintType::Symmetric || type == ConstraintType::Coplanar ||
+    type == ConstraintType::Distance || type == ConstraintType::Offset;
 }
 
 class ShapeConstraints
@@ -146,6 +164,10 @@ private:
     Plane restPlane;                  // the slip constraint's plane of the rest positions
     int slipAxis = -1;                // the axis a slip plane is normal to, or -1
     std::vector<int> partner;         // a Symmetric set's mirror image of each point
+    long other = -1;                  // a Distance set's partner set
+    double distance = 0;              // a Distance group's rest distance (along the axis, first set to second)
+    std::vector<double> side;         // an Offset set's side of the reference surface per point
+    double bound = 0;                 // an Offset set's least distance from it
   };
 
   std::vector<Set> Sets;
