@@ -10,8 +10,9 @@
       the same, connected to a pvserver (e.g. mpiexec -n 2 pvserver --server-port=PORT).
 
 The regions: a Handle (the body, moved and turned), the box's sides Fixed, its floor Slip, a
-Planarity patch and a Rigid block of tetrahedra (one constraint set per cell), so that the
-gathering of positions, constraint sets and slip planes is exercised. Then NaN coordinates in some
+Planarity patch, a Rigid block of tetrahedra (one constraint set per cell), two Distance patches
+and an Offset patch with a plane as its reference surface, so that the gathering of positions,
+constraint sets, slip planes and reference triangles is exercised. Then NaN coordinates in some
 pieces: every rank reports the error (none waits for another forever).
 """
 import os
@@ -61,7 +62,12 @@ def deformed(source):
     slip = box_region(rest, 'Slip', [-0.99, 0.99, -0.99, 0.99, -1.01, -0.99])
     planar = box_region(rest, 'Planarity', [0.45, 0.8, -0.5, 0.5, 0.3, 0.34])
     rigid = box_region(rest, 'Rigid', [-0.8, -0.5, -0.3, 0.3, -0.3, 0.3], CellSets=1)
-    deform = MLSDeform(Input=rest, Regions=[handle, fixed, slip, planar, rigid], NumberOfSamples=400)
+    # a wheelbase below the body and a wall thickness above it: their groups' positions and the
+    # reference surface's triangles gathered over the ranks
+    axles = [box_region(rest, 'Distance', [x0, x0 + 0.25, -0.3, 0.3, -0.7, -0.5], DistanceAxis=[1, 0, 0]) for x0 in (-0.7, 0.45)]
+    wall = box_region(rest, 'Offset', [-0.3, 0.3, -0.3, 0.3, 0.45, 0.6], MinimumDistance=0.38)
+    wall.Surface = pvs.Plane(Origin=[-1, -1, 0.95], Point1=[1, -1, 0.95], Point2=[-1, 1, 0.95], XResolution=4, YResolution=4)
+    deform = MLSDeform(Input=rest, Regions=[handle, fixed, slip, planar, rigid] + axles + [wall], NumberOfSamples=400)
     return gathered(deform)
 
 
