@@ -7,7 +7,7 @@
 #    (openfoam/constrained_hull.py).
 # Sets up and builds first if needed.
 # Usage: Testing/Benchmarks/run-exact-constraints-benchmark.sh [--variations N] [--hull small|400k|1M]
-# Environment: MLSDEFORM_BUILD, MLSDEFORM_BENCHMARK_DIR as run-openfoam-benchmark.sh.
+# Environment: MLSDEFORM_BUILD, MLSDEFORM_PLUGIN, MLSDEFORM_BENCHMARK_DIR as run-openfoam-benchmark.sh.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 variations=7
@@ -20,8 +20,8 @@ while (($#)); do
   esac
 done
 build=${MLSDEFORM_BUILD:-$root/build}
-bash "$root/Testing/setup.sh" > /dev/null
-plugin=$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so
+plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
+[ -f "$plugin" ] && [ -f "$build/data/fandisk.off" ] || bash "$root/Testing/setup.sh" > /dev/null
 echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs"
 for threads in 1 2; do
   OMP_NUM_THREADS=$threads pvbatch --no-mpi "$root/Testing/Benchmarks/exact_constraints_benchmark.py" \
