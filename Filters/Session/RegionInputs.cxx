@@ -85,11 +85,12 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
       throw InvalidInputException(which + " has the role FromPrimitive, which a Constraint Region replaces by its primitive's role");
     }
     region.displacement = displacement;
-    vtkDataArray* weight = data->GetFieldData()->GetArray(fields::Weight);
+    vtkFieldData* fieldData = data->GetFieldData();
+    vtkDataArray* weight = fieldData->GetArray(fields::Weight);
     region.weight = weight ? weight->GetTuple1(0) : 1.0;
     if (region.role == roles::Symmetric)
     {
-      vtkDataArray* plane = data->GetFieldData()->GetArray(fields::SymmetryPlane);
+      vtkDataArray* plane = fieldData->GetArray(fields::SymmetryPlane);
       const double* p = plane && plane->GetNumberOfComponents() == 6 && plane->GetNumberOfTuples() == 1 ? plane->GetTuple(0) : nullptr;
       const Vec3 normal = p ? Vec3(p[3], p[4], p[5]) : Vec3::Zero();
       if (!p || !Vec3(p[0], p[1], p[2]).allFinite() || !normal.allFinite() || !(normal.norm() > 0))
@@ -99,7 +100,6 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
       region.mirror.point = Vec3(p[0], p[1], p[2]);
       region.mirror.normal = normal.normalized();
     }
-    vtkFieldData* fieldData = data->GetFieldData();
     vtkDataArray* group = fieldData->GetArray(fields::ConstraintGroup);
     region.group = (region.role == roles::Coplanar || region.role == roles::Distance) && group ? static_cast<int>(group->GetTuple1(0)) : 0;
     vtkDataArray* axis = fieldData->GetArray(fields::DistanceAxis);
@@ -110,7 +110,6 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     }
     vtkDataArray* bound = fieldData->GetArray(fields::MinimumDistance);
     region.minimumDistance = region.role == roles::Offset && bound ? bound->GetTuple1(0) : 0.0;
-    region.localReference.clear();
     if (region.role == roles::Offset)
     {
       vtkDataArray* triangles = fieldData->GetArray(fields::ReferenceTriangles);
@@ -119,10 +118,16 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
         throw InvalidInputException(which + " (Offset) has no reference surface (" + fields::ReferenceTriangles +
           ", 9 coordinates per triangle) or no finite " + fields::MinimumDistance);
       }
-      region.localReference.resize(9 * static_cast<std::size_t>(triangles->GetNumberOfTuples()));
-      for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
+      // read again only when the region wrote a new one (not on every handle motion)
+      if (triangles->GetMTime() != region.referenceTime)
       {
-        triangles->GetTuple(t, region.localReference.data() + 9 * t);
+        region.localReference.resize(9 * static_cast<std::size_t>(triangles->GetNumberOfTuples()));
+        for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
+        {
+          triangles->GetTuple(t, region.localReference.data() + 9 * t);
+        }
+        region.referenceTime = triangles->GetMTime();
+        region.localChanged = true;
       }
     }
     Stamp stamp = pointsStamp({ data });
@@ -167,42 +172,39 @@ void gatherRegions(std::vector<RegionInput>& regions, long& nextVersion, const C
   }
   if (group.any(changed))
   {
-    for (RegionInput& region : regions)
+    for (std::size_t c = 0; c < regions.size(); ++c)
     {
+      RegionInput& region = regions[c];
       GatheredPositions gathered = gatherPositions(region.localPositions, region.localSets, group);
-      if (gathered.positions != region.gathered.positions || gathered.sets != region.gathered.sets || region.version < 0)
+      bool changedValues = gathered.positions != region.gathered.positions || gathered.sets != region.gathered.sets || region.version < 0;
+      if (region.role == roles::Offset)
+      {
+        std::vector<double> reference = group.gather(region.localReference);
+        if (reference != region.gatheredReference || !region.reference)
+        {
+          PointList corners;
+          for (std::size_t i = 0; i + 2 < reference.size(); i += 3)
+          {
+            corners.emplace_back(reference[i], reference[i + 1], reference[i + 2]);
+          }
+          try
+          {
+            region.reference = std::make_shared<ReferenceSurface>(std::move(corners));
+          }
+          catch (const InvalidInputException& e)
+          {
+            throw InvalidInputException("Regions input #" + std::to_string(c) + " (Offset): " + e.what());
+          }
+          region.gatheredReference = std::move(reference);
+          changedValues = true;
+        }
+      }
+      if (changedValues)
       {
         region.version = nextVersion++;
       }
       region.gathered = std::move(gathered);
       region.localChanged = false;
-    }
-  }
-  for (std::size_t c = 0; c < regions.size(); ++c)
-  {
-    RegionInput& region = regions[c];
-    if (region.role != roles::Offset)
-    {
-      continue;
-    }
-    std::vector<double> reference = group.gather(region.localReference);
-    if (reference != region.gatheredReference || !region.reference)
-    {
-      PointList corners;
-      for (std::size_t i = 0; i + 2 < reference.size(); i += 3)
-      {
-        corners.emplace_back(reference[i], reference[i + 1], reference[i + 2]);
-      }
-      try
-      {
-        region.reference = std::make_shared<ReferenceSurface>(std::move(corners));
-      }
-      catch (const InvalidInputException& e)
-      {
-        throw InvalidInputException("Regions input #" + std::to_string(c) + " (Offset): " + e.what());
-      }
-      region.gatheredReference = std::move(reference);
-      region.version = nextVersion++;
     }
   }
   bool handle = false;

@@ -9,6 +9,8 @@
 #include "Common/GatheredPositions.h"
 #include "Solver/ShapeConstraints.h"
 
+#include <vtkType.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +29,7 @@ struct RegionInput
   mlsdeform::Vec3 axis = mlsdeform::Vec3::Zero(); // a Distance region's axis (zero: none)
   double minimumDistance = 0; // an Offset region's bound (0: its least rest distance)
   std::vector<double> localReference; // an Offset region's reference triangles here, 9 coordinates each
+  vtkMTimeType referenceTime = 0;     // the modification time of the array they were read from
   std::vector<double> gatheredReference; // of all processes
   std::shared_ptr<const mlsdeform::ReferenceSurface> reference; // built from them
   Stamp stamp;

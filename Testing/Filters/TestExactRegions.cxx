@@ -667,6 +667,26 @@ TEST(OffsetRegionKeepsItsWallThickness)
   CHECK(least[1] <= bound + 1e-9 * Diagonal); // a lower bound: the points it pushed sit on it, no farther
 }
 
+TEST(OffsetFollowsItsReferenceSurface)
+{
+  // the wall lowered by 1/32 (exact in float) after a first update: the layer keeps the bound from the new wall
+  // (the reference is read again when the region writes a new one, not kept from the first)
+  ChannelScene scene;
+  auto wall = topWall();
+  auto skin = boxRegion(scene.source->GetOutputPort(), vtkConstraintRegion::Offset, AboveBody);
+  skin->SetInputConnection(1, wall->GetOutputPort());
+  skin->SetMinimumDistance(0.11);
+  scene.deform->AddRegionConnection(skin->GetOutputPort());
+  scene.deform->Update();
+  const double first = leastDistanceFromTop(scene, AboveBody);
+  wall->SetCenter(1, 0.5, 0.96875);
+  scene.deform->Update();
+  const double lowered = leastDistanceFromTop(scene, AboveBody) - 0.03125; // from the plane z = 0.96875
+  std::printf("least distance from the wall: %.12f, from the lowered wall %.12f (bound 0.11)\n", first, lowered);
+  CHECK(std::abs(first - 0.11) <= 1e-9 * Diagonal);
+  CHECK(std::abs(lowered - 0.11) <= 1e-9 * Diagonal);
+}
+
 TEST(OffsetThatFixedPointsViolateConflicts)
 {
   // the fixed inlet patch lies 0.3 from a reference plane at x = -0.3 and must keep 0.5

@@ -306,6 +306,7 @@ PointList projectToSymmetric(const PointList& rest, const PointList& x, const st
   }
   return projected;
 }
+
 Vec3 centroid(const PointList& x)
 {
   Vec3 sum = Vec3::Zero();

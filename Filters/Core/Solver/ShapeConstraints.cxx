@@ -87,11 +87,7 @@ ShapeConstraints::ShapeConstraints(const ShapeFunctions& basis, const std::vecto
     set.constraint = c;
     set.begin = begins[t];
     const long n = static_cast<long>(c.positions.size());
-    Vec3 mean = Vec3::Zero();
-    for (const Vec3& p : c.positions)
-    {
-      mean += p / static_cast<double>(n);
-    }
+    const Vec3 mean = centroid(c.positions);
     for (long i = 1; i < n; ++i)
     {
       if ((c.positions[i] - mean).squaredNorm() < (c.positions[set.pivot] - mean).squaredNorm())
@@ -339,7 +335,7 @@ Displacements ShapeConstraints::rightHandSide(const std::vector<PointList>& posi
     {
       v.row(i) = (projections[t][i] - rest[i]).transpose();
     }
-    if (!measuresPlaces(set.constraint.type)) // Slip, Symmetric: C_t = I, v = P_t - x_t
+    if (!measuresPlaces(set.constraint.type)) // the places (measuresPlaces): C_t = I, v = P_t - x_t
     {
       const Eigen::RowVector3d mean = v.colwise().mean();
       v.rowwise() -= mean;
