@@ -538,7 +538,7 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
       GetRoleName(role) + " (remove its design variables or make it a Handle)");
   }
   mlsvtk::checkDesignVariables(this->Designs->variables);
-  // a shape constraint per cell: the constraint roles other than Slip and Symmetric (places, not shapes)
+  // a shape constraint per cell: the constraint roles that keep shapes, not places (measuresPlaces)
   const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && !mlsdeform::measuresPlaces(*mlsvtk::regionRole(r).constraint); };
   if (this->CellSets && !perCell(role))
   {
