@@ -26,20 +26,29 @@ void coneCoordinates(const Primitive& cone, const Vec3& x, double& h, double& rh
   radial = rho > 0 ? Vec3(radial / rho) : Vec3(Vec3::Zero());
 }
 
-// Signed distance (positive outside) of x from the surface; for a cone, points whose closest
-// surface point is the apex get their distance to it.
-double signedDistance(const Primitive& s, const Vec3& x)
+// Signed distance (positive outside) of x from the surface and, if asked, the unit normal at the
+// closest surface point (one evaluation: the compatibility test needs both). For a cone, points
+// whose closest surface point is the apex get their distance to it and the axis as normal.
+double signedDistance(const Primitive& s, const Vec3& x, Vec3* normal = nullptr)
 {
   switch (s.type)
   {
     case PrimitiveType::Plane:
+      if (normal)
+      {
+        *normal = s.axis;
+      }
       return s.axis.dot(x) - s.offset;
     case PrimitiveType::Sphere:
-      return (x - s.center).norm() - s.radius;
     case PrimitiveType::Cylinder:
     {
-      const Vec3 v = x - s.center;
-      return (v - v.dot(s.axis) * s.axis).norm() - s.radius;
+      const Vec3 v = x - s.center, radial = s.type == PrimitiveType::Sphere ? v : Vec3(v - v.dot(s.axis) * s.axis);
+      const double r = radial.norm();
+      if (normal)
+      {
+        *normal = r > 0 ? Vec3(radial / r) : Vec3(Vec3::UnitZ());
+      }
+      return r - s.radius;
     }
     case PrimitiveType::Cone:
     {
@@ -47,6 +56,10 @@ double signedDistance(const Primitive& s, const Vec3& x)
       Vec3 radial;
       coneCoordinates(s, x, h, rho, radial);
       const double c = s.cosAngle, sn = s.sinAngle;
+      if (normal)
+      {
+        *normal = rho > 0 ? Vec3(c * radial - sn * s.axis) : s.axis;
+      }
       // in the (h, rho) half plane the surface is the ray t (cos a, sin a), t >= 0
       return h * c + rho * sn >= 0 ? rho * c - h * sn : std::hypot(h, rho);
     }
@@ -57,7 +70,11 @@ double signedDistance(const Primitive& s, const Vec3& x)
 // The primitive moved by the small parameter change theta around base (Levenberg-Marquardt
 // works on these local coordinates): sphere (center, radius); cylinder (axis tilt in the
 // tangent plane, axis point shift, radius); cone (apex, axis tilt, angle).
-Primitive perturbed(const Primitive& base, const Eigen::VectorXd& theta)
+// At most six parameters (a cone's): fixed-capacity Eigen types, no allocation in the fit.
+using Parameters = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+using ParameterMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+
+Primitive perturbed(const Primitive& base, const Parameters& theta)
 {
   Primitive s = base;
   Vec3 e1, e2;
@@ -84,6 +101,66 @@ Primitive perturbed(const Primitive& base, const Eigen::VectorXd& theta)
   return s;
 }
 
+// The signed distance of y from base and its gradient with respect to perturbed's parameters
+// theta at theta = 0 (the Jacobian row of Levenberg-Marquardt), with (e1, e2) = tangentBasis(axis).
+// With v = y - center, h = v . axis, u the unit radial direction and rho the distance from the
+// axis: a shift d of the center changes a sphere's or cylinder's distance by -u . d and a cone's
+// by -normal . d; tilting the axis by e changes a cylinder's by -h (u . e) and a cone's by
+// -(u . e)(h cos a + rho sin a); a radius by -1; a cone's angle by -(rho sin a + h cos a). Points
+// nearest a cone's apex have the distance |v|, which only its position changes.
+double signedDistanceGradient(const Primitive& s, const Vec3& y, const Vec3& e1, const Vec3& e2, double* gradient)
+{
+  const Vec3 v = y - s.center;
+  Eigen::Map<Vec3> centerShift(gradient); // a sphere's and a cone's first three parameters
+  switch (s.type)
+  {
+    case PrimitiveType::Sphere:
+    {
+      const double r = v.norm();
+      const Vec3 u = r > 0 ? Vec3(v / r) : Vec3(Vec3::Zero());
+      centerShift = -u;
+      gradient[3] = -1;
+      return r - s.radius;
+    }
+    case PrimitiveType::Cylinder:
+    {
+      const double h = v.dot(s.axis);
+      const Vec3 w = v - h * s.axis;
+      const double rho = w.norm();
+      const Vec3 u = rho > 0 ? Vec3(w / rho) : Vec3(Vec3::Zero());
+      gradient[0] = -h * u.dot(e1);
+      gradient[1] = -h * u.dot(e2);
+      gradient[2] = -u.dot(e1);
+      gradient[3] = -u.dot(e2);
+      gradient[4] = -1;
+      return rho - s.radius;
+    }
+    case PrimitiveType::Cone:
+    {
+      double h, rho;
+      Vec3 u;
+      coneCoordinates(s, y, h, rho, u);
+      const double c = s.cosAngle, sn = s.sinAngle;
+      if (h * c + rho * sn >= 0)
+      {
+        centerShift = -(c * u - sn * s.axis);
+        const double along = h * c + rho * sn;
+        gradient[3] = -u.dot(e1) * along;
+        gradient[4] = -u.dot(e2) * along;
+        gradient[5] = -along;
+        return rho * c - h * sn;
+      }
+      const double r = std::hypot(h, rho);
+      centerShift = r > 0 ? Vec3(-v / r) : Vec3(Vec3::Zero());
+      gradient[3] = gradient[4] = gradient[5] = 0;
+      return r;
+    }
+    case PrimitiveType::Plane:
+      break;
+  }
+  return signedDistance(s, y);
+}
+
 Primitive fitPlane(const Primitive& start, const PointList& points, const std::vector<int>& subset)
 {
   Vec3 mean = Vec3::Zero();
@@ -108,8 +185,8 @@ Primitive fitPlane(const Primitive& start, const PointList& points, const std::v
   return plane;
 }
 
-// Levenberg-Marquardt on the signed distances of the subset, in coordinates centered at the
-// subset's centroid and scaled by its spread (so the finite differences are well scaled).
+// Levenberg-Marquardt on the signed distances of the subset (Jacobian: signedDistanceGradient),
+// in coordinates centered at the subset's centroid and scaled by its spread (well conditioned).
 Primitive fitGeometric(const Primitive& start, const PointList& points, const std::vector<int>& subset)
 {
   const int m = parameterCount(start.type);
@@ -143,45 +220,43 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
     // the axis point nearest to the centroid keeps the parameters small
     current.center -= current.center.dot(current.axis) * current.axis;
   }
-  auto residuals = [&](const Primitive& s) {
-    Eigen::VectorXd r(n);
+  auto residuals = [&](const Primitive& s, Eigen::VectorXd& r) {
+#pragma omp parallel for schedule(static) if (n >= ParallelSamples)
     for (long a = 0; a < n; ++a)
     {
       r[a] = signedDistance(s, y[a]);
     }
-    return r;
   };
   // Levenberg-Marquardt; stops when a step gains less than 1e-10 of the cost, when the RMS
   // distance is below 1e-9 of the spread (settled far below any distance tolerance: exact data
   // would otherwise be refined to round-off), or when no damping finds a better fit
-  Eigen::VectorXd r = residuals(current);
+  Eigen::VectorXd r(n), rNext(n);
+  residuals(current, r);
   double cost = r.squaredNorm(), lambda = 1e-3;
-  constexpr double Step = 1e-6;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(n, m);
   for (int iteration = 0; iteration < 30; ++iteration)
   {
-    Eigen::MatrixXd J(n, m);
-    for (int j = 0; j < m; ++j)
+    Vec3 e1, e2;
+    tangentBasis(current.axis, e1, e2);
+#pragma omp parallel for schedule(static) if (n >= ParallelSamples)
+    for (long a = 0; a < n; ++a)
     {
-      Eigen::VectorXd theta = Eigen::VectorXd::Zero(m);
-      theta[j] = Step;
-      const Eigen::VectorXd plus = residuals(perturbed(current, theta));
-      theta[j] = -Step;
-      J.col(j) = (plus - residuals(perturbed(current, theta))) / (2 * Step);
+      signedDistanceGradient(current, y[a], e1, e2, J.row(a).data());
     }
-    const Eigen::MatrixXd A = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
+    const ParameterMatrix A = J.transpose() * J;
+    const Parameters g = J.transpose() * r;
     double decrease = -1;
     for (int attempt = 0; attempt < 8 && decrease < 0; ++attempt)
     {
-      Eigen::MatrixXd damped = A;
-      damped.diagonal() += lambda * A.diagonal() + Eigen::VectorXd::Constant(m, 1e-12);
+      ParameterMatrix damped = A;
+      damped.diagonal() += lambda * A.diagonal() + Parameters::Constant(m, 1e-12);
       const Primitive next = perturbed(current, damped.ldlt().solve(-g));
-      const Eigen::VectorXd rNext = residuals(next);
+      residuals(next, rNext);
       if (rNext.allFinite() && rNext.squaredNorm() < cost)
       {
         decrease = cost - rNext.squaredNorm();
         current = next;
-        r = rNext;
+        r.swap(rNext);
         cost = r.squaredNorm();
         lambda = std::max(lambda / 10, 1e-12);
       }
@@ -229,33 +304,14 @@ double Primitive::distance(const Vec3& x) const
 
 Vec3 Primitive::normalAt(const Vec3& x) const
 {
-  switch (type)
-  {
-    case PrimitiveType::Plane:
-      return axis;
-    case PrimitiveType::Sphere:
-    {
-      const Vec3 v = x - center;
-      return v.norm() > 0 ? Vec3(v.normalized()) : Vec3(Vec3::UnitZ());
-    }
-    case PrimitiveType::Cylinder:
-    {
-      const Vec3 v = x - center, radial = v - v.dot(axis) * axis;
-      return radial.norm() > 0 ? Vec3(radial.normalized()) : Vec3(Vec3::UnitZ());
-    }
-    case PrimitiveType::Cone:
-    {
-      double h, rho;
-      Vec3 radial;
-      coneCoordinates(*this, x, h, rho, radial);
-      if (rho == 0)
-      {
-        return axis;
-      }
-      return cosAngle * radial - sinAngle * axis;
-    }
-  }
-  return axis;
+  Vec3 normal;
+  signedDistance(*this, x, &normal);
+  return normal;
+}
+
+double Primitive::distance(const Vec3& x, Vec3& normal) const
+{
+  return std::abs(signedDistance(*this, x, &normal));
 }
 
 std::optional<Primitive> fitMinimal(PrimitiveType type, const Vec3 (&p)[3], const Vec3 (&n)[3], double epsilon, double cosAlpha)

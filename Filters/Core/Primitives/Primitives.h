@@ -46,10 +46,13 @@ struct Primitive
 
   /// Unsigned distance of x from the surface (a cone is one infinite nappe).
   double distance(const Vec3& x) const;
+  /// The same, and the unit surface normal at the point of the surface closest to x (up to
+  /// sign), in one evaluation.
+  double distance(const Vec3& x, Vec3& normal) const;
   /// The unit surface normal at the point of the surface closest to x (up to sign).
   Vec3 normalAt(const Vec3& x) const;
   /// Compatible with an oriented sample (Schnabel et al. section 4.4): within epsilon of the
-  /// surface and |n . normalAt(x)| >= cosAlpha.
+  /// surface and |n . normalAt(x)| >= cosAlpha (the normal only for samples within epsilon).
   bool compatible(const Vec3& x, const Vec3& n, double epsilon, double cosAlpha) const
   {
     return distance(x) < epsilon && std::abs(n.dot(normalAt(x))) >= cosAlpha;
@@ -69,6 +72,10 @@ struct DistanceStatistics
   double rms = 0, max = 0;
 };
 DistanceStatistics distanceStatistics(const Primitive& shape, const PointList& points, const std::vector<int>& subset);
+
+/// Loops over fewer samples than this run on one thread: starting the threads would cost more
+/// than the loop (a forward search or a fit on a small primitive runs thousands of them).
+constexpr long ParallelSamples = 4096;
 
 /// Cones with a half angle outside [MinimumConeAngle, pi/2 - MinimumConeAngle] are left to the
 /// cylinder and the plane, which they approximate.
