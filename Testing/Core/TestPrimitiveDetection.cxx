@@ -349,6 +349,34 @@ TEST(CoarseSeparatePrimitivesAreWhole)
   checkWholeWithNoise(0.001, 0.1, 4, 3);
 }
 
+TEST(SamplesWithinTheToleranceJoinTheirPrimitive)
+{
+  // an exact plane of 40 x 40 samples with a patch of six samples raised by half of epsilon:
+  // beyond the forward search's floor (epsilon / 4), within RANSAC's tolerance; too few for a
+  // primitive of their own. They join the plane, whose fit stays the one to the exact samples.
+  RansacParameters p;
+  p.epsilon = 0.01;
+  p.clusterEpsilon = 0.05; // twice the grid spacing: the samples are connected
+  p.normalThreshold = 20 * M_PI / 180;
+  p.minimumSupport = 10;
+  PointList points;
+  for (int a = 0; a < 40; ++a)
+    for (int b = 0; b < 40; ++b)
+    {
+      const bool raised = a >= 20 && a < 23 && b >= 20 && b < 22;
+      points.emplace_back(a / 39.0, b / 39.0, raised ? p.epsilon / 2 : 0.0);
+    }
+  const std::vector<DetectedPrimitive> found = detectPrimitives(points, std::vector<Vec3>(points.size(), Vec3::UnitZ()), p);
+  CHECK(found.size() == 1);
+  if (found.size() == 1)
+  {
+    CHECK(found[0].members.size() == points.size());
+    CHECK(found[0].shape.type == PrimitiveType::Plane && std::abs(found[0].shape.axis.z()) == 1.0);
+    CHECK(std::abs(found[0].shape.offset) < 1e-15); // the fit to the exact samples: round-off of z = 0
+    CHECK_NEAR(found[0].maxDistance, p.epsilon / 2, 1e-15);
+  }
+}
+
 TEST(SameSeedSameResultWithAnyThreadCount)
 {
   Part part = blockWithFeatures(0.1, 48);

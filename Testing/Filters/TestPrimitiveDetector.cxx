@@ -1,5 +1,5 @@
 // vtkPrimitiveDetector and Constraint Region's Primitive mode (paper section 6.3): arrays and
-// table, fandisk and joint from CGAL's data, the joint scene of Fig. 10, and bad input.
+// table, fandisk, joint and couplingdown from CGAL's data, the joint scene of Fig. 10, and bad input.
 #include "../TestHarness.h"
 #include "FilterTestUtilities.h"
 #include "Primitives/Primitives.h"
@@ -202,6 +202,23 @@ TEST(FandiskLargePlanesAndCylindersAreFound)
     cylinders += r.type == "Cylinder" && r.faces >= 100 && r.rms < inlier && r.radius < 1;
   std::printf("fandisk: %d cylinders of 100+ faces within the inlier distance %.3g\n", cylinders, inlier);
   CHECK(cylinders >= 4);
+}
+
+TEST(CouplingdownCoverageOverSeeds)
+{
+  // issue 31: "back to at least 0.94 on couplingdown", where the seeds once ranged over 0.84 -
+  // 0.96 (a primitive the draws missed); for each of five seeds
+  const vtkSmartPointer<vtkPolyData> part = readOFF("couplingdown.off");
+  for (int seed = 0; seed < 5; ++seed)
+  {
+    vtkNew<vtkPrimitiveDetector> detector;
+    detector->SetInputData(part);
+    detector->SetRandomSeed(seed);
+    detector->Update();
+    const double covered = coverage(detector->GetOutput());
+    std::printf("couplingdown, seed %d: %.2f%% of the faces\n", seed, 100 * covered);
+    CHECK(covered >= 0.94);
+  }
 }
 
 TEST(JointPlanesAndCylindersAreFound)

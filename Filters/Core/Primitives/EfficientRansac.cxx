@@ -16,7 +16,7 @@ namespace
 {
 // Bits of the Morton code per axis: the finest octree cell is 1/1024 of the bounding box.
 constexpr int MortonBits = 10;
-// Samples evaluated for a new candidate's score; the next subsets double.
+// Samples in the first scoring subset; the next subsets double.
 constexpr long FirstSubset = 256;
 // Minimal sets drawn between two decisions.
 constexpr int DrawsPerBatch = 200;
@@ -101,24 +101,23 @@ std::vector<long> components(const PointList& points, const std::vector<int>& sa
   {
     return {};
   }
-  PointList used;
+  Vec3 lower = points[samples[0]];
   for (int i : samples)
   {
-    used.push_back(points[i]);
+    lower = lower.cwiseMin(points[i]);
   }
-  const Vec3 lower = boundingBox(used).lower;
-  auto key = [&](const std::array<long, 3>& c) { return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]); };
+  auto key = [](const std::array<long, 3>& c) { return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]); };
   const long n = static_cast<long>(samples.size());
-  std::vector<std::array<long, 3>> cellOf(n);
   std::vector<std::pair<std::uint64_t, long>> byCell(n); // (cell key, sample position)
   for (long a = 0; a < n; ++a)
   {
     const Vec3 t = (points[samples[a]] - lower) / clusterEpsilon;
+    std::array<long, 3> cell;
     for (int d = 0; d < 3; ++d)
     {
-      cellOf[a][d] = std::min(static_cast<long>(t[d]) + 1, (1L << 21) - 2); // +1: neighbours stay >= 0
+      cell[d] = std::min(static_cast<long>(t[d]) + 1, (1L << 21) - 2); // +1: neighbours stay >= 0
     }
-    byCell[a] = { key(cellOf[a]), a };
+    byCell[a] = { key(cell), a };
   }
   std::sort(byCell.begin(), byCell.end());
   std::vector<long> parent(n);
@@ -131,27 +130,35 @@ std::vector<long> components(const PointList& points, const std::vector<int>& sa
     return a;
   };
   auto unite = [&](long a, long b) { parent[find(a)] = find(b); };
-  // the first sample of a cell represents it
-  auto representative = [&](std::uint64_t k) {
-    const auto it = std::lower_bound(byCell.begin(), byCell.end(), std::make_pair(k, 0L));
-    return it != byCell.end() && it->first == k ? it->second : -1L;
-  };
-  for (long c = 0; c < n; ++c)
+  // the occupied cells, each represented by its first sample; the samples of a cell are one
+  std::vector<std::uint64_t> cellKey;
+  std::vector<long> representative;
+  for (const auto& [k, a] : byCell)
   {
-    const long a = byCell[c].second, first = representative(byCell[c].first);
-    unite(a, first);
-    if (a != first)
+    if (cellKey.empty() || cellKey.back() != k)
     {
-      continue; // the cell's neighbours are joined once, through its representative
+      cellKey.push_back(k);
+      representative.push_back(a);
     }
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz)
+    else
+    {
+      unite(a, representative.back());
+    }
+  }
+  // cells that touch (26-neighbourhood) are one: each pair is looked up once, from the cell
+  // of the smaller key (the 13 offsets whose key is larger)
+  for (std::size_t c = 0; c < cellKey.size(); ++c)
+  {
+    const std::array<long, 3> cell = { long(cellKey[c] >> 42), long((cellKey[c] >> 21) & 0x1fffff), long(cellKey[c] & 0x1fffff) };
+    for (int dx = 0; dx <= 1; ++dx)
+      for (int dy = -dx; dy <= 1; ++dy)
+        for (int dz = (dx == 0 && dy == 0) ? 1 : -1; dz <= 1; ++dz)
         {
-          const long other = representative(key({ cellOf[a][0] + dx, cellOf[a][1] + dy, cellOf[a][2] + dz }));
-          if (other >= 0)
+          const std::uint64_t neighbour = key({ cell[0] + dx, cell[1] + dy, cell[2] + dz });
+          const auto it = std::lower_bound(cellKey.begin() + c + 1, cellKey.end(), neighbour);
+          if (it != cellKey.end() && *it == neighbour)
           {
-            unite(other, a);
+            unite(representative[it - cellKey.begin()], representative[c]);
           }
         }
   }
@@ -215,9 +222,8 @@ struct Candidate
   Primitive shape;
   std::array<int, 3> samples;
   int level = 0;
-  int subsets = 0;      // evaluated subsets
-  long evaluated = 0;   // samples in them
-  long compatible = 0;  // compatible samples among them
+  int subsets = 0;          // evaluated subsets
+  std::vector<int> hits;    // the available compatible samples in them
   double estimate = 0, lower = 0, upper = 0;
 };
 
@@ -271,10 +277,20 @@ public:
         Types.push_back(type);
       }
     }
-    resetSubsets();
+    // the scoring subsets: ranges of one random order of the samples, from which the extracted
+    // ones drop out (what stays of a random sample is a random sample of what stays)
+    Order = valid;
+    std::shuffle(Order.begin(), Order.end(), Random);
+    for (long end = 0, size = FirstSubset; end < static_cast<long>(Order.size()); size *= 2)
+    {
+      end = std::min(static_cast<long>(Order.size()), end + size);
+      SubsetEnd.push_back(end);
+    }
+    Remaining = valid;
   }
 
-  std::vector<DetectedPrimitive> run(const Progress& progress)
+  /// The primitives found; again: search the samples they leave once more (searchLeftover).
+  std::vector<DetectedPrimitive> run(const Progress& progress, bool again = true)
   {
     std::vector<DetectedPrimitive> found;
     const double total = static_cast<double>(Remaining.size());
@@ -289,7 +305,8 @@ public:
       if (best && best->estimate >= P.minimumSupport && detectionProbability(best->estimate) >= P.probability)
       {
         DetectedPrimitive primitive;
-        if (extract(*best, primitive))
+        std::vector<int> component;
+        if (extract(*best, primitive, component))
         {
           found.push_back(std::move(primitive));
           removeMembers(found.back().members);
@@ -297,8 +314,7 @@ public:
         }
         else
         {
-          *best = Candidates.back();
-          Candidates.pop_back();
+          dropFailed(static_cast<std::size_t>(best - Candidates.data()), component);
         }
       }
       else if (searched)
@@ -308,10 +324,50 @@ public:
     }
     splitIntoPlanes(found);
     settle(found);
+    if (again)
+    {
+      searchLeftover(found);
+    }
     return found;
   }
 
 private:
+  // The samples in no primitive, increasing.
+  std::vector<int> unheld(const std::vector<DetectedPrimitive>& found) const
+  {
+    std::vector<char> held(Points.size(), 0);
+    for (const DetectedPrimitive& primitive : found)
+    {
+      for (int i : primitive.members)
+      {
+        held[i] = 1;
+      }
+    }
+    std::vector<int> left;
+    std::copy_if(Valid.begin(), Valid.end(), std::back_inserter(left), [&](int i) { return !held[i]; });
+    return left;
+  }
+
+  // The search once more on the samples in no primitive, as the stopping rule assumes of the
+  // samples left: minimal sets drawn among them alone find the primitives there that the draws
+  // over all samples missed (on couplingdown, seeds differed by up to 10 points of coverage).
+  // What it finds joins the others, and settle decides again.
+  void searchLeftover(std::vector<DetectedPrimitive>& found) const
+  {
+    const std::vector<int> left = unheld(found);
+    if (static_cast<int>(left.size()) < P.minimumSupport)
+    {
+      return;
+    }
+    Search search(Points, Normals, Faces, P, left);
+    std::vector<DetectedPrimitive> more = search.run({}, false);
+    if (!more.empty())
+    {
+      std::move(more.begin(), more.end(), std::back_inserter(found));
+      settle(found);
+    }
+  }
+
   // 1 - (1 - n / (N L 2^(k-1)))^T for minimal sets of k = 3 samples (Schnabel et al. eq. 4)
   double detectionProbability(double n) const
   {
@@ -320,42 +376,47 @@ private:
     return 1 - std::pow(1 - single, static_cast<double>(Draws));
   }
 
-  void resetSubsets()
-  {
-    Remaining.clear();
-    for (int i : Octree.order())
-    {
-      if (Available[i])
-      {
-        Remaining.push_back(i);
-      }
-    }
-    std::shuffle(Remaining.begin(), Remaining.end(), Random);
-    SubsetEnd.clear();
-    long end = 0, size = FirstSubset;
-    while (end < static_cast<long>(Remaining.size()))
-    {
-      end = std::min(static_cast<long>(Remaining.size()), end + size);
-      SubsetEnd.push_back(end);
-      size *= 2;
-    }
-  }
+  // The samples in the subsets before subset k.
+  long subsetStart(int k) const { return k == 0 ? 0 : SubsetEnd[k - 1]; }
 
+  // Evaluates the candidate on its next subset, and on more while fewer than FirstSubset of
+  // its evaluated samples are available (extractions thin the subsets out).
   void evaluateNextSubset(Candidate& c) const
   {
-    const long begin = c.subsets == 0 ? 0 : SubsetEnd[c.subsets - 1], end = SubsetEnd[c.subsets];
-    long compatible = 0;
-    for (long a = begin; a < end; ++a)
+    do
     {
-      const int i = Remaining[a];
-      compatible += c.shape.compatible(Points[i], Normals[i], P.epsilon, CosAlpha);
+      const long begin = subsetStart(c.subsets), n = SubsetEnd[c.subsets] - begin;
+      std::vector<char> hit(n);
+#pragma omp parallel for schedule(static) if (n >= ParallelSamples)
+      for (long a = 0; a < n; ++a)
+      {
+        const int i = Order[begin + a];
+        hit[a] = c.shape.compatible(Points[i], Normals[i], P.epsilon, CosAlpha);
+      }
+      for (long a = 0; a < n; ++a)
+      {
+        if (hit[a])
+        {
+          c.hits.push_back(Order[begin + a]);
+        }
+      }
+      ++c.subsets;
+    } while (subsetStart(c.subsets) < FirstSubset && !fullyEvaluated(c));
+    estimate(c);
+  }
+
+  // Expected score N c / m of a candidate with c hits among the m available samples of its
+  // evaluated subsets, with a normal approximation of the hypergeometric spread.
+  void estimate(Candidate& c) const
+  {
+    const double N = static_cast<double>(Remaining.size()), m = static_cast<double>(subsetStart(c.subsets));
+    const double hits = static_cast<double>(c.hits.size());
+    if (!(m > 0))
+    {
+      c.estimate = c.lower = c.upper = 0; // every sample gone: nothing left to score
+      return;
     }
-    c.compatible += compatible;
-    c.evaluated += end - begin;
-    ++c.subsets;
-    // expected score N c / m with a normal approximation of the hypergeometric spread
-    const double N = static_cast<double>(Remaining.size()), m = static_cast<double>(c.evaluated);
-    const double f = static_cast<double>(c.compatible) / m, fSpread = (c.compatible + 1.0) / (m + 2);
+    const double f = hits / m, fSpread = (hits + 1.0) / (m + 2);
     const double spread = N * std::sqrt(fSpread * (1 - fSpread) / m * std::max(0.0, (N - m) / std::max(1.0, N - 1)));
     c.estimate = N * f;
     c.lower = c.estimate - ConfidenceWidth * spread;
@@ -504,12 +565,12 @@ private:
   {
     const long n = static_cast<long>(Remaining.size());
     std::vector<char> flag(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= ParallelSamples)
     for (long a = 0; a < n; ++a)
     {
       flag[a] = shape.compatible(Points[Remaining[a]], Normals[Remaining[a]], P.epsilon, CosAlpha);
     }
-    std::vector<int> compatible;
+    std::vector<int> compatible; // increasing, as Remaining
     for (long a = 0; a < n; ++a)
     {
       if (flag[a])
@@ -517,7 +578,6 @@ private:
         compatible.push_back(Remaining[a]);
       }
     }
-    std::sort(compatible.begin(), compatible.end());
     return largestComponent(Points, compatible, P.clusterEpsilon, Faces, VertexOwner);
   }
 
@@ -558,7 +618,8 @@ private:
     PointList feet;
     for (int i : samples)
     {
-      const Vec3 step = curved.distance(Points[i]) * curved.normalAt(Points[i]);
+      Vec3 normal;
+      const Vec3 step = curved.distance(Points[i], normal) * normal;
       const Vec3 inward = Points[i] - step, outward = Points[i] + step;
       feet.push_back(curved.distance(inward) <= curved.distance(outward) ? inward : outward);
     }
@@ -607,13 +668,25 @@ private:
     }
     RansacParameters planesOnly = P;
     planesOnly.cylinders = planesOnly.spheres = planesOnly.cones = false;
-    std::vector<DetectedPrimitive> split;
-    for (DetectedPrimitive& primitive : found)
+    // the searches are independent: one thread each (their loops then run on it alone)
+    const long count = static_cast<long>(found.size());
+    std::vector<std::vector<DetectedPrimitive>> planesAmong(count);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long p = 0; p < count; ++p)
     {
+      if (found[p].shape.type != PrimitiveType::Plane)
+      {
+        Search search(Points, Normals, Faces, planesOnly, found[p].members);
+        planesAmong[p] = search.run({});
+      }
+    }
+    std::vector<DetectedPrimitive> split;
+    for (long p = 0; p < count; ++p)
+    {
+      DetectedPrimitive& primitive = found[p];
       if (primitive.shape.type != PrimitiveType::Plane)
       {
-        Search search(Points, Normals, Faces, planesOnly, primitive.members);
-        std::vector<DetectedPrimitive> planes = search.run({});
+        std::vector<DetectedPrimitive>& planes = planesAmong[p];
         long held = 0;
         double planesSum = 0;
         for (const DetectedPrimitive& plane : planes)
@@ -655,10 +728,37 @@ private:
     found = std::move(split);
   }
 
-  bool extract(const Candidate& candidate, DetectedPrimitive& primitive) const
+  // A candidate that fails holds no primitive of its type in the compatible component it was
+  // refined on, which extract leaves in component. Candidates of that type drawn in it whose
+  // compatible samples all lie in it would be refined on it again, and go with it (on a curved
+  // patch that no plane fits, hundreds of plane candidates would fail one after another).
+  void dropFailed(std::size_t failed, const std::vector<int>& component)
+  {
+    std::vector<char> inComponent(Points.size(), 0);
+    for (int i : component)
+    {
+      inComponent[i] = 1;
+    }
+    auto inside = [&](const auto& samples) {
+      return std::all_of(samples.begin(), samples.end(), [&](int i) { return inComponent[i] != 0; });
+    };
+    const PrimitiveType type = Candidates[failed].shape.type;
+    std::vector<Candidate> kept;
+    for (std::size_t c = 0; c < Candidates.size(); ++c)
+    {
+      const Candidate& candidate = Candidates[c];
+      if (c != failed && !(candidate.shape.type == type && inside(candidate.samples) && inside(candidate.hits)))
+      {
+        kept.push_back(std::move(Candidates[c]));
+      }
+    }
+    Candidates = std::move(kept);
+  }
+
+  bool extract(const Candidate& candidate, DetectedPrimitive& primitive, std::vector<int>& component) const
   {
     Primitive shape = candidate.shape;
-    std::vector<int> component = compatibleComponent(shape);
+    component = compatibleComponent(shape);
     for (int pass = 0; pass < 2 && static_cast<int>(component.size()) >= P.minimumSupport; ++pass)
     {
       const Primitive refit = fitLeastSquares(shape, Points, component);
@@ -722,11 +822,12 @@ private:
     const double cosAngle = std::cos(admissionAngle(primitive));
     const long n = static_cast<long>(Valid.size());
     std::vector<char> flag(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= ParallelSamples)
     for (long a = 0; a < n; ++a)
     {
       const int i = Valid[a];
-      flag[a] = shape.distance(Points[i]) <= reach && std::abs(Normals[i].dot(shape.normalAt(Points[i]))) >= cosAngle;
+      Vec3 normal;
+      flag[a] = shape.distance(Points[i], normal) <= reach && std::abs(Normals[i].dot(normal)) >= cosAngle;
     }
     std::vector<int> admitted;
     for (long a = 0; a < n; ++a)
@@ -766,7 +867,8 @@ private:
   //   2. a sample no kept primitive holds goes to the kept primitive that explains it with the
   //      least distance relative to its admission distance (noisy faces beyond the normal
   //      threshold, the members of a redundant primitive);
-  //   3. a primitive that gained samples is fit again to its members by least squares.
+  //   3. a primitive that gained samples is fit again to its members by least squares;
+  //   4. a sample still in none joins the primitive it is compatible with (joinCompatible).
   void settle(std::vector<DetectedPrimitive>& found) const
   {
     const int count = static_cast<int>(found.size());
@@ -870,6 +972,93 @@ private:
       settled.push_back(std::move(primitive));
     }
     found = std::move(settled);
+    joinCompatible(found);
+  }
+
+  // A sample in no primitive joins one it is compatible with (Schnabel et al. section 4.4:
+  // within epsilon, its normal within the threshold) in a connected component of its members,
+  // the nearest if several: the faces of a blend or of a coarse tessellation beside an exact
+  // primitive, which the forward search left out as farther than its floor. The primitive's
+  // shape stays the fit to the samples it explains; its distance statistics count them all.
+  void joinCompatible(std::vector<DetectedPrimitive>& found) const
+  {
+    const std::vector<int> left = unheld(found);
+    std::vector<int> owner(left.size(), -1);
+    std::vector<double> nearest(left.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t p = 0; p < found.size() && !left.empty(); ++p)
+    {
+      const DetectedPrimitive& primitive = found[p];
+      // the primitive's members and the compatible samples left, increasing; b >= 0: left[b]
+      std::vector<int> samples;
+      std::vector<long> leftIndex;
+      std::size_t m = 0;
+      for (std::size_t b = 0; b < left.size(); ++b)
+      {
+        const int i = left[b];
+        if (!primitive.shape.compatible(Points[i], Normals[i], P.epsilon, CosAlpha))
+        {
+          continue;
+        }
+        for (; m < primitive.members.size() && primitive.members[m] < i; ++m)
+        {
+          samples.push_back(primitive.members[m]);
+          leftIndex.push_back(-1);
+        }
+        samples.push_back(i);
+        leftIndex.push_back(static_cast<long>(b));
+      }
+      if (std::none_of(leftIndex.begin(), leftIndex.end(), [](long b) { return b >= 0; }))
+      {
+        continue; // none compatible
+      }
+      for (; m < primitive.members.size(); ++m)
+      {
+        samples.push_back(primitive.members[m]);
+        leftIndex.push_back(-1);
+      }
+      const std::vector<long> component = components(Points, samples, P.clusterEpsilon, Faces, VertexOwner);
+      std::vector<char> reached(samples.size(), 0);
+      for (std::size_t a = 0; a < samples.size(); ++a)
+      {
+        if (leftIndex[a] < 0)
+        {
+          reached[component[a]] = 1;
+        }
+      }
+      for (std::size_t a = 0; a < samples.size(); ++a)
+      {
+        const long b = leftIndex[a];
+        if (b >= 0 && reached[component[a]])
+        {
+          const double distance = primitive.shape.distance(Points[samples[a]]);
+          if (distance < nearest[b])
+          {
+            nearest[b] = distance;
+            owner[b] = static_cast<int>(p);
+          }
+        }
+      }
+    }
+    std::vector<char> gained(found.size(), 0);
+    for (std::size_t b = 0; b < left.size(); ++b)
+    {
+      if (owner[b] >= 0)
+      {
+        found[owner[b]].members.push_back(left[b]);
+        gained[owner[b]] = 1;
+      }
+    }
+    for (std::size_t p = 0; p < found.size(); ++p)
+    {
+      if (gained[p])
+      {
+        DetectedPrimitive& primitive = found[p];
+        std::sort(primitive.members.begin(), primitive.members.end());
+        const DistanceStatistics statistics = distanceStatistics(primitive.shape, Points, primitive.members);
+        primitive.rmsDistance = statistics.rms;
+        primitive.maxDistance = statistics.max;
+      }
+    }
   }
 
   void removeMembers(const std::vector<int>& members)
@@ -878,22 +1067,31 @@ private:
     {
       Available[i] = 0;
     }
-    // candidates drawn from removed samples go; the others are scored again on new subsets
+    Remaining.erase(std::remove_if(Remaining.begin(), Remaining.end(), [&](int i) { return !Available[i]; }), Remaining.end());
+    // the subsets keep their available samples, in their order
+    long kept = 0;
+    for (std::size_t k = 0, a = 0; k < SubsetEnd.size(); ++k)
+    {
+      for (; a < static_cast<std::size_t>(SubsetEnd[k]); ++a)
+      {
+        if (Available[Order[a]])
+        {
+          Order[kept++] = Order[a];
+        }
+      }
+      SubsetEnd[k] = kept;
+    }
+    Order.resize(kept);
+    // candidates drawn from removed samples go; the others lose the removed hits (Schnabel et
+    // al. section 4.5: the scores are kept up to date, not evaluated again)
     Candidates.erase(std::remove_if(Candidates.begin(), Candidates.end(),
                        [&](const Candidate& c) { return !Available[c.samples[0]] || !Available[c.samples[1]] || !Available[c.samples[2]]; }),
       Candidates.end());
-    resetSubsets();
     for (Candidate& c : Candidates)
     {
-      c.subsets = 0;
-      c.evaluated = c.compatible = 0;
+      c.hits.erase(std::remove_if(c.hits.begin(), c.hits.end(), [&](int i) { return !Available[i]; }), c.hits.end());
+      estimate(c);
     }
-    if (Remaining.empty())
-    {
-      Candidates.clear();
-      return;
-    }
-    scoreFrom(0);
   }
 
   const PointList& Points;
@@ -907,8 +1105,9 @@ private:
   MortonOctree Octree;
   std::vector<int> Valid; // the samples with a unit normal, increasing
   std::vector<char> Available;
-  std::vector<int> Remaining; // available samples in random order: the scoring subsets
-  std::vector<long> SubsetEnd;
+  std::vector<int> Remaining; // the available samples, increasing
+  std::vector<int> Order;      // the available samples in random order: the scoring subsets are ranges of it
+  std::vector<long> SubsetEnd; // the end of each subset in Order
   std::vector<Candidate> Candidates;
   std::vector<PrimitiveType> Types;
   int Levels = 1;

@@ -8,25 +8,33 @@
 //   - Score (section 4.4): the samples within epsilon of a candidate whose normal deviates by
 //     less than the normal threshold, restricted to the largest connected component among them
 //     (cells of size clusterEpsilon that touch; for mesh faces also faces sharing a vertex,
-//     since a coarse mesh's faces lie farther apart than clusterEpsilon); estimated on growing random subsets with a
-//     confidence interval (section 4.5) and refined only for the best candidates.
+//     since a coarse mesh's faces lie farther apart than clusterEpsilon); estimated on growing
+//     random subsets with a confidence interval (section 4.5) and refined only for the best
+//     candidates. The subsets are ranges of one random order of the samples; an extraction
+//     removes its members from them and from every candidate's compatible samples, so the
+//     scores stay current without being evaluated again.
 //   - Probabilistic stopping (section 4.2): the best candidate, of n samples, is extracted once
 //     1 - (1 - n / (N L 4))^T >= probability after T minimal sets (N samples left, L octree
 //     levels); once a shape of minimumSupport samples would have been found with that
 //     probability, no more sets are drawn and the search ends with the candidates left.
 // Spheres and cylinders of a radius above the samples' bounding-box diagonal (planes or free
 // forms within epsilon) and cones outside the angle range of Primitives.h are not kept.
-// Extraction refits the best candidate to its compatible component by least squares (twice,
-// which lets an inexact candidate from noisy normals grow onto its surface), then the forward
-// search settles its members and parameters; a curved primitive whose members a plane explains
-// as well by Schwarz's information criterion becomes that plane. After the extraction, a curved
-// primitive whose members planes found among them explain as well (the same criterion) becomes
-// those planes (a cone tangent to two faces of a box, found before their planes); then every
-// primitive gathers again the connected samples within its admission distance and its
-// noise-aware admission angle (Schnabel et al.'s refitting); a primitive that the others explain
-// but for fewer than minimumSupport members goes (a piece of a surface that noise split off, a
-// cone tangent to two faces), and samples no primitive holds join the one that explains them.
-// Deterministic for a seed: random draws are serial, only the scoring runs in parallel.
+// Extraction refits the best candidate to its compatible component by least squares (twice, which
+// lets an inexact candidate from noisy normals grow onto its surface), then the forward search
+// settles its members and parameters; a curved primitive whose members a plane explains as well by
+// Schwarz's information criterion becomes that plane. A candidate whose extraction fails takes with
+// it the candidates of its type drawn in the same component whose compatible samples all lie there.
+// After the extraction, a curved primitive whose members planes found among them explain as well
+// (the same criterion) becomes those planes (a cone tangent to two faces of a box, found before
+// their planes); then every primitive gathers again the connected samples within its admission
+// distance and its noise-aware admission angle (Schnabel et al.'s refitting); a primitive that the
+// others explain but for fewer than minimumSupport members goes (a piece of a surface that noise
+// split off, a cone tangent to two faces), and samples no primitive holds join the one that
+// explains them, or else one they are compatible with (within epsilon and the normal threshold) in
+// a connected component of its members. Then the same search runs once more on the samples left,
+// which finds what the draws over all samples missed, and its primitives are settled with the
+// others. Deterministic for a seed: the random draws of a search are serial; the scoring, and the
+// searches for planes among several curved primitives, run in parallel.
 #pragma once
 
 #include "Primitives/ForwardSearch.h"
