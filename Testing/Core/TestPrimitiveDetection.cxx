@@ -396,6 +396,13 @@ TEST(SameSeedSameResultWithAnyThreadCount)
   CHECK(same(serial, parallel));
   CHECK(same(parallel, again));
   CHECK(!same(parallel, other)); // the seed matters
+  // the benchmark's part of 104k faces: primitives of more than ParallelSamples faces, whose
+  // loops (forward search, fits, scoring of large subsets) run on both threads
+  const Part large = blockWithFeatures(0.03, 96);
+  omp_set_num_threads(1);
+  const Detection largeSerial = detect(large, 3);
+  omp_set_num_threads(2);
+  CHECK(same(largeSerial, detect(large, 3)));
 }
 
 TEST(BadInputIsRejectedOrSkipped)
