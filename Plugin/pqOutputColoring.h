@@ -2,7 +2,9 @@
 // coloured by its displacement's magnitude, and Constraint Regions' positions drawn as points in
 // one colour per role (Handle red, Fixed blue, geometric constraints green, Slip orange), so that
 // the regions of a deformation can be told apart at a glance. Applied once, when an output is
-// first shown; a state file's or the designer's own colours are kept.
+// first shown; a state file's or the designer's own colours are kept. After each update of a
+// deformed model the colour legend shows the current range (unless the user locked it), and a
+// zero motion shows as zero.
 #pragma once
 
 #include <QObject>
@@ -20,4 +22,5 @@ public:
 
 private Q_SLOTS:
   void representationAdded(pqRepresentation* representation);
+  void deformationUpdated();
 };
