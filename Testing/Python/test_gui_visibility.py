@@ -1,0 +1,110 @@
+"""Run inside the paraview GUI (paraview --dr --script=test_gui_visibility.py): issue 32, point 3.
+Created from the Filters menu and applied with the Properties panel's Apply button, as a user
+does (ParaView hides a filter's inputs on that Apply, as the filter's Visibility hint says): a
+Constraint Region keeps the model it selects from shown; MLS Deform hides its undeformed input
+(a surface) and keeps the regions (drawn as points) shown. Writes 'ok' or the failures to the
+file named by MLSDEFORM_GUI_RESULT."""
+import os
+import time
+
+result = os.environ['MLSDEFORM_GUI_RESULT']
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+try:
+    from PyQt5.QtCore import QTimer
+    from PyQt5.QtWidgets import QApplication, QMenu, QPushButton
+    from paraview.simple import (GetActiveView, GetSources, LoadPlugin, OpenDataFile,
+                                 Render, SetActiveSource, Show)
+    from paraview import servermanager as sm
+    LoadPlugin(os.environ['MLSDEFORM_PLUGIN'], remote=False, ns=globals())
+    app = QApplication.instance()
+
+    def settle():
+        for _ in range(5):
+            app.processEvents()
+
+    def from_menu(name, selected):
+        """Selects the source and picks the filter in Filters > Alphabetical; a dialog that asks for
+        the inputs (a filter of two input ports) is accepted as it opens, with its preselection."""
+        SetActiveSource(selected)
+        actions = []
+        for _ in range(100):  # the menu enables its filters for the new selection after a while
+            settle()
+            actions = [a for w in app.topLevelWidgets() for m in w.findChildren(QMenu, 'Alphabetical')
+                       for a in m.actions() if a.objectName() == name and a.isEnabled()]
+            if actions:
+                break
+            time.sleep(0.05)
+        if not actions:
+            raise RuntimeError('Filters > Alphabetical > %s: not found or not enabled' % name)
+
+        def accept_dialog():
+            dialog = app.activeModalWidget()
+            if dialog is not None:
+                dialog.accept()
+        QTimer.singleShot(500, accept_dialog)
+        before = set(GetSources().values())
+        actions[0].trigger()
+        for _ in range(100):  # the new filter registers after the menu's reaction returns
+            settle()
+            made = [p for p in GetSources().values() if p not in before and p.GetXMLName() == name]
+            if made:
+                return made[0]
+            time.sleep(0.05)
+        raise RuntimeError('Filters > Alphabetical > %s made no %s' % (name, name))
+
+    def apply():
+        """Presses the Properties panel's Apply button."""
+        settle()
+        buttons = [b for w in app.topLevelWidgets() for b in w.findChildren(QPushButton, 'Accept') if b.isVisible()]
+        check(len(buttons) == 1 and buttons[0].isEnabled(), 'the Apply button: %d shown, enabled %s'
+              % (len(buttons), [b.isEnabled() for b in buttons]))
+        if buttons:
+            buttons[0].click()
+        settle()
+        Render()
+
+    def shown(source):
+        representation = sm.GetRepresentation(source, GetActiveView())
+        return representation is not None and representation.Visibility == 1
+
+    part = OpenDataFile(os.path.join(os.environ['MLSDEFORM_DATA_DIR'], 'fandisk.off'))
+    Show(part)
+    Render()
+    xmin, xmax, ymin, ymax, zmin, zmax = part.GetDataInformation().GetBounds()
+    height, margin = zmax - zmin, 0.01 * (zmax - zmin)
+
+    def region(role, zlow, zhigh, **properties):
+        r = from_menu('ConstraintRegion', part)
+        r.Role = role
+        r.Region = 'Box'
+        r.Region.Position = [xmin - margin, ymin - margin, zlow]
+        r.Region.Length = [xmax - xmin + 2 * margin, ymax - ymin + 2 * margin, zhigh - zlow]
+        for key, value in properties.items():
+            setattr(r, key, value)
+        apply()
+        return r
+
+    fixed = region('Fixed', zmin - margin, zmin + 0.1 * height)
+    check(shown(fixed) and shown(part), 'after applying the Fixed region: region shown %s, model shown %s'
+          % (shown(fixed), shown(part)))
+    handle = region('Handle', zmax - 0.25 * height, zmax + margin, Translation=[-0.15 * height, 0.0, 0.0])
+    check(shown(handle) and shown(part), 'after applying the Handle region: region shown %s, model shown %s'
+          % (shown(handle), shown(part)))
+    deformed = from_menu('MLSDeform', part)
+    deformed.Regions = [fixed, handle]
+    deformed.NumberOfSamples = 500
+    apply()
+    check(shown(deformed) and not shown(part) and shown(fixed) and shown(handle),
+          'after applying MLS Deform: deformed %s, model %s, Fixed %s, Handle %s (want True, False, True, True)'
+          % (shown(deformed), shown(part), shown(fixed), shown(handle)))
+except Exception as error:  # reported through the result file, the GUI swallows exceptions
+    failures.append('error: %s' % error)
+with open(result, 'w') as f:
+    f.write('ok' if not failures else '\n'.join(failures))
