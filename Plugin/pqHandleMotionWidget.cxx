@@ -1,10 +1,15 @@
 #include "pqHandleMotionWidget.h"
 
 #include "Adapters/HandleMotion.h"
+#include "Vocabulary/RegionRoles.h"
 
 #include <pqActiveObjects.h>
+#include <pqApplicationCore.h>
 #include <pqCoreUtilities.h>
+#include <pqDataRepresentation.h>
 #include <pqDoubleLineEdit.h>
+#include <pqPipelineSource.h>
+#include <pqServerManagerModel.h>
 #include <vtkBoundingBox.h>
 #include <vtkBoxRepresentation.h>
 #include <vtkCommand.h>
@@ -73,6 +78,16 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   this->connect(this, SIGNAL(interaction()), SLOT(boxMoved()));
   this->connect(this, SIGNAL(endInteraction()), SLOT(boxMoved()));
   this->connect(&pqActiveObjects::instance(), SIGNAL(dataUpdated()), SLOT(placeWidget()));
+  if (vtkSMProperty* role = proxy->GetProperty("Role"))
+  {
+    pqCoreUtilities::connect(role, vtkCommand::ModifiedEvent, this, SLOT(motionEdited())); // a Handle no longer
+  }
+  // the region's points shown for the first time (its first Apply) are drawn moved too
+  if (auto* source = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(proxy))
+  {
+    this->connect(source, SIGNAL(representationAdded(pqPipelineSource*, pqDataRepresentation*, int)),
+      SLOT(regionShown(pqPipelineSource*, pqDataRepresentation*)));
+  }
 }
 
 void pqHandleMotionWidget::hideEvent(QHideEvent* event)
@@ -117,11 +132,7 @@ void pqHandleMotionWidget::motionEdited()
   {
     return;
   }
-  mlsvtk::HandleMotion motion;
-  vtkSMUncheckedPropertyHelper(this->Motion[0]).Get(motion.translation, 3);
-  vtkSMUncheckedPropertyHelper(this->Motion[1]).Get(motion.rotation, 3);
-  vtkSMUncheckedPropertyHelper(this->Motion[2]).Get(motion.scale, 3);
-  const mlsvtk::BoxTransform transform = mlsvtk::boxTransform(motion, this->Pivot);
+  const mlsvtk::BoxTransform transform = this->motionTransform();
   vtkSMNewWidgetRepresentationProxy* box = this->widgetProxy();
   this->Updating = true;
   vtkSMPropertyHelper(box, "Position").Set(transform.position, 3);
@@ -129,7 +140,46 @@ void pqHandleMotionWidget::motionEdited()
   vtkSMPropertyHelper(box, "Scale").Set(transform.scale, 3);
   box->UpdateVTKObjects();
   this->Updating = false;
+  this->moveRegionPoints();
   this->render();
+}
+
+mlsvtk::BoxTransform pqHandleMotionWidget::motionTransform() const
+{
+  mlsvtk::HandleMotion motion;
+  vtkSMUncheckedPropertyHelper(this->Motion[0]).Get(motion.translation, 3);
+  vtkSMUncheckedPropertyHelper(this->Motion[1]).Get(motion.rotation, 3);
+  vtkSMUncheckedPropertyHelper(this->Motion[2]).Get(motion.scale, 3);
+  return mlsvtk::boxTransform(motion, this->Pivot);
+}
+
+void pqHandleMotionWidget::regionShown(pqPipelineSource*, pqDataRepresentation* representation)
+{
+  this->moveRegionPoints(representation);
+}
+
+void pqHandleMotionWidget::moveRegionPoints(pqDataRepresentation* shown)
+{
+  // the region's output stays the selected positions at rest (MLS Deform's input); only its
+  // representation in the view is moved, by the box's own transform (both are vtkPVTransform's:
+  // translate, rotate about Z, X, then Y, scale, about the origin)
+  if (!shown)
+  {
+    auto* source = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(this->proxy());
+    shown = source ? source->getRepresentation(pqActiveObjects::instance().activeView()) : nullptr;
+  }
+  vtkSMProxy* points = shown ? shown->getProxy() : nullptr;
+  if (!points || !points->GetProperty("Orientation"))
+  {
+    return;
+  }
+  // only a Handle moves; a region whose role was changed is drawn where it is
+  const bool handle = vtkSMPropertyHelper(this->proxy(), "Role").GetAsInt() == mlsvtk::roles::Handle;
+  const mlsvtk::BoxTransform drawn = handle ? this->motionTransform() : mlsvtk::BoxTransform();
+  vtkSMPropertyHelper(points, "Position").Set(drawn.position, 3);
+  vtkSMPropertyHelper(points, "Orientation").Set(drawn.rotation, 3);
+  vtkSMPropertyHelper(points, "Scale").Set(drawn.scale, 3);
+  points->UpdateVTKObjects();
 }
 
 void pqHandleMotionWidget::boxMoved()
@@ -158,4 +208,5 @@ void pqHandleMotionWidget::boxMoved()
   vtkSMUncheckedPropertyHelper(this->Motion[1]).Set(motion.rotation, 3);
   vtkSMUncheckedPropertyHelper(this->Motion[2]).Set(motion.scale, 3);
   this->Updating = false;
+  this->moveRegionPoints();
 }

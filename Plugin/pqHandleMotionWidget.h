@@ -2,12 +2,16 @@
 // the selected positions, centred on the pivot, that the designer drags (its centre handle moves
 // the handle, its faces rotate it about the pivot, its face handles scale it), and the
 // Translation, Rotation and Scale fields, which follow the box and move it when typed. The box
-// shows where the handle region goes.
+// shows where the handle region goes, and the region's points are drawn there with it.
 #pragma once
+
+#include "Adapters/HandleMotion.h"
 
 #include <pqInteractivePropertyWidget.h>
 
+class pqDataRepresentation;
 class pqDoubleLineEdit;
+class pqPipelineSource;
 class vtkSMProperty;
 
 class pqHandleMotionWidget : public pqInteractivePropertyWidget
@@ -33,8 +37,16 @@ private Q_SLOTS:
   void boxMoved();
   /// The motion fields changed (typed, reset, or set from Python): the box follows.
   void motionEdited();
+  /// The region's points are shown in a view (its first Apply): drawn where the handle goes.
+  void regionShown(pqPipelineSource*, pqDataRepresentation* representation);
 
 private:
+  /// The box's transform for the motion in the fields (applied or not).
+  mlsvtk::BoxTransform motionTransform() const;
+  /// Draws the region's points (in the given representation, or in the active view) moved by the
+  /// box's transform, where the handle goes; unmoved once the region is no Handle.
+  void moveRegionPoints(pqDataRepresentation* shown = nullptr);
+
   vtkSMProperty* Motion[3]; // Translation, Rotation, Scale
   double Pivot[3] = { 0, 0, 0 };
   bool Updating = false; // set while one side is written from the other

@@ -1,9 +1,9 @@
 """Run inside the paraview GUI (paraview --dr --script=test_gui_visibility.py): issue 32, point 3.
 Created from the Filters menu and applied with the Properties panel's Apply button, as a user
 does (ParaView hides a filter's inputs on that Apply, as the filter's Visibility hint says): a
-Constraint Region keeps the model it selects from shown; MLS Deform hides its undeformed input
-(a surface) and keeps the regions (drawn as points) shown. Writes 'ok' or the failures to the
-file named by MLSDEFORM_GUI_RESULT."""
+Constraint Region keeps the model it selects from shown; a Handle region's points are drawn
+where the handle goes; MLS Deform hides its undeformed input (a surface) and keeps the regions
+(drawn as points) shown. Writes 'ok' or the failures to the file named by MLSDEFORM_GUI_RESULT."""
 import os
 import time
 
@@ -30,14 +30,18 @@ try:
             app.processEvents()
 
     def from_menu(name, selected):
-        """Selects the source and picks the filter in Filters > Alphabetical; a dialog that asks for
-        the inputs (a filter of two input ports) is accepted as it opens, with its preselection."""
+        """Selects the source and picks the filter in the main window's Filters > Alphabetical (other
+        menus hold actions of the same name); a dialog that asks for the inputs (a filter of two
+        input ports) is accepted as it opens, with its preselection."""
         SetActiveSource(selected)
         actions = []
         for _ in range(100):  # the menu enables its filters for the new selection after a while
             settle()
-            actions = [a for w in app.topLevelWidgets() for m in w.findChildren(QMenu, 'Alphabetical')
-                       for a in m.actions() if a.objectName() == name and a.isEnabled()]
+            windows = [w for w in app.topLevelWidgets() if w.objectName() == 'pqClientMainWindow']
+            filters = windows[0].findChild(QMenu, 'menuFilters') if windows else None
+            alphabetical = filters.findChild(QMenu, 'Alphabetical') if filters else None
+            actions = [a for a in (alphabetical.actions() if alphabetical else [])
+                       if a.objectName() == name and a.isEnabled()]
             if actions:
                 break
             time.sleep(0.05)
@@ -48,15 +52,19 @@ try:
             dialog = app.activeModalWidget()
             if dialog is not None:
                 dialog.accept()
-        QTimer.singleShot(500, accept_dialog)
+        accepter = QTimer()  # accepts the input dialog whenever it opens, until the filter is made
+        accepter.timeout.connect(accept_dialog)
+        accepter.start(200)
         before = set(GetSources().values())
         actions[0].trigger()
-        for _ in range(100):  # the new filter registers after the menu's reaction returns
+        for _ in range(200):  # the new filter registers after the menu's reaction returns
             settle()
             made = [p for p in GetSources().values() if p not in before and p.GetXMLName() == name]
             if made:
+                accepter.stop()
                 return made[0]
             time.sleep(0.05)
+        accepter.stop()
         raise RuntimeError('Filters > Alphabetical > %s made no %s' % (name, name))
 
     def apply():
@@ -97,6 +105,14 @@ try:
     handle = region('Handle', zmax - 0.25 * height, zmax + margin, Translation=[-0.15 * height, 0.0, 0.0])
     check(shown(handle) and shown(part), 'after applying the Handle region: region shown %s, model shown %s'
           % (shown(handle), shown(part)))
+    # the Handle's points are drawn where the handle goes: moved by its translation (the
+    # representation's transform; the region's output stays at rest, MLS Deform's input)
+    settle()
+    drawn = sm.GetRepresentation(handle, GetActiveView())
+    check(max(abs(a - b) for a, b in zip(drawn.Position, handle.Translation)) <= 1e-12 * height and
+          list(drawn.Orientation) == [0, 0, 0] and list(drawn.Scale) == [1, 1, 1],
+          'the Handle points drawn at Position %s Orientation %s Scale %s, not moved by %s'
+          % (list(drawn.Position), list(drawn.Orientation), list(drawn.Scale), list(handle.Translation)))
     deformed = from_menu('MLSDeform', part)
     deformed.Regions = [fixed, handle]
     deformed.NumberOfSamples = 500
