@@ -48,7 +48,8 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   {
     vtkSMProperty* property = group->GetProperty(Functions[row - 1]);
     this->Motion[row - 1] = property;
-    auto* label = new QLabel(property->GetXMLLabel(), this);
+    // "Handle Translation": the Region's box widget has its own Translation and Rotation
+    auto* label = new QLabel(QString("Handle %1").arg(property->GetXMLLabel()), this);
     label->setToolTip(pqPropertyWidget::getTooltip(property));
     layout->addWidget(label, row, 0);
     for (int c = 0; c < 3; ++c)
@@ -62,7 +63,7 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     pqCoreUtilities::connect(property, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(motionEdited()));
     pqCoreUtilities::connect(property, vtkCommand::ModifiedEvent, this, SLOT(motionEdited()));
   }
-  auto* show = new QCheckBox("Show Box", this);
+  auto* show = new QCheckBox("Show Handle Box", this); // the Region's box widget has its own Show Box
   show->setObjectName("ShowBox");
   show->setToolTip("Show the handle's box in the render view: drag its centre to move the handle, "
                    "its faces to rotate it about the pivot, its face handles to scale it.");

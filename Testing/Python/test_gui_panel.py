@@ -242,7 +242,7 @@ def check_panel(app, name, proxy, shown_rows, what):
 
 try:
     from PyQt5.QtCore import QPoint
-    from PyQt5.QtWidgets import QApplication, QComboBox, QLabel, QToolButton, QWidget
+    from PyQt5.QtWidgets import QApplication, QCheckBox, QComboBox, QLabel, QToolButton, QWidget
     from paraview import servermanager as sm
     from paraview.simple import Delaunay3D, LoadPlugin, SetActiveSource, Sphere
     LoadPlugin(os.environ['MLSDEFORM_PLUGIN'], remote=False, ns=globals())  # defines MLSDeform() etc.
@@ -304,7 +304,21 @@ try:
     panel = check_panel(app, 'ConstraintRegion', handle, {'Role', 'Weight', 'SelectionMode', 'Region', 'InsideOut', 'DesignVariables'},
                         'Handle, ImplicitFunction')
     if panel is not None:
+        # issue 32, point 2: no label of the plugin's twice in the Handle's panel (the Region's box
+        # widget and the handle motion each had a Translation, a Rotation and a Show Box); ParaView's
+        # own box widget ('InteractiveBox') labels its Rotation field and its Rotation check box
+        # alike, which is not the plugin's to change
+        labels = [w for w in panel.findChildren(QLabel) + panel.findChildren(QCheckBox)
+                  if w.isVisibleTo(panel) and w.text() and not w.text().startswith('<html>')]
+        texts = [w.text() for w in labels]
+        twice = sorted({w.text() for w in labels
+                        if texts.count(w.text()) > 1 and w.parent().objectName() != 'InteractiveBox'})
+        check(not twice, 'ConstraintRegion panel (Handle): labels shown twice: %s' % twice)
+        check(property_widget(panel, 'UseCentroid') is not None and property_widget(panel, 'UseCentroid').isVisibleTo(panel),
+              'ConstraintRegion panel (Handle): UseCentroid hidden')
         choose(app, panel, 'Role', 'Rigid')
+        check(property_widget(panel, 'UseCentroid') is None or not property_widget(panel, 'UseCentroid').isVisibleTo(panel),
+              'ConstraintRegion panel (Rigid): UseCentroid shown')
         check_panel(app, 'ConstraintRegion', handle, {'Role', 'Weight', 'SelectionMode', 'CellSets', 'Region', 'InsideOut'},
                     'Rigid, ImplicitFunction')
         choose(app, panel, 'SelectionMode', 'CellLayers')
