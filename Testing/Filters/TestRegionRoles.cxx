@@ -166,7 +166,8 @@ TEST(XMLDecoratorsByRole)
   const std::map<std::string, std::set<int>> expected{ { "CellSets", cellSets }, { "Handle Motion", { mlsvtk::roles::Handle } },
     { "DesignVariables", { mlsvtk::roles::Handle } }, { "SymmetryOrigin", { mlsvtk::roles::Symmetric } },
     { "SymmetryNormal", { mlsvtk::roles::Symmetric } }, { "ConstraintGroup", { mlsvtk::roles::Coplanar, mlsvtk::roles::Distance } },
-    { "DistanceAxis", { mlsvtk::roles::Distance } }, { "MinimumDistance", { mlsvtk::roles::Offset } }, { "Surface", { mlsvtk::roles::Offset } } };
+    { "DistanceAxis", { mlsvtk::roles::Distance } }, { "MinimumDistance", { mlsvtk::roles::Offset } }, { "Surface", { mlsvtk::roles::Offset } },
+    { "UseCentroid", { mlsvtk::roles::Handle } }, { "Center", { mlsvtk::roles::Handle } } };
   for (const auto& [name, roles] : shownFor)
   {
     std::printf("shown by Role: %s\n", name.c_str());
