@@ -16,14 +16,28 @@ void tangentBasis(const Vec3& a, Vec3& e1, Vec3& e2)
   e2 = a.cross(e1);
 }
 
-// Cone coordinates of x: height h along the axis from the apex and distance rho from the axis.
-void coneCoordinates(const Primitive& cone, const Vec3& x, double& h, double& rho, Vec3& radial)
+// A point in a cone's coordinates: height h along the axis from the apex, distance rho from the
+// axis in the unit direction radial, and its signed distance from the nappe. In the (h, rho)
+// half plane the surface is the ray t (cos a, sin a), t >= 0: a point with along = h cos a +
+// rho sin a >= 0 is closest to the ray's interior, any other to the apex.
+struct ConePoint
 {
+  double h = 0, rho = 0, along = 0, distance = 0;
+  Vec3 radial = Vec3::Zero();
+  bool nearestApex() const { return along < 0; }
+};
+
+ConePoint conePoint(const Primitive& cone, const Vec3& x)
+{
+  ConePoint p;
   const Vec3 v = x - cone.center;
-  h = v.dot(cone.axis);
-  radial = v - h * cone.axis;
-  rho = radial.norm();
-  radial = rho > 0 ? Vec3(radial / rho) : Vec3(Vec3::Zero());
+  p.h = v.dot(cone.axis);
+  const Vec3 radial = v - p.h * cone.axis;
+  p.rho = radial.norm();
+  p.radial = p.rho > 0 ? Vec3(radial / p.rho) : Vec3(Vec3::Zero());
+  p.along = p.h * cone.cosAngle + p.rho * cone.sinAngle;
+  p.distance = p.nearestApex() ? std::hypot(p.h, p.rho) : p.rho * cone.cosAngle - p.h * cone.sinAngle;
+  return p;
 }
 
 // Signed distance (positive outside) of x from the surface and, if asked, the unit normal at the
@@ -52,16 +66,12 @@ double signedDistance(const Primitive& s, const Vec3& x, Vec3* normal = nullptr)
     }
     case PrimitiveType::Cone:
     {
-      double h, rho;
-      Vec3 radial;
-      coneCoordinates(s, x, h, rho, radial);
-      const double c = s.cosAngle, sn = s.sinAngle;
+      const ConePoint p = conePoint(s, x);
       if (normal)
       {
-        *normal = rho > 0 ? Vec3(c * radial - sn * s.axis) : s.axis;
+        *normal = p.rho > 0 ? Vec3(s.cosAngle * p.radial - s.sinAngle * s.axis) : s.axis;
       }
-      // in the (h, rho) half plane the surface is the ray t (cos a, sin a), t >= 0
-      return h * c + rho * sn >= 0 ? rho * c - h * sn : std::hypot(h, rho);
+      return p.distance;
     }
   }
   return 0;
@@ -137,23 +147,20 @@ double signedDistanceGradient(const Primitive& s, const Vec3& y, const Vec3& e1,
     }
     case PrimitiveType::Cone:
     {
-      double h, rho;
-      Vec3 u;
-      coneCoordinates(s, y, h, rho, u);
-      const double c = s.cosAngle, sn = s.sinAngle;
-      if (h * c + rho * sn >= 0)
+      const ConePoint p = conePoint(s, y);
+      if (!p.nearestApex())
       {
-        centerShift = -(c * u - sn * s.axis);
-        const double along = h * c + rho * sn;
-        gradient[3] = -u.dot(e1) * along;
-        gradient[4] = -u.dot(e2) * along;
-        gradient[5] = -along;
-        return rho * c - h * sn;
+        centerShift = -(s.cosAngle * p.radial - s.sinAngle * s.axis);
+        gradient[3] = -p.radial.dot(e1) * p.along;
+        gradient[4] = -p.radial.dot(e2) * p.along;
+        gradient[5] = -p.along;
       }
-      const double r = std::hypot(h, rho);
-      centerShift = r > 0 ? Vec3(-v / r) : Vec3(Vec3::Zero());
-      gradient[3] = gradient[4] = gradient[5] = 0;
-      return r;
+      else
+      {
+        centerShift = p.distance > 0 ? Vec3(-v / p.distance) : Vec3(Vec3::Zero());
+        gradient[3] = gradient[4] = gradient[5] = 0;
+      }
+      return p.distance;
     }
     case PrimitiveType::Plane:
       break;
