@@ -1,5 +1,5 @@
 """The Python tests' checks: each prints ok or FAIL with what it checked; finish() exits non-zero
-when any failed."""
+when any failed, write_result() reports them from a script run inside the paraview GUI."""
 import sys
 
 failures = []
@@ -25,3 +25,11 @@ def finish():
     if failures:
         sys.exit('%d check(s) failed: %s' % (len(failures), '; '.join(failures)))
     print('all checks passed')
+
+
+def write_result(path, error=None):
+    """For a script inside the paraview GUI, which swallows exceptions and exit codes: writes 'ok',
+    or the failures and the error, to the file the test reads."""
+    lines = failures + (['error: %s' % error] if error else [])
+    with open(path, 'w') as f:
+        f.write(('\n'.join(lines) if lines else 'ok') + '\n')

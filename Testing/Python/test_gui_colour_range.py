@@ -7,13 +7,7 @@ Writes 'ok' or the failures to the file named by MLSDEFORM_GUI_RESULT."""
 import math
 import os
 
-result = os.environ['MLSDEFORM_GUI_RESULT']
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
+from checks import check, write_result  # Testing/Python, on PYTHONPATH
 
 
 try:
@@ -66,7 +60,6 @@ try:
     handle.Translation = [-0.1 * height, 0.0, 0.0]
     Render()
     check(legend() == locked, 'locked legend %s changed to %s' % (locked, legend()))
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception as error:  # reported through the result file, the GUI swallows exceptions
-    failures.append('error: %s' % error)
-with open(result, 'w') as f:
-    f.write('ok' if not failures else '\n'.join(failures))
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'], error)

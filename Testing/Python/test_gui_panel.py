@@ -11,13 +11,7 @@ import os
 import re
 import time
 
-result = os.environ['MLSDEFORM_GUI_RESULT']
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
+from checks import check, write_result  # Testing/Python, on PYTHONPATH
 
 
 # The panel sections per filter, in panel order; each group's properties in panel order.
@@ -328,9 +322,7 @@ try:
         choose(app, panel, 'Role', 'Slip')
         check_panel(app, 'ConstraintRegion', handle, {'Role', 'Weight', 'SelectionMode', 'SelectionArray', 'Range'},
                     'Slip, ArrayRange')
-    message = 'ok' if not failures else '\n'.join(failures)
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception:  # reported through the result file, the GUI swallows exceptions
     import traceback
-    message = 'error: %s' % traceback.format_exc()
-with open(result, 'w') as f:
-    f.write(message + '\n')
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'], traceback.format_exc())

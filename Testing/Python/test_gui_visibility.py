@@ -7,13 +7,7 @@ where the handle goes; MLS Deform hides its undeformed input (a surface) and kee
 import os
 import time
 
-result = os.environ['MLSDEFORM_GUI_RESULT']
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
+from checks import check, write_result  # Testing/Python, on PYTHONPATH
 
 
 try:
@@ -120,7 +114,6 @@ try:
     check(shown(deformed) and not shown(part) and shown(fixed) and shown(handle),
           'after applying MLS Deform: deformed %s, model %s, Fixed %s, Handle %s (want True, False, True, True)'
           % (shown(deformed), shown(part), shown(fixed), shown(handle)))
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception as error:  # reported through the result file, the GUI swallows exceptions
-    failures.append('error: %s' % error)
-with open(result, 'w') as f:
-    f.write('ok' if not failures else '\n'.join(failures))
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'], error)
