@@ -1,6 +1,9 @@
 #include "Common/ZOrder.h"
 
+#include "Common/KeySort.h"
+
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <utility>
 
@@ -21,6 +24,11 @@ std::uint64_t spread(std::uint64_t v)
 }
 }
 
+std::uint64_t mortonCode(std::uint64_t x, std::uint64_t y, std::uint64_t z)
+{
+  return spread(x) | spread(y) << 1 | spread(z) << 2;
+}
+
 std::vector<int> zOrder(const PointList& points, long first, long last)
 {
   std::vector<int> order;
@@ -36,22 +44,21 @@ std::vector<int> zOrder(const PointList& points, long first, long last)
   }
   const double cells = 0x1fffff;
   const Vec3 extent = (upper - lower).cwiseMax(1e-300);
-  std::vector<std::pair<std::uint64_t, int>> keyed(last - first);
+  std::vector<std::pair<std::uint64_t, long>> keyed(last - first);
   for (long i = first; i < last; ++i)
   {
-    std::uint64_t key = 0;
+    std::array<std::uint64_t, 3> cell;
     for (int d = 0; d < 3; ++d)
     {
-      const double cell = std::clamp((points[i][d] - lower[d]) / extent[d] * cells, 0.0, cells);
-      key |= spread(static_cast<std::uint64_t>(cell)) << d;
+      cell[d] = static_cast<std::uint64_t>(std::clamp((points[i][d] - lower[d]) / extent[d] * cells, 0.0, cells));
     }
-    keyed[i - first] = { key, static_cast<int>(i) };
+    keyed[i - first] = { mortonCode(cell[0], cell[1], cell[2]), i };
   }
-  std::sort(keyed.begin(), keyed.end());
+  sortByKey(keyed, 63); // ties stay in increasing index
   order.reserve(keyed.size());
   for (const auto& entry : keyed)
   {
-    order.push_back(entry.second);
+    order.push_back(static_cast<int>(entry.second));
   }
   return order;
 }

@@ -5,9 +5,13 @@
 #include "Common/CoreTypes.h"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace mlsdeform
 {
+/// The Morton code of a cell: the 21 low bits of its coordinates interleaved (x lowest).
+std::uint64_t mortonCode(std::uint64_t x, std::uint64_t y, std::uint64_t z);
+
 /// The indices first..last-1 of points sorted along the Z-order curve of their bounding box
 /// (2^21 cells per axis; ties by index).
 std::vector<int> zOrder(const PointList& points, long first, long last);

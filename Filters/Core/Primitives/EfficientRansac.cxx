@@ -1,6 +1,8 @@
 #include "Primitives/EfficientRansac.h"
 
 #include "Common/BoundingBox.h"
+#include "Common/KeySort.h"
+#include "Common/ZOrder.h"
 
 #include <algorithm>
 #include <array>
@@ -27,17 +29,6 @@ constexpr std::size_t KeptCandidates = 1000;
 // Width of the confidence interval of an estimated score, in standard deviations.
 constexpr double ConfidenceWidth = 2;
 
-std::uint64_t spreadBits(std::uint64_t v)
-{
-  // 10 bits to every third of 30
-  v &= 0x3ff;
-  v = (v | (v << 16)) & 0x30000ff;
-  v = (v | (v << 8)) & 0x300f00f;
-  v = (v | (v << 4)) & 0x30c30c3;
-  v = (v | (v << 2)) & 0x9249249;
-  return v;
-}
-
 // The octree of the samples, implicit in their Morton order (Schnabel et al. section 4.3).
 class MortonOctree
 {
@@ -56,15 +47,18 @@ public:
     for (int i : valid)
     {
       const Vec3 t = (points[i] - box.lower) / size * ((1 << MortonBits) - 1);
-      Code[i] = spreadBits(static_cast<std::uint64_t>(t.x())) | (spreadBits(static_cast<std::uint64_t>(t.y())) << 1) |
-        (spreadBits(static_cast<std::uint64_t>(t.z())) << 2);
+      Code[i] = mortonCode(static_cast<std::uint64_t>(t.x()), static_cast<std::uint64_t>(t.y()), static_cast<std::uint64_t>(t.z()));
     }
-    Order = valid;
-    std::stable_sort(Order.begin(), Order.end(), [&](int a, int b) { return Code[a] < Code[b]; });
-    Sorted.resize(Order.size());
-    for (std::size_t a = 0; a < Order.size(); ++a)
+    std::vector<std::pair<std::uint64_t, long>> byCode;
+    for (int i : valid)
     {
-      Sorted[a] = Code[Order[a]];
+      byCode.emplace_back(Code[i], i);
+    }
+    sortByKey(byCode, 3 * MortonBits);
+    for (const auto& [code, i] : byCode)
+    {
+      Order.push_back(static_cast<int>(i));
+      Sorted.push_back(code);
     }
   }
 
@@ -101,25 +95,33 @@ std::vector<long> components(const PointList& points, const std::vector<int>& sa
   {
     return {};
   }
-  Vec3 lower = points[samples[0]];
+  Vec3 lower = points[samples[0]], upper = lower;
   for (int i : samples)
   {
     lower = lower.cwiseMin(points[i]);
+    upper = upper.cwiseMax(points[i]);
   }
-  auto key = [](const std::array<long, 3>& c) { return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]); };
+  // cells 1 .. n per axis and an empty layer on either side (the neighbours of every cell have
+  // keys), at most 2^21 - 1 per axis (the key fits 63 bits)
+  std::array<std::uint64_t, 3> cells;
+  for (int d = 0; d < 3; ++d)
+  {
+    cells[d] = static_cast<std::uint64_t>(std::min(std::floor((upper[d] - lower[d]) / clusterEpsilon), double(1 << 21) - 4)) + 3;
+  }
+  auto key = [&](std::uint64_t x, std::uint64_t y, std::uint64_t z) { return (x * cells[1] + y) * cells[2] + z; };
   const long n = static_cast<long>(samples.size());
   std::vector<std::pair<std::uint64_t, long>> byCell(n); // (cell key, sample position)
   for (long a = 0; a < n; ++a)
   {
     const Vec3 t = (points[samples[a]] - lower) / clusterEpsilon;
-    std::array<long, 3> cell;
+    std::array<std::uint64_t, 3> cell;
     for (int d = 0; d < 3; ++d)
     {
-      cell[d] = std::min(static_cast<long>(t[d]) + 1, (1L << 21) - 2); // +1: neighbours stay >= 0
+      cell[d] = std::min(static_cast<std::uint64_t>(std::min(t[d], double(cells[d]))) + 1, cells[d] - 2);
     }
-    byCell[a] = { key(cell), a };
+    byCell[a] = { key(cell[0], cell[1], cell[2]), a };
   }
-  std::sort(byCell.begin(), byCell.end());
+  sortByKey(byCell, keyBits(cells[0] * cells[1] * cells[2]));
   std::vector<long> parent(n);
   std::iota(parent.begin(), parent.end(), 0L);
   auto find = [&](long a) {
@@ -145,22 +147,32 @@ std::vector<long> components(const PointList& points, const std::vector<int>& sa
       unite(a, representative.back());
     }
   }
-  // cells that touch (26-neighbourhood) are one: each pair is looked up once, from the cell
-  // of the smaller key (the 13 offsets whose key is larger)
+  // cells that touch (26-neighbourhood) are one: each pair is looked up once, from the cell of
+  // the smaller key, at the 13 offsets that add to its key. A neighbour's key grows with the
+  // cell's, so each offset's search goes on from where the previous cell's stopped.
+  std::vector<std::uint64_t> offsets;
+  for (std::uint64_t dx = 0; dx <= 1; ++dx)
+    for (std::uint64_t dy = 1 - dx; dy <= 2; ++dy)
+      for (std::uint64_t dz = (dx == 0 && dy == 1) ? 2 : 0; dz <= 2; ++dz)
+      {
+        offsets.push_back(key(1 + dx, dy, dz) - key(1, 1, 1));
+      }
+  std::vector<std::size_t> next(offsets.size(), 0);
   for (std::size_t c = 0; c < cellKey.size(); ++c)
   {
-    const std::array<long, 3> cell = { long(cellKey[c] >> 42), long((cellKey[c] >> 21) & 0x1fffff), long(cellKey[c] & 0x1fffff) };
-    for (int dx = 0; dx <= 1; ++dx)
-      for (int dy = -dx; dy <= 1; ++dy)
-        for (int dz = (dx == 0 && dy == 0) ? 1 : -1; dz <= 1; ++dz)
-        {
-          const std::uint64_t neighbour = key({ cell[0] + dx, cell[1] + dy, cell[2] + dz });
-          const auto it = std::lower_bound(cellKey.begin() + c + 1, cellKey.end(), neighbour);
-          if (it != cellKey.end() && *it == neighbour)
-          {
-            unite(representative[it - cellKey.begin()], representative[c]);
-          }
-        }
+    for (std::size_t o = 0; o < offsets.size(); ++o)
+    {
+      const std::uint64_t neighbour = cellKey[c] + offsets[o];
+      std::size_t& j = next[o];
+      while (j < cellKey.size() && cellKey[j] < neighbour)
+      {
+        ++j;
+      }
+      if (j < cellKey.size() && cellKey[j] == neighbour)
+      {
+        unite(representative[j], representative[c]);
+      }
+    }
   }
   if (faces)
   {
@@ -286,6 +298,11 @@ public:
       end = std::min(static_cast<long>(Order.size()), end + size);
       SubsetEnd.push_back(end);
     }
+    for (int i : Order)
+    {
+      OrderPoints.push_back(Points[i]);
+      OrderNormals.push_back(Normals[i]);
+    }
     Remaining = valid;
   }
 
@@ -390,8 +407,7 @@ private:
 #pragma omp parallel for schedule(static) if (n >= ParallelSamples)
       for (long a = 0; a < n; ++a)
       {
-        const int i = Order[begin + a];
-        hit[a] = c.shape.compatible(Points[i], Normals[i], P.epsilon, CosAlpha);
+        hit[a] = c.shape.compatible(OrderPoints[begin + a], OrderNormals[begin + a], P.epsilon, CosAlpha);
       }
       for (long a = 0; a < n; ++a)
       {
@@ -1076,12 +1092,17 @@ private:
       {
         if (Available[Order[a]])
         {
-          Order[kept++] = Order[a];
+          Order[kept] = Order[a];
+          OrderPoints[kept] = OrderPoints[a];
+          OrderNormals[kept] = OrderNormals[a];
+          ++kept;
         }
       }
       SubsetEnd[k] = kept;
     }
     Order.resize(kept);
+    OrderPoints.resize(kept);
+    OrderNormals.resize(kept);
     // candidates drawn from removed samples go; the others lose the removed hits (Schnabel et
     // al. section 4.5: the scores are kept up to date, not evaluated again)
     Candidates.erase(std::remove_if(Candidates.begin(), Candidates.end(),
@@ -1108,6 +1129,8 @@ private:
   std::vector<int> Remaining; // the available samples, increasing
   std::vector<int> Order;      // the available samples in random order: the scoring subsets are ranges of it
   std::vector<long> SubsetEnd; // the end of each subset in Order
+  PointList OrderPoints;       // the positions and normals of the samples in Order, in its order:
+  std::vector<Vec3> OrderNormals; // a subset is scored from contiguous memory
   std::vector<Candidate> Candidates;
   std::vector<PrimitiveType> Types;
   int Levels = 1;
