@@ -1,9 +1,13 @@
 // Fig. 2 / section 5: farthest points, Lloyd relaxation, cover radii, Voronoi volumes.
 #include "Common/KdTree.h"
+#include "Common/KeySort.h"
 #include "Basis/MLSBasis.h"
 #include "Sampling/Sampling.h"
 #include "TestGeometry.h"
 #include "../TestHarness.h"
+
+#include <algorithm>
+#include <random>
 
 using namespace mlsdeform;
 using testgeometry::randomPoints;
@@ -89,6 +93,29 @@ TEST(KdTreeQueriesMatchBruteForce)
     for (std::size_t count : { containingCount, containingCount + 1 })
       CHECK(tree.containedInAtLeast(x, static_cast<int>(count), meeting) == (containingCount >= count));
   }
+}
+
+TEST(SortByKeyIsAStableSort)
+{
+  // keys of 0, 5, 11 (one pass), 30 and 63 bits (several passes), many ties among the short ones
+  std::mt19937_64 random(3);
+  for (int bits : { 0, 5, 11, 30, 63 })
+  {
+    std::vector<std::pair<std::uint64_t, long>> items(5000);
+    for (std::size_t a = 0; a < items.size(); ++a)
+    {
+      items[a] = { bits == 0 ? 0 : random() >> (64 - bits), static_cast<long>(a) };
+    }
+    std::vector<std::pair<std::uint64_t, long>> expected = items;
+    std::stable_sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    sortByKey(items, bits);
+    CHECK(items == expected);
+  }
+  CHECK(keyBits(0) == 0);
+  CHECK(keyBits(1) == 0);
+  CHECK(keyBits(2) == 1);
+  CHECK(keyBits(1024) == 10);
+  CHECK(keyBits(1025) == 11);
 }
 
 TEST(FarthestPointSelectionSpreadsAndSkipsDuplicates)
