@@ -265,9 +265,9 @@ public:
     if (faces)
     {
       int vertices = 0;
-      for (const std::vector<int>& face : *faces)
+      for (int i : valid)
       {
-        for (int v : face)
+        for (int v : (*faces)[i])
         {
           vertices = std::max(vertices, v + 1);
         }
@@ -659,13 +659,32 @@ private:
     return static_cast<double>(samples.size()) * std::pow(distanceStatistics(shape, Points, samples).rms, 2);
   }
 
+  // The least squared sum of distances that n samples count with: n (floor / jump)^2, the
+  // forward search's floor (no model is told apart from another below it).
+  double leastSquaredSum(double n) const
+  {
+    const double deviation = Refinement.floor / Refinement.jump;
+    return n * deviation * deviation;
+  }
+
   // Schwarz's criterion on n samples: a model of k parameters and residual sum of squares rss
   // against a richer one of K > k (or K <= k: then it must fit as well or better), both sums at
   // least n (floor / jump)^2 (planeExplains).
   bool simplerExplains(double n, double rss, int k, double richRss, int richK) const
   {
-    const double deviation = Refinement.floor / Refinement.jump, least = n * deviation * deviation;
+    const double least = leastSquaredSum(n);
     return n * std::log(std::max(least, rss) / std::max(least, richRss)) <= (richK - k) * std::log(n);
+  }
+
+  // The most planes that simplerExplains can prefer to the curved primitive on its members:
+  // with their squared sum at its least, n (floor / jump)^2, that is 3 m <= k + n log(curved's
+  // sum / least) / log n.
+  long mostPlanes(const DetectedPrimitive& curved) const
+  {
+    const double n = static_cast<double>(curved.members.size()), least = leastSquaredSum(n);
+    const double ratio = std::max(least, squaredSum(curved.shape, curved.members)) / least;
+    const double most = (parameterCount(curved.shape.type) + n * std::log(ratio) / std::log(n)) / 3;
+    return std::max(1L, static_cast<long>(std::min(most, n)));
   }
 
   // A curved primitive tangent to several flat faces (a cone in the corner of two faces of a
@@ -692,8 +711,16 @@ private:
     {
       if (found[p].shape.type != PrimitiveType::Plane)
       {
-        Search search(Points, Normals, Faces, planesOnly, found[p].members);
-        planesAmong[p] = search.run({});
+        // planes that replace it are at most mostPlanes, so the largest holds a share of its
+        // members: a search for that plane alone is short, and the whole search follows only
+        // when it finds one (a truly curved primitive holds no plane of that size)
+        RansacParameters largest = planesOnly;
+        const long n = static_cast<long>(found[p].members.size()), most = mostPlanes(found[p]);
+        largest.minimumSupport = static_cast<int>(std::max<long>(P.minimumSupport, (n - P.minimumSupport + most) / most));
+        if (!Search(Points, Normals, Faces, largest, found[p].members).run({}, false).empty())
+        {
+          planesAmong[p] = Search(Points, Normals, Faces, planesOnly, found[p].members).run({});
+        }
       }
     }
     std::vector<DetectedPrimitive> split;
