@@ -10,6 +10,8 @@
 #include <pqDoubleLineEdit.h>
 #include <pqPipelineSource.h>
 #include <pqServerManagerModel.h>
+#include <pqUndoStack.h>
+#include <vtkPVGeneralSettings.h>
 #include <vtkBoundingBox.h>
 #include <vtkBoxRepresentation.h>
 #include <vtkCommand.h>
@@ -78,6 +80,8 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   this->setDataSource(proxy); // the box surrounds the region's output: the selected positions
   this->connect(this, SIGNAL(interaction()), SLOT(boxMoved()));
   this->connect(this, SIGNAL(endInteraction()), SLOT(boxMoved()));
+  this->connect(this, SIGNAL(startInteraction()), SLOT(dragStarted()));
+  this->connect(this, SIGNAL(endInteraction()), SLOT(dragEnded()));
   this->connect(&pqActiveObjects::instance(), SIGNAL(dataUpdated()), SLOT(placeWidget()));
   if (vtkSMProperty* role = proxy->GetProperty("Role"))
   {
@@ -88,6 +92,41 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   {
     this->connect(source, SIGNAL(representationAdded(pqPipelineSource*, pqDataRepresentation*, int)),
       SLOT(regionShown(pqPipelineSource*, pqDataRepresentation*)));
+    // a drag's last motion applied: its undo step closes (dragEnded)
+    this->connect(source, SIGNAL(modifiedStateChanged(pqServerManagerModelItem*)), SLOT(dragEnded()));
+  }
+}
+
+pqHandleMotionWidget::~pqHandleMotionWidget()
+{
+  if (this->Dragging)
+  {
+    END_UNDO_SET();
+  }
+}
+
+void pqHandleMotionWidget::dragStarted()
+{
+  if (!this->Dragging)
+  {
+    BEGIN_UNDO_SET(QString("Move Handle of %1").arg(this->proxy()->GetLogNameOrDefault()));
+    this->Dragging = true;
+  }
+  this->DragEnded = false;
+}
+
+void pqHandleMotionWidget::dragEnded()
+{
+  if (this->sender() == this)
+  {
+    this->DragEnded = true;
+  }
+  auto* source = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(this->proxy());
+  const bool applyPending = source && source->modifiedState() != pqProxy::UNMODIFIED && vtkPVGeneralSettings::GetInstance()->GetAutoApply();
+  if (this->Dragging && this->DragEnded && !applyPending)
+  {
+    END_UNDO_SET();
+    this->Dragging = false;
   }
 }
 

@@ -21,6 +21,7 @@ class pqHandleMotionWidget : public pqInteractivePropertyWidget
 
 public:
   pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup* group, QWidget* parent = nullptr);
+  ~pqHandleMotionWidget() override;
 
 protected:
   /// Keeps the designer's Show Box choice while the panel is hidden (the base keeps whether the
@@ -39,6 +40,11 @@ private Q_SLOTS:
   void motionEdited();
   /// The region's points are shown in a view (its first Apply): drawn where the handle goes.
   void regionShown(pqPipelineSource*, pqDataRepresentation* representation);
+  /// A drag begins: what it changes, and what Auto Apply applies on the way, is one undo step.
+  void dragStarted();
+  /// A drag ends: its undo step closes once its last motion is applied (at once without Auto
+  /// Apply: Apply is then a step of its own).
+  void dragEnded();
 
 private:
   /// The box's transform for the motion in the fields (applied or not).
@@ -50,4 +56,6 @@ private:
   vtkSMProperty* Motion[3]; // Translation, Rotation, Scale
   double Pivot[3] = { 0, 0, 0 };
   bool Updating = false; // set while one side is written from the other
+  bool Dragging = false;  // a drag's undo step is open
+  bool DragEnded = false; // its end event came (the step closes once the drag is applied)
 };

@@ -1,0 +1,106 @@
+"""Run inside the paraview GUI (paraview --dr --script=test_gui_undo_drag.py): issue 32, point 6.
+With Auto Apply on, the handle box of the fandisk's Handle region is dragged up in five motion
+events, as vtkBoxWidget2 reports a drag (start, moves, end; each move is applied while the drag
+goes on). Edit > Undo once must return the handle to where it was before the drag, and Edit > Redo
+once must bring the whole drag back. Writes 'ok' or the failures to MLSDEFORM_GUI_RESULT."""
+import os
+import time
+
+from checks import check, write_result  # Testing/Python, on PYTHONPATH
+
+STEPS = 5
+# The box's transform round trip (vtkBoxRepresentation::GetTransform and the Euler angles of
+# HandleMotion): ~1e-14 of the part's size; undo and redo restore the saved values exactly.
+TOLERANCE = 1e-9
+
+try:
+    from PyQt5.QtWidgets import QAction, QApplication
+    import paraview.simple as pvs
+    from paraview.modules.vtkRemotingSettings import vtkPVGeneralSettings
+    from paraview.vtk import vtkTransform
+    import fandisk_scene as scene  # Examples/, on PYTHONPATH
+
+    scene.load_plugin(os.environ['MLSDEFORM_PLUGIN'])
+    app = QApplication.instance()
+
+    def settle(until=lambda: False, seconds=10.0):
+        """Lets the panel's and Auto Apply's timers run, until the condition holds or the time is up."""
+        end = time.time() + seconds
+        while True:
+            for _ in range(20):
+                app.processEvents()
+            if until() or time.time() > end:
+                return
+            time.sleep(0.02)
+
+    def edit_action(name):
+        """The main window's Edit > Undo or Redo."""
+        actions = [a for w in app.topLevelWidgets() if w.objectName() == 'pqClientMainWindow'
+                   for a in w.findChildren(QAction) if a.objectName() == 'actionEdit' + name]
+        if not actions:
+            raise RuntimeError('no Edit > %s action' % name)
+        return actions[0]
+
+    def near(values, expected):
+        return max(abs(a - b) for a, b in zip(values, expected)) <= TOLERANCE * max(1.0, height)
+
+    part = pvs.OpenDataFile(os.path.join(os.environ['MLSDEFORM_DATA_DIR'], 'fandisk.off'))
+    part.UpdatePipeline()
+    bounds = part.GetDataInformation().GetBounds()
+    height = bounds[5] - bounds[4]
+    fixed, handle = scene.fixed_and_handle(part, bounds)
+    handle.Translation = [0, 0, 0]
+    deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle], NumberOfSamples=300)
+    view = pvs.GetActiveViewOrCreate('RenderView')
+    for source in (deformed, fixed, handle):
+        pvs.Show(source, view)
+    pvs.SetActiveSource(handle)
+    pvs.Render(view)
+    settle(seconds=0.5)
+    boxes = [p for p in view.GetProperty('HiddenRepresentations')
+             if (p.SMProxy.GetLogName() or '').startswith('handle motion box of ')
+             and p.SMProxy.GetProperty('Visibility').GetElement(0)]
+    if len(boxes) != 1:
+        raise RuntimeError('expected one visible handle box, found %d' % len(boxes))
+    widget = boxes[0].SMProxy
+    representation = widget.GetRepresentationProxy().GetClientSideObject()
+
+    settings = vtkPVGeneralSettings.GetInstance()
+    auto_apply = settings.GetAutoApply()
+    settings.SetAutoApply(True)
+    # the drag: up by 2% of the height per motion event, each applied before the next
+    step = 0.02 * height
+    start = vtkTransform()
+    representation.GetTransform(start)
+    widget.GetWidget().InvokeEvent('StartInteractionEvent')
+    for k in range(1, STEPS + 1):
+        moved = vtkTransform()
+        moved.PostMultiply()
+        moved.Concatenate(start)
+        moved.Translate(0, 0, k * step)
+        representation.SetTransform(moved)
+        widget.GetWidget().InvokeEvent('InteractionEvent')
+        settle(lambda: near(handle.Translation, [0, 0, k * step]))
+        check(near(handle.Translation, [0, 0, k * step]), 'motion event %d applied during the drag: Translation %s'
+              % (k, list(handle.Translation)))
+    widget.GetWidget().InvokeEvent('EndInteractionEvent')
+    settle(seconds=1.0)
+    dragged = [0, 0, STEPS * step]
+    check(near(handle.Translation, dragged), 'after the drag: Translation %s, expected %s'
+          % (list(handle.Translation), dragged))
+
+    undo, redo = edit_action('Undo'), edit_action('Redo')
+    check(undo.isEnabled() and 'Move Handle' in undo.text(), 'Edit > Undo offers the drag: "%s", enabled %s'
+          % (undo.text(), undo.isEnabled()))
+    undo.trigger()
+    settle(lambda: near(handle.Translation, [0, 0, 0]))
+    check(near(handle.Translation, [0, 0, 0]), 'one Undo returns the handle: Translation %s, expected 0'
+          % list(handle.Translation))
+    redo.trigger()
+    settle(lambda: near(handle.Translation, dragged))
+    check(near(handle.Translation, dragged), 'one Redo brings the whole drag back: Translation %s, expected %s'
+          % (list(handle.Translation), dragged))
+    settings.SetAutoApply(auto_apply)
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'])
+except Exception as error:  # reported through the result file, the GUI swallows exceptions
+    write_result(os.environ['MLSDEFORM_GUI_RESULT'], error)
