@@ -255,17 +255,17 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
       output->GetPoint(i, vertices[i].data());
     }
     mlsdeform::requireFinite(vertices, "surface points");
-    const std::vector<std::vector<int>> faces = polygonsOf(output);
-    const mlsdeform::FaceSamples samples = mlsdeform::faceSamples(vertices, faces); // one oriented sample per polygon (Fig. 7)
+    const mlsdeform::SampleFaces mesh{ polygonsOf(output), vertices };
+    const mlsdeform::FaceSamples samples = mlsdeform::faceSamples(vertices, mesh.faces); // one oriented sample per polygon (Fig. 7)
     const double diagonal = mlsdeform::boundingBox(vertices).size().norm();
     if (!(diagonal > 0))
     {
       throw mlsdeform::InvalidInputException("the surface has zero extent");
     }
     const std::vector<DetectedPrimitive> found =
-      mlsdeform::detectPrimitives(samples.barycenters, samples.normals, ransacParameters(this, diagonal), &faces, { &mlsvtk::reportProgress, this });
+      mlsdeform::detectPrimitives(samples.barycenters, samples.normals, ransacParameters(this, diagonal), &mesh, { &mlsvtk::reportProgress, this });
     mlsvtk::checkAbort(this);
-    addPrimitiveArrays(output, found, faces, vertices);
+    addPrimitiveArrays(output, found, mesh.faces, vertices);
     table->ShallowCopy(primitiveTable(found, samples.areas));
   }
   catch (const std::exception& e)

@@ -82,7 +82,8 @@ void compare(const Mesh& mesh, int runs)
   const mlsdeform::FaceSamples samples = mlsdeform::faceSamples(mesh.points, mesh.faces);
   mlsdeform::PointList points;
   std::vector<mlsdeform::Vec3> normals;
-  std::vector<std::vector<int>> faces;
+  mlsdeform::SampleFaces faces; // of the samples
+  faces.vertices = mesh.points;
   Samples cgalSamples;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
   {
@@ -90,7 +91,7 @@ void compare(const Mesh& mesh, int runs)
       continue; // degenerate faces are no samples for either
     points.push_back(samples.barycenters[f]);
     normals.push_back(samples.normals[f]);
-    faces.push_back(mesh.faces[f]);
+    faces.faces.push_back(mesh.faces[f]);
     const mlsdeform::Vec3& p = samples.barycenters[f];
     const mlsdeform::Vec3& n = samples.normals[f];
     cgalSamples.emplace_back(Kernel::Point_3(p.x(), p.y(), p.z()), Kernel::Vector_3(n.x(), n.y(), n.z()));

@@ -49,7 +49,8 @@ Detection detect(const Part& part, std::uint64_t seed = 0)
   d.samples = faceSamples(part.points, part.faces);
   d.parameters = defaults(part.diagonal());
   d.parameters.seed = seed;
-  d.found = detectPrimitives(d.samples.barycenters, d.samples.normals, d.parameters, &part.faces);
+  const SampleFaces faces{ part.faces, part.points };
+  d.found = detectPrimitives(d.samples.barycenters, d.samples.normals, d.parameters, &faces);
   return d;
 }
 
@@ -430,6 +431,12 @@ TEST(BadInputIsRejectedOrSkipped)
     CHECK(!s.normals[f].allFinite() && s.areas[f] == 0);
   // a mesh of only degenerate faces finds nothing (and does not fail)
   CHECK(detectPrimitives(s.barycenters, { s.normals[1], s.normals[1], s.normals[1], s.normals[1] }, p).empty());
+  // the faces given with the samples: one per sample, vertex indices in range, finite vertices
+  const PointList one = { Vec3(0.5, 0.5, 0) };
+  const SampleFaces outOfRange{ { { 0, 1, 9 } }, square }, tooFew{ {}, square },
+    nanVertex{ { { 0, 1, 2 } }, { Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(std::nan(""), 1, 0) } };
+  for (const SampleFaces* faces : { &outOfRange, &tooFew, &nanVertex })
+    CHECK_THROWS(detectPrimitives(one, { Vec3::UnitZ() }, p, faces), InvalidInputException);
 }
 
 TEST_MAIN

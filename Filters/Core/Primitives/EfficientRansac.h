@@ -61,11 +61,20 @@ struct DetectedPrimitive
   double rmsDistance = 0, maxDistance = 0;
 };
 
+/// The faces that the samples stand for (FaceSamples.h): the vertex indices of each sample's
+/// face, and the vertices.
+struct SampleFaces
+{
+  std::vector<std::vector<int>> faces;
+  PointList vertices;
+};
+
 /// Primitives in the oriented samples (points with unit normals), in the order found; a sample
 /// belongs to at most one. Samples whose normal is not a finite unit vector take part in none.
-/// faces (optional): the vertex indices of the face each sample stands for (FaceSamples.h);
-/// faces sharing a vertex are connected. Throws InvalidInputException for non-finite points,
-/// mismatched sizes or invalid parameters.
+/// faces (optional): the face each sample stands for; faces sharing a vertex are connected, and
+/// a face joins a primitive beyond epsilon (its ends) only when all its vertices lie near it.
+/// Throws InvalidInputException for non-finite points, mismatched sizes, vertex indices out of
+/// range or invalid parameters.
 std::vector<DetectedPrimitive> detectPrimitives(const PointList& points, const std::vector<Vec3>& normals,
-  const RansacParameters& parameters, const std::vector<std::vector<int>>* faces = nullptr, const Progress& progress = {});
+  const RansacParameters& parameters, const SampleFaces* faces = nullptr, const Progress& progress = {});
 } // namespace mlsdeform

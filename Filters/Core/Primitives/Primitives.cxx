@@ -168,19 +168,27 @@ double signedDistanceGradient(const Primitive& s, const Vec3& y, const Vec3& e1,
   return signedDistance(s, y);
 }
 
-Primitive fitPlane(const Primitive& start, const PointList& points, const std::vector<int>& subset)
+// The weight of the a-th sample of a subset: 1 without weights.
+double weightOf(const std::vector<double>* weights, std::size_t a)
+{
+  return weights ? (*weights)[a] : 1.0;
+}
+
+Primitive fitPlane(const Primitive& start, const PointList& points, const std::vector<int>& subset, const std::vector<double>* weights)
 {
   Vec3 mean = Vec3::Zero();
-  for (int i : subset)
+  double total = 0;
+  for (std::size_t a = 0; a < subset.size(); ++a)
   {
-    mean += points[i];
+    mean += weightOf(weights, a) * points[subset[a]];
+    total += weightOf(weights, a);
   }
-  mean /= static_cast<double>(subset.size());
+  mean /= total;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (int i : subset)
+  for (std::size_t a = 0; a < subset.size(); ++a)
   {
-    const Vec3 d = points[i] - mean;
-    covariance += d * d.transpose();
+    const Vec3 d = points[subset[a]] - mean;
+    covariance += weightOf(weights, a) * d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
   Primitive plane;
@@ -192,9 +200,10 @@ Primitive fitPlane(const Primitive& start, const PointList& points, const std::v
   return plane;
 }
 
-// Levenberg-Marquardt on the signed distances of the subset (Jacobian: signedDistanceGradient),
-// in coordinates centered at the subset's centroid and scaled by its spread (well conditioned).
-Primitive fitGeometric(const Primitive& start, const PointList& points, const std::vector<int>& subset)
+// Levenberg-Marquardt on the signed distances of the subset, each residual and Jacobian row
+// (signedDistanceGradient) scaled by the square root of its weight, in coordinates centered at
+// the subset's centroid and scaled by its spread (well conditioned).
+Primitive fitGeometric(const Primitive& start, const PointList& points, const std::vector<int>& subset, const std::vector<double>* weights)
 {
   const int m = parameterCount(start.type);
   const long n = static_cast<long>(subset.size());
@@ -231,7 +240,7 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
 #pragma omp parallel for schedule(static) if (n >= ParallelSamples)
     for (long a = 0; a < n; ++a)
     {
-      r[a] = signedDistance(s, y[a]);
+      r[a] = std::sqrt(weightOf(weights, a)) * signedDistance(s, y[a]);
     }
   };
   // Levenberg-Marquardt; stops when a step gains less than 1e-10 of the cost, when the RMS
@@ -249,6 +258,7 @@ Primitive fitGeometric(const Primitive& start, const PointList& points, const st
     for (long a = 0; a < n; ++a)
     {
       signedDistanceGradient(current, y[a], e1, e2, J.row(a).data());
+      J.row(a) *= std::sqrt(weightOf(weights, a));
     }
     const ParameterMatrix A = J.transpose() * J;
     const Parameters g = J.transpose() * r;
@@ -450,7 +460,7 @@ DistanceStatistics distanceStatistics(const Primitive& shape, const PointList& p
   return statistics;
 }
 
-Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset)
+Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset, const std::vector<double>* weights)
 {
   // three points determine a plane; Levenberg-Marquardt needs more samples than parameters
   const int needed = start.type == PrimitiveType::Plane ? 3 : parameterCount(start.type) + 1;
@@ -458,6 +468,51 @@ Primitive fitLeastSquares(const Primitive& start, const PointList& points, const
   {
     return start;
   }
-  return start.type == PrimitiveType::Plane ? fitPlane(start, points, subset) : fitGeometric(start, points, subset);
+  return start.type == PrimitiveType::Plane ? fitPlane(start, points, subset, weights) : fitGeometric(start, points, subset, weights);
+}
+
+Primitive fitMinimax(const Primitive& start, const PointList& points, const std::vector<int>& subset, double enough, int iterations)
+{
+  // Lawson's algorithm: weighted least squares whose weights grow with the distances,
+  // w <- w (|r| + tiny) / mean(w (|r| + tiny)); its weights converge to those of the minimax
+  // (Chebyshev) fit. The tiny term keeps a sample at distance 0 from losing its weight for good.
+  const std::size_t n = subset.size();
+  std::vector<double> weights(n, 1.0), distance(n);
+  Primitive best = start, current = start;
+  double bestLargest = distanceStatistics(start, points, subset).max;
+  for (int k = 0; k < iterations && n > 0 && !(bestLargest < enough); ++k)
+  {
+    current = fitLeastSquares(current, points, subset, &weights);
+    double largest = 0, total = 0;
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      distance[a] = current.distance(points[subset[a]]);
+      largest = std::max(largest, distance[a]);
+    }
+    if (!std::isfinite(largest))
+    {
+      break;
+    }
+    if (largest < bestLargest)
+    {
+      best = current;
+      bestLargest = largest;
+    }
+    const double tiny = 1e-6 * largest;
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      weights[a] *= distance[a] + tiny;
+      total += weights[a];
+    }
+    if (!(total > 0))
+    {
+      break;
+    }
+    for (double& w : weights)
+    {
+      w *= static_cast<double>(n) / total;
+    }
+  }
+  return best;
 }
 } // namespace mlsdeform

@@ -84,6 +84,16 @@ constexpr double MinimumConeAngle = 0.05; // radians (about 3 degrees)
 /// The least-squares fit to the samples subset of points: a plane by principal components (the
 /// start's normal through their mean if they are collinear); a
 /// cylinder, sphere or cone by Levenberg-Marquardt on the geometric distances started from
-/// start. Returns start when the subset is too small to determine the primitive.
-Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset);
+/// start. weights (optional, one per sample of subset, positive): the squared distances are
+/// weighted. Returns start when the subset is too small to determine the primitive.
+Primitive fitLeastSquares(const Primitive& start, const PointList& points, const std::vector<int>& subset,
+  const std::vector<double>* weights = nullptr);
+
+/// The fit that (nearly) minimises the largest distance of the subset's points (a minimax or
+/// Chebyshev fit), from start: Lawson's iteratively reweighted least squares, the iterate with
+/// the least largest distance (start if none is better), stopped once that is below enough.
+/// Where least squares leaves the ends of a blend surface just beyond epsilon, this fit can
+/// hold all its samples within epsilon.
+Primitive fitMinimax(const Primitive& start, const PointList& points, const std::vector<int>& subset, double enough = 0,
+  int iterations = 20);
 } // namespace mlsdeform
