@@ -33,7 +33,10 @@
 // explains them, or else one they are compatible with (within epsilon and the normal threshold) in
 // a connected component of its members. Then the same search runs once more on the samples left,
 // which finds what the draws over all samples missed, and its primitives are settled with the
-// others. Deterministic for a seed: the random draws of a search are serial; the scoring, and the
+// others. Last, samples left just beyond epsilon of a primitive (within 2 epsilon, the vertices of
+// their faces too) are the ends of its surface that least squares left out (a blend's ends): the
+// minimax fit of its members and them replaces its shape when more of them lie within epsilon
+// of it, and they join it. Deterministic for a seed: the random draws of a search are serial; the scoring, and the
 // searches for planes among several curved primitives, run in parallel.
 #pragma once
 
