@@ -11,12 +11,13 @@
 #include <pqPipelineSource.h>
 #include <pqServerManagerModel.h>
 #include <pqUndoStack.h>
-#include <vtkPVGeneralSettings.h>
 #include <vtkBoundingBox.h>
 #include <vtkBoxRepresentation.h>
 #include <vtkCommand.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkPVGeneralSettings.h>
+#include <vtkProperty.h>
 #include <vtkSMNewWidgetRepresentationProxy.h>
 #include <vtkSMPropertyGroup.h>
 #include <vtkSMPropertyHelper.h>
@@ -28,6 +29,7 @@
 #include <QLabel>
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 namespace
@@ -44,7 +46,8 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   this->setChangeAvailableAsChangeFinished(true); // each step of a drag is applied by Auto Apply
   auto* layout = new QGridLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
-  auto* heading = new QLabel(QString("<b>%1</b>").arg(group->GetXMLLabel()), this); // as ParaView's group headings
+  // as ParaView's group headings, with the box's colour as its legend
+  auto* heading = new QLabel(QString("<b>%1</b> (the red box)").arg(group->GetXMLLabel()), this);
   layout->addWidget(heading, 0, 0, 1, 4);
   for (int row = 1; row <= 3; ++row)
   {
@@ -67,8 +70,9 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   }
   auto* show = new QCheckBox("Show Handle Box", this); // the Region's box widget has its own Show Box
   show->setObjectName("ShowBox");
-  show->setToolTip("Show the handle's box in the render view: drag its centre to move the handle, "
-                   "its faces to rotate it about the pivot, its face handles to scale it.");
+  show->setToolTip("Show the handle's box (red) in the render view: drag its centre to move the handle, "
+                   "its faces to rotate it about the pivot, its face handles to scale it. The Region's "
+                   "selection box (white) has its own Show Box.");
   layout->addWidget(show, 4, 0, 1, 4);
   this->connect(show, SIGNAL(toggled(bool)), SLOT(setWidgetVisible(bool)));
   show->connect(this, SIGNAL(widgetVisibilityToggled(bool)), SLOT(setChecked(bool)));
@@ -77,6 +81,13 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
 
   // named so that a script finds it among the view's widgets (Testing/Python/test_gui_handle_widget.py)
   this->widgetProxy()->SetLogName((std::string("handle motion box of ") + proxy->GetLogNameOrDefault()).c_str());
+  // drawn in the Handle's colour, told apart from the Region's selection box (ParaView's white)
+  if (auto* box = vtkBoxRepresentation::SafeDownCast(this->widgetProxy()->GetRepresentationProxy()->GetClientSideObject()))
+  {
+    const std::array<double, 3>& colour = mlsvtk::regionRole(mlsvtk::roles::Handle).colour;
+    box->GetOutlineProperty()->SetColor(colour[0], colour[1], colour[2]);
+    box->GetHandleProperty()->SetColor(colour[0], colour[1], colour[2]);
+  }
   this->setDataSource(proxy); // the box surrounds the region's output: the selected positions
   this->connect(this, SIGNAL(interaction()), SLOT(boxMoved()));
   this->connect(this, SIGNAL(endInteraction()), SLOT(boxMoved()));

@@ -1,8 +1,10 @@
-"""Run inside the paraview GUI (paraview --dr --script=test_gui_undo_drag.py): issue 32, point 6.
-With Auto Apply on, the handle box of the fandisk's Handle region is dragged up in five motion
-events, as vtkBoxWidget2 reports a drag (start, moves, end; each move is applied while the drag
-goes on). Edit > Undo once must return the handle to where it was before the drag, and Edit > Redo
-once must bring the whole drag back. Writes 'ok' or the failures to MLSDEFORM_GUI_RESULT."""
+"""Run inside the paraview GUI (paraview --dr --script=test_gui_handle_drag.py): issue 32, points 2
+and 6. The Handle region of the fandisk shows two boxes: its handle box, outline and handles in
+the Handle colour (red), and the selection box in another colour. With Auto Apply on, the handle
+box is dragged up in five motion events, as vtkBoxWidget2 reports a drag (start, moves, end; each
+move is applied while the drag goes on). Edit > Undo once must return the handle to where it was
+before the drag, and Edit > Redo once must bring the whole drag back. Writes 'ok' or the failures
+to MLSDEFORM_GUI_RESULT."""
 import os
 import time
 
@@ -57,13 +59,22 @@ try:
     pvs.SetActiveSource(handle)
     pvs.Render(view)
     settle(seconds=0.5)
-    boxes = [p for p in view.GetProperty('HiddenRepresentations')
-             if (p.SMProxy.GetLogName() or '').startswith('handle motion box of ')
-             and p.SMProxy.GetProperty('Visibility').GetElement(0)]
-    if len(boxes) != 1:
-        raise RuntimeError('expected one visible handle box, found %d' % len(boxes))
-    widget = boxes[0].SMProxy
+    shown_boxes = [p.SMProxy for p in view.GetProperty('HiddenRepresentations')
+                   if p.SMProxy.GetXMLName() == 'BoxWidgetRepresentation' and p.SMProxy.GetProperty('Visibility').GetElement(0)]
+    boxes = [b for b in shown_boxes if (b.GetLogName() or '').startswith('handle motion box of ')]
+    if len(boxes) != 1 or len(shown_boxes) != 2:
+        raise RuntimeError('expected the handle box and the selection box, found %d handle boxes of %d boxes'
+                           % (len(boxes), len(shown_boxes)))
+    widget = boxes[0]
     representation = widget.GetRepresentationProxy().GetClientSideObject()
+    selection = [b for b in shown_boxes if b is not widget][0].GetRepresentationProxy().GetClientSideObject()
+    red = [0.9, 0.1, 0.1]  # the Handle's colour (Filters/Vocabulary/RegionRoles.h)
+    for part_name in ('Outline', 'Handle'):
+        colour = list(getattr(representation, 'Get%sProperty' % part_name)().GetColor())
+        check(colour == red, 'the handle box %s is drawn in %s, the Handle colour is %s' % (part_name.lower(), colour, red))
+    other = list(selection.GetOutlineProperty().GetColor())
+    check(max(abs(a - b) for a, b in zip(other, red)) > 0.3, 'the selection box outline %s is told apart from the handle box (%s)'
+          % (other, red))
 
     settings = vtkPVGeneralSettings.GetInstance()
     auto_apply = settings.GetAutoApply()
