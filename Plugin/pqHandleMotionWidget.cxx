@@ -11,6 +11,7 @@
 #include <pqPipelineSource.h>
 #include <pqServerManagerModel.h>
 #include <pqUndoStack.h>
+#include <pqView.h>
 #include <vtkBoundingBox.h>
 #include <vtkBoxRepresentation.h>
 #include <vtkCommand.h>
@@ -21,6 +22,7 @@
 #include <vtkSMNewWidgetRepresentationProxy.h>
 #include <vtkSMPropertyGroup.h>
 #include <vtkSMPropertyHelper.h>
+#include <vtkSMRenderViewProxy.h>
 #include <vtkSMUncheckedPropertyHelper.h>
 #include <vtkTransform.h>
 
@@ -106,6 +108,7 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     // a drag's last motion applied: its undo step closes (dragEnded)
     this->connect(source, SIGNAL(modifiedStateChanged(pqServerManagerModelItem*)), SLOT(dragEnded()));
   }
+  this->showOnTop(this->view()); // the base class showed the box in the view it was made in
 }
 
 pqHandleMotionWidget::~pqHandleMotionWidget()
@@ -114,6 +117,47 @@ pqHandleMotionWidget::~pqHandleMotionWidget()
   {
     END_UNDO_SET();
   }
+  this->removeOnTop();
+}
+
+void pqHandleMotionWidget::setView(pqView* view)
+{
+  this->Superclass::setView(view);
+  this->showOnTop(view);
+}
+
+void pqHandleMotionWidget::showOnTop(pqView* view)
+{
+  this->removeOnTop();
+  auto* renderView = vtkSMRenderViewProxy::SafeDownCast(view ? view->getViewProxy() : nullptr);
+  auto* box = vtkBoxRepresentation::SafeDownCast(this->widgetProxy()->GetRepresentationProxy()->GetClientSideObject());
+  vtkRenderWindow* window = renderView ? renderView->GetRenderWindow() : nullptr;
+  if (!window || !box)
+  {
+    return; // a view of another kind, or the box is not on this process
+  }
+  // one layer above the view's; the box's visibility stays the view's Show Handle Box
+  this->OnTop->SetLayer(window->GetNumberOfLayers());
+  window->SetNumberOfLayers(window->GetNumberOfLayers() + 1);
+  this->OnTop->SetActiveCamera(renderView->GetActiveCamera());
+  this->OnTop->InteractiveOff();
+  this->OnTop->AddViewProp(box);
+  window->AddRenderer(this->OnTop);
+  this->OnTopWindow = window;
+}
+
+void pqHandleMotionWidget::removeOnTop()
+{
+  if (vtkRenderWindow* window = this->OnTopWindow)
+  {
+    window->RemoveRenderer(this->OnTop);
+    if (this->OnTop->GetLayer() == window->GetNumberOfLayers() - 1)
+    {
+      window->SetNumberOfLayers(window->GetNumberOfLayers() - 1);
+    }
+  }
+  this->OnTop->RemoveAllViewProps();
+  this->OnTopWindow = nullptr;
 }
 
 void pqHandleMotionWidget::dragStarted()

@@ -8,6 +8,10 @@
 #include "Adapters/HandleMotion.h"
 
 #include <pqInteractivePropertyWidget.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkWeakPointer.h>
 
 class pqDataRepresentation;
 class pqDoubleLineEdit;
@@ -22,6 +26,9 @@ class pqHandleMotionWidget : public pqInteractivePropertyWidget
 public:
   pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup* group, QWidget* parent = nullptr);
   ~pqHandleMotionWidget() override;
+
+  /// Shows the box in the view, and once more over everything (OnTop).
+  void setView(pqView* view) override;
 
 protected:
   /// Keeps the designer's Show Box choice while the panel is hidden (the base keeps whether the
@@ -53,7 +60,17 @@ private:
   /// box's transform, where the handle goes; unmoved once the region is no Handle.
   void moveRegionPoints(pqDataRepresentation* shown = nullptr);
 
+  /// Draws the box once more over everything in the view's window (OnTop), or nowhere.
+  void showOnTop(pqView* view);
+  /// Takes the box out of that window.
+  void removeOnTop();
+
   vtkSMProperty* Motion[3]; // Translation, Rotation, Scale
+  // The box drawn once more in a renderer on the layer above the view's, whose depth buffer is
+  // cleared: its centre sphere, which moves the handle, sits at the pivot inside the solid,
+  // where the model hides it. The view's renderer picks it (a box handle is picked whatever hides it).
+  vtkNew<vtkRenderer> OnTop;
+  vtkWeakPointer<vtkRenderWindow> OnTopWindow;
   double Pivot[3] = { 0, 0, 0 };
   bool Updating = false; // set while one side is written from the other
   bool Dragging = false;  // a drag's undo step is open

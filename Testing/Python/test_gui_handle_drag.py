@@ -1,10 +1,12 @@
-"""Run inside the paraview GUI (paraview --dr --script=test_gui_handle_drag.py): issue 32, points 2
-and 6. The Handle region of the fandisk shows two boxes: its handle box, outline and handles in
+"""Run inside the paraview GUI (paraview --dr --script=test_gui_handle_drag.py): issue 32, points 1,
+2 and 6. The Handle region of the fandisk shows two boxes: its handle box, outline and handles in
 the Handle colour (red), and the selection box in another colour. With Auto Apply on, the handle
 box is dragged up in five motion events, as vtkBoxWidget2 reports a drag (start, moves, end; each
 move is applied while the drag goes on). Edit > Undo once must return the handle to where it was
-before the drag, and Edit > Redo once must bring the whole drag back. Writes 'ok' or the failures
-to MLSDEFORM_GUI_RESULT."""
+before the drag, and Edit > Redo once must bring the whole drag back. Then the model is made
+opaque white: the box's centre sphere, inside it at the pivot, must show at its pixel, and a mouse
+drag on that pixel (press, moves, release through the view's interactor) must move the handle.
+Writes 'ok' or the failures to MLSDEFORM_GUI_RESULT."""
 import os
 import time
 
@@ -111,6 +113,64 @@ try:
     settle(lambda: near(handle.Translation, dragged))
     check(near(handle.Translation, dragged), 'one Redo brings the whole drag back: Translation %s, expected %s'
           % (list(handle.Translation), dragged))
+
+    # Point 1: the box's centre sphere, at the pivot inside the opaque model, is drawn over it and
+    # dragged with the mouse. The model white and the region's points hidden: the pixel at the
+    # centre is the sphere's red only when the box is drawn on top.
+    look = pvs.GetDisplayProperties(deformed, view)
+    pvs.ColorBy(look, None)
+    look.DiffuseColor, look.AmbientColor, look.Opacity = [1, 1, 1], [1, 1, 1], 1.0
+    pvs.Hide(handle, view)
+    pvs.Hide(fixed, view)
+    pvs.SetActiveSource(handle)
+    view.OrientationAxesVisibility = 0
+    view.CameraPosition = [1.5 * height, -3 * height, 1.2 * height]  # oblique: no face handle in front of the centre
+    view.CameraFocalPoint = [0, 0, 0]
+    view.CameraViewUp = [0, 0, 1]
+    view.ResetCamera()
+    pvs.Render(view)
+    settle(seconds=0.5)
+    bounds = representation.GetBounds()
+    centre = [(bounds[2 * i] + bounds[2 * i + 1]) / 2 for i in range(3)]
+    renderer = view.GetRenderer()
+    renderer.SetWorldPoint(centre + [1.0])
+    renderer.WorldToDisplay()
+    x, y = [int(round(c)) for c in renderer.GetDisplayPoint()[:2]]
+    from paraview.vtk.vtkRenderingCore import vtkWindowToImageFilter
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(view.GetRenderWindow())
+    grab.ReadFrontBufferOff()
+    grab.ShouldRerenderOn()
+    grab.Update()
+    pixel = [grab.GetOutput().GetScalarComponentAsDouble(x, y, 0, c) / 255 for c in range(3)]
+    # the sphere's shading keeps red well above green and blue; the white model would be grey
+    check(pixel[0] > 0.4 and pixel[0] > 2 * pixel[1] and pixel[0] > 2 * pixel[2],
+          'the centre sphere at the pivot, inside the opaque model, is drawn over it: pixel (%d, %d) is %s'
+          % (x, y, [round(c, 2) for c in pixel]))
+    # a mouse drag on it, 30 pixels up, through the view's interactor: the handle moves up. The
+    # selection box is hidden with its Show Box as a user does while moving the handle (shown,
+    # its face in front of the centre takes the press and rotates the selection instead).
+    from PyQt5.QtWidgets import QCheckBox
+    shows = [c for w in app.topLevelWidgets() for c in w.findChildren(QCheckBox, 'show3DWidget') if c.isVisible()]
+    check(len(shows) == 1, 'one Show Box of the selection box in the panel, found %d' % len(shows))
+    for show in shows:
+        show.setChecked(False)
+    settle(seconds=0.3)
+    from paraview.vtk.vtkInteractionWidgets import vtkBoxRepresentation
+    picked = representation.ComputeInteractionState(x, y, 0)
+    check(picked == vtkBoxRepresentation.Translating, 'the pixel picks the centre sphere: interaction state %d, Translating is %d'
+          % (picked, vtkBoxRepresentation.Translating))
+    before = list(handle.Translation)
+    interactor = widget.GetWidget().GetInteractor()  # the view's, as the widget listens to it
+    for event, position in (('MouseMoveEvent', (x, y)), ('LeftButtonPressEvent', (x, y)),
+                            ('MouseMoveEvent', (x, y + 10)), ('MouseMoveEvent', (x, y + 20)),
+                            ('MouseMoveEvent', (x, y + 30)), ('LeftButtonReleaseEvent', (x, y + 30))):
+        interactor.SetEventInformation(position[0], position[1], 0, 0, '\0', 0)
+        interactor.InvokeEvent(event)
+        settle(seconds=0.2)
+    settle(lambda: handle.Translation[2] > before[2] + 0.01 * height)
+    check(handle.Translation[2] > before[2] + 0.01 * height,
+          'the mouse dragged the centre sphere up: Translation %s, before %s' % (list(handle.Translation), before))
     settings.SetAutoApply(auto_apply)
     write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception as error:  # reported through the result file, the GUI swallows exceptions
