@@ -12,6 +12,7 @@
 #include <pqServerManagerModel.h>
 #include <pqUndoStack.h>
 #include <pqView.h>
+#include <vtkAbstractWidget.h>
 #include <vtkBoundingBox.h>
 #include <vtkBoxRepresentation.h>
 #include <vtkCommand.h>
@@ -89,6 +90,19 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     const std::array<double, 3>& colour = mlsvtk::regionRole(mlsvtk::roles::Handle).colour;
     box->GetOutlineProperty()->SetColor(colour[0], colour[1], colour[2]);
     box->GetHandleProperty()->SetColor(colour[0], colour[1], colour[2]);
+    // the handle box takes the clicks on it before the selection box (the default priority is
+    // 0.5), whatever of that box lies in front: it is picked on its own, not by the picking
+    // manager that gives a click to the nearest of the boxes (hide it to edit the selection)
+    box->PickingManagedOff();
+  }
+  if (vtkAbstractWidget* widget = this->widgetProxy()->GetWidget())
+  {
+    widget->SetPriority(0.6f);
+    if (widget->GetEnabled())
+    {
+      widget->SetEnabled(0); // its observers are added anew, at that priority
+      widget->SetEnabled(1);
+    }
   }
   this->setDataSource(proxy); // the box surrounds the region's output: the selected positions
   this->connect(this, SIGNAL(interaction()), SLOT(boxMoved()));
