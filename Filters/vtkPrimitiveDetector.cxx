@@ -249,13 +249,13 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
   try
   {
     surfaceOf(input, output);
-    mlsdeform::PointList vertices(output->GetNumberOfPoints());
+    mlsdeform::SampleFaces mesh{ polygonsOf(output), mlsdeform::PointList(output->GetNumberOfPoints()) };
+    mlsdeform::PointList& vertices = mesh.vertices;
     for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
     {
       output->GetPoint(i, vertices[i].data());
     }
     mlsdeform::requireFinite(vertices, "surface points");
-    const mlsdeform::SampleFaces mesh{ polygonsOf(output), vertices };
     const mlsdeform::FaceSamples samples = mlsdeform::faceSamples(vertices, mesh.faces); // one oriented sample per polygon (Fig. 7)
     const double diagonal = mlsdeform::boundingBox(vertices).size().norm();
     if (!(diagonal > 0))

@@ -250,7 +250,6 @@ public:
     : Points(points)
     , Normals(normals)
     , Mesh(mesh)
-    , Faces(mesh ? &mesh->faces : nullptr)
     , P(p)
     , CosAlpha(std::cos(p.normalThreshold))
     , Octree(points, valid)
@@ -266,12 +265,12 @@ public:
     Refinement.floor = P.epsilon / 4;
     Refinement.cosAlpha = CosAlpha;
     Refinement.ceiling = P.epsilon;
-    if (Faces)
+    if (Mesh)
     {
       int vertices = 0;
       for (int i : valid)
       {
-        for (int v : (*Faces)[i])
+        for (int v : Mesh->faces[i])
         {
           vertices = std::max(vertices, v + 1);
         }
@@ -353,6 +352,9 @@ public:
   }
 
 private:
+  // The face of every sample, or none.
+  const std::vector<std::vector<int>>* faces() const { return Mesh ? &Mesh->faces : nullptr; }
+
   // The samples in no primitive, increasing.
   std::vector<int> unheld(const std::vector<DetectedPrimitive>& found) const
   {
@@ -598,7 +600,7 @@ private:
         compatible.push_back(Remaining[a]);
       }
     }
-    return largestComponent(Points, compatible, P.clusterEpsilon, Faces, VertexOwner);
+    return largestComponent(Points, compatible, P.clusterEpsilon, faces(), VertexOwner);
   }
 
   // Occam's razor by Schwarz's Bayesian information criterion ("Estimating the dimension of a
@@ -884,26 +886,14 @@ private:
         admitted.push_back(Valid[a]);
       }
     }
-    std::vector<int> candidates;
-    std::set_union(admitted.begin(), admitted.end(), primitive.members.begin(), primitive.members.end(), std::back_inserter(candidates));
-    const std::vector<long> component = components(Points, candidates, P.clusterEpsilon, Faces, VertexOwner);
-    std::vector<char> reached(candidates.size(), 0);
-    for (std::size_t a = 0, m = 0; a < candidates.size(); ++a)
+    // the admitted samples beyond its members that are connected to them (connectedLeft)
+    std::vector<int> outside, joining, samples;
+    std::set_difference(admitted.begin(), admitted.end(), primitive.members.begin(), primitive.members.end(), std::back_inserter(outside));
+    for (long b : connectedLeft(primitive, outside, [](int) { return true; }))
     {
-      if (m < primitive.members.size() && candidates[a] == primitive.members[m])
-      {
-        reached[component[a]] = 1;
-        ++m;
-      }
+      joining.push_back(outside[b]);
     }
-    std::vector<int> samples;
-    for (std::size_t a = 0; a < candidates.size(); ++a)
-    {
-      if (reached[component[a]])
-      {
-        samples.push_back(candidates[a]);
-      }
-    }
+    std::set_union(joining.begin(), joining.end(), primitive.members.begin(), primitive.members.end(), std::back_inserter(samples));
     return samples;
   }
 
@@ -1056,7 +1046,7 @@ private:
       samples.push_back(members[m]);
       leftIndex.push_back(-1);
     }
-    const std::vector<long> component = components(Points, samples, P.clusterEpsilon, Faces, VertexOwner);
+    const std::vector<long> component = components(Points, samples, P.clusterEpsilon, faces(), VertexOwner);
     std::vector<char> reached(samples.size(), 0);
     for (std::size_t a = 0; a < samples.size(); ++a)
     {
@@ -1229,8 +1219,7 @@ private:
 
   const PointList& Points;
   const std::vector<Vec3>& Normals;
-  const SampleFaces* Mesh;
-  const std::vector<std::vector<int>>* Faces; // Mesh's faces, or none
+  const SampleFaces* Mesh; // or none
   mutable std::vector<int> VertexOwner; // scratch of largestComponent: a sample per vertex, -1
   RansacParameters P;
   double CosAlpha;
