@@ -663,6 +663,10 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role, const Input
   output->GetFieldData()->AddArray(roleArray);
   output->GetFieldData()->AddArray(roleName);
   output->GetFieldData()->AddArray(weight);
+  vtkNew<vtkIntArray> dragging;
+  dragging->SetName(mlsvtk::fields::Dragging);
+  dragging->InsertNextValue(this->Dragging ? 1 : 0);
+  output->GetFieldData()->AddArray(dragging);
   if (role == Symmetric)
   {
     vtkNew<vtkDoubleArray> mirror;
@@ -734,5 +738,6 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Center: " << this->Center[0] << " " << this->Center[1] << " " << this->Center[2] << "\n"
      << indent << "UseCentroid: " << this->UseCentroid << "\n"
      << indent << "Weight: " << this->Weight << "\n"
+     << indent << "Dragging: " << this->Dragging << "\n"
      << indent << "DesignVariables: " << this->Designs->variables.size() << "\n";
 }

@@ -239,6 +239,16 @@ public:
   vtkGetMacro(MinimumDistance, double);
   ///@}
 
+  ///@{
+  /// Set while the handle is being dragged (the GUI's handle box sets it for the drag; default
+  /// off). MLS Deform then moves only the surface blocks of a composite input that also has
+  /// volume blocks (an OpenFOAM case's patches, not its internal mesh), so that the view keeps up
+  /// with the drag; the volume blocks keep their last positions until the update after the drag,
+  /// which moves them with no new set-up.
+  vtkSetMacro(Dragging, bool);
+  vtkGetMacro(Dragging, bool);
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
   ///@{
@@ -269,6 +279,7 @@ protected:
   bool UseCentroid = true;
   double Pivot[3] = { 0.0, 0.0, 0.0 };
   double Weight = 1.0;
+  bool Dragging = false;
   int ConstraintGroup = 0;
   double DistanceAxis[3] = { 0.0, 0.0, 0.0 };
   double MinimumDistance = 0.0;

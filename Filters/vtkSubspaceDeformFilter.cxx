@@ -19,6 +19,7 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -168,9 +169,10 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     settings.tolerance = this->Tolerance;
     settings.andersonDepth = this->Acceleration == Anderson ? 5 : 0;
     const SpaceDeformation::Solution solution = session.solve(settings, group);
-    session.writeOutput(inSets, outSets);
+    const std::vector<char> moving = session.movingSets(inSets);
+    session.writeOutput(inSets, outSets, moving);
     figures.solveTime = secondsSince(solveStart);
-    this->WriteSensitivities(inSets, outSets, output->GetFieldData(), group);
+    this->WriteSensitivities(inSets, outSets, moving, output->GetFieldData(), group);
     figures.setupTime = session.setupTime();
     figures.diagonal = session.diagonal();
     figures.targetCorrection = session.targetCorrection();
@@ -178,7 +180,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     figures.constraintConflicts = session.constraintConflicts();
 
     const double constraintResidual = reportSolution(output->GetFieldData(), session.model(), session.regions(), session.iteratedConstraints(), solution, figures);
-    if (this->MeshQuality)
+    // the volume mesh is measured once it moved (not during a drag's surface-only updates)
+    if (this->MeshQuality && !group.any(std::find(moving.begin(), moving.end(), 0) != moving.end()))
     {
       session.reportQuality(inSets, outSets, output->GetFieldData(), group);
     }
@@ -213,7 +216,8 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
 }
 
 void vtkSubspaceDeformFilter::WriteSensitivities(
-  const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field, const Collective& group)
+  const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving, vtkFieldData* field,
+  const Collective& group)
 {
   DeformationSession& session = *this->Session;
   if (session.design().size() == 0)
@@ -225,7 +229,7 @@ void vtkSubspaceDeformFilter::WriteSensitivities(
                                                   : "implicit differentiation of the constraint iteration's fixed point";
   if (this->ComputeSensitivities)
   {
-    session.writeSensitivities(outSets);
+    session.writeSensitivities(outSets, moving);
   }
   const std::string gradientName = this->ObjectiveGradientArray ? this->ObjectiveGradientArray : "";
   if (!gradientName.empty() && gradientName != "None") // "None": ParaView's choice of no array

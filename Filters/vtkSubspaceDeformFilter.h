@@ -197,7 +197,8 @@ public:
 
   ///@{
   /// Report the volume mesh's quality before and after in the field data (default on; costs a
-  /// pass over the cells per update).
+  /// pass over the cells per update; not while a handle is dragged and only the surface blocks
+  /// move: vtkConstraintRegion::Dragging).
   vtkSetMacro(MeshQuality, vtkTypeBool);
   vtkGetMacro(MeshQuality, vtkTypeBool);
   vtkBooleanMacro(MeshQuality, vtkTypeBool);
@@ -287,9 +288,9 @@ private:
   void operator=(const vtkSubspaceDeformFilter&) = delete;
 
   std::unique_ptr<mlsvtk::DeformationSession> Session;
-  /// The design table, the dX/dp arrays and dJ/dp of this update into the output.
-  void WriteSensitivities(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-    const mlsdeform::Collective& group);
+  /// The design table, the dX/dp arrays (on the moving sets) and dJ/dp of this update into the output.
+  void WriteSensitivities(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
+    const std::vector<char>& moving, vtkFieldData* field, const mlsdeform::Collective& group);
   bool SessionSolved = false; // the last update succeeded: the session's state is the output's
   std::string SensitivityError;
   /// Runs a sensitivity request: false with the message on a failure or without a solved session.

@@ -182,16 +182,42 @@ void pqHandleMotionWidget::dragStarted()
     this->Dragging = true;
   }
   this->DragEnded = false;
+  if (vtkPVGeneralSettings::GetInstance()->GetAutoApply())
+  {
+    this->setRegionDragging(true); // each applied step moves the surface blocks only
+  }
+}
+
+void pqHandleMotionWidget::setRegionDragging(bool dragging)
+{
+  vtkSMProxy* region = this->proxy();
+  if (region->GetProperty("Dragging") && vtkSMPropertyHelper(region, "Dragging").GetAsInt() != (dragging ? 1 : 0))
+  {
+    // pushed at once (not left for Apply); inside the drag's undo set, so that undo and redo
+    // both end with it off
+    vtkSMPropertyHelper(region, "Dragging").Set(dragging ? 1 : 0);
+    region->UpdateVTKObjects();
+  }
 }
 
 void pqHandleMotionWidget::dragEnded()
 {
+  auto* source = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(this->proxy());
+  const bool autoApply = vtkPVGeneralSettings::GetInstance()->GetAutoApply();
   if (this->sender() == this)
   {
     this->DragEnded = true;
+    if (vtkSMPropertyHelper(this->proxy(), "Dragging", true).GetAsInt() != 0)
+    {
+      // released: the volume blocks follow (with the last motion, when Auto Apply has it pending)
+      this->setRegionDragging(false);
+      if (!(source && source->modifiedState() != pqProxy::UNMODIFIED && autoApply) && this->view())
+      {
+        this->view()->render();
+      }
+    }
   }
-  auto* source = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(this->proxy());
-  const bool applyPending = source && source->modifiedState() != pqProxy::UNMODIFIED && vtkPVGeneralSettings::GetInstance()->GetAutoApply();
+  const bool applyPending = source && source->modifiedState() != pqProxy::UNMODIFIED && autoApply;
   if (this->Dragging && this->DragEnded && !applyPending)
   {
     END_UNDO_SET();

@@ -54,6 +54,9 @@ private Q_SLOTS:
   void dragEnded();
 
 private:
+  /// The region's Dragging (vtkConstraintRegion): on while a drag's steps are applied one by one,
+  /// so that MLS Deform moves the surface blocks only; off on release.
+  void setRegionDragging(bool dragging);
   /// The box's transform for the motion in the fields (applied or not).
   mlsvtk::BoxTransform motionTransform() const;
   /// Draws the region's points (in the given representation, or in the active view) moved by the

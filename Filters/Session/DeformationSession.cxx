@@ -13,6 +13,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
+#include <vtkPolyData.h>
 
 #include <algorithm>
 #include <string>
@@ -535,7 +536,7 @@ void DeformationSession::displacement(const PointField& field, long offset, long
   slideOnPlanes(Slips, Points, offset, n, out);
 }
 
-void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& outSets) const
+void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving) const
 {
   for (std::size_t v = 0; v < Design.size(); ++v)
   {
@@ -543,9 +544,15 @@ void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& out
     seeds[v] = 1;
     const PointField t = tangent(seeds);
     long offset = 0;
-    for (vtkPointSet* set : outSets)
+    for (std::size_t s = 0; s < outSets.size(); ++s)
     {
+      vtkPointSet* set = outSets[s];
       const vtkIdType n = set->GetNumberOfPoints();
+      if (!moving[s])
+      {
+        offset += n;
+        continue;
+      }
       vtkNew<vtkDoubleArray> derivative;
       derivative->SetName((fields::SensitivityPrefix + Design.names[v]).c_str());
       derivative->SetNumberOfComponents(3);
@@ -620,10 +627,27 @@ void DeformationSession::deformedPoints(double* out) const
   }
 }
 
-void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets)
+std::vector<char> DeformationSession::movingSets(const std::vector<vtkPointSet*>& sets) const
+{
+  const auto isSurface = [](vtkPointSet* set) { return vtkPolyData::SafeDownCast(set) != nullptr; };
+  const bool dragged = std::any_of(Regions.begin(), Regions.end(), [](const RegionInput& r) { return r.dragging; });
+  if (!dragged || std::all_of(sets.begin(), sets.end(), isSurface) || std::none_of(sets.begin(), sets.end(), isSurface))
+  {
+    return std::vector<char>(sets.size(), 1);
+  }
+  std::vector<char> moving;
+  for (vtkPointSet* set : sets)
+  {
+    moving.push_back(isSurface(set) ? 1 : 0);
+  }
+  return moving;
+}
+
+void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
+  const std::vector<char>& moving)
 {
   vtkLogScopeF(TRACE, "MLS Deform: output points");
-  Output.write(inSets, outSets, Points, [&](long offset, long n, double* out) { displacement(LastField, offset, n, out); });
+  Output.write(inSets, outSets, Points, [&](long offset, long n, double* out) { displacement(LastField, offset, n, out); }, moving);
 }
 
 void DeformationSession::reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,

@@ -185,8 +185,14 @@ public:
   /// gap distance), ..."; the output is then the soft solution there. Empty when none.
   const std::string& constraintConflicts() const { return ConstraintConflicts; }
 
-  /// x + d(x) and Displacement into the output point sets for the last solve.
-  void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets);
+  /// The point sets this update moves: all, but while a region's handle is dragged only the
+  /// surface (polydata) sets of an input that has volume sets too (an OpenFOAM case's patches
+  /// beside its internal mesh), so that a drag step costs the surface's points only.
+  std::vector<char> movingSets(const std::vector<vtkPointSet*>& sets) const;
+
+  /// x + d(x) and Displacement into the output point sets for the last solve; a set that is not
+  /// moving keeps the previous update's (DeformedOutput::write).
+  void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving);
 
   /// The volume mesh's quality before and after, into field (MeshQualityReport.h).
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
@@ -200,8 +206,8 @@ public:
   /// S (Phi w + B r) at this process's points [offset, offset + n), into out: the displacement
   /// of the last solve or a derivative (tangent).
   void displacement(const PointField& field, long offset, long n, double* out) const;
-  /// The point arrays dX/d<variable> of every design variable into the output point sets.
-  void writeSensitivities(const std::vector<vtkPointSet*>& outSets) const;
+  /// The point arrays dX/d<variable> of every design variable into the moving output point sets.
+  void writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving) const;
   /// Reverse mode: dJ/dp per design variable from g = dJ/dX at this process's points (3 values
   /// per point, in order; a collective operation under MPI); method says how it was computed.
   std::vector<double> objectiveSensitivity(std::vector<double> gradient, const mlsdeform::Collective& group, std::string& method);

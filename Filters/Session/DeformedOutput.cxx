@@ -56,7 +56,7 @@ Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
 }
 
 void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const PointList& points,
-  const DisplacementField& displace)
+  const DisplacementField& displace, const std::vector<char>& moving)
 {
   Moved.resize(inSets.size());
   Displacement.resize(inSets.size());
@@ -69,6 +69,14 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
       continue;
     }
     const int type = inSets[s]->GetPoints()->GetDataType();
+    if (!moving[s] && Moved[s] && Moved[s]->GetNumberOfPoints() == n && Moved[s]->GetDataType() == type && Displacement[s] &&
+      Displacement[s]->GetNumberOfTuples() == n)
+    {
+      outSets[s]->SetPoints(Moved[s]); // unchanged since the previous write
+      outSets[s]->GetPointData()->AddArray(Displacement[s]);
+      offset += n;
+      continue;
+    }
     vtkDoubleArray* displacement = reusable(Displacement[s], Displacement[s] && Displacement[s]->GetNumberOfTuples() == n);
     displacement->SetName(fields::Displacement);
     displacement->SetNumberOfComponents(3);

@@ -28,9 +28,10 @@ public:
   using DisplacementField = std::function<void(long offset, long n, double* out)>;
 
   /// Writes x + d(x) and d into the output point sets (outSets[s] matching inSets[s]; points
-  /// concatenated over the sets).
+  /// concatenated over the sets). A set with moving[s] == 0 gets the points and d of the previous
+  /// write instead (a drag's surface-only update), or is written when it has none of its size.
   void write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const mlsdeform::PointList& points,
-    const DisplacementField& d);
+    const DisplacementField& d, const std::vector<char>& moving);
 
 private:
   std::vector<vtkSmartPointer<vtkPoints>> Moved;

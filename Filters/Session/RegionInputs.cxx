@@ -88,6 +88,8 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     vtkFieldData* fieldData = data->GetFieldData();
     vtkDataArray* weight = fieldData->GetArray(fields::Weight);
     region.weight = weight ? weight->GetTuple1(0) : 1.0;
+    vtkDataArray* dragging = fieldData->GetArray(fields::Dragging);
+    region.dragging = dragging && dragging->GetNumberOfTuples() > 0 && dragging->GetTuple1(0) != 0;
     if (region.role == roles::Symmetric)
     {
       vtkDataArray* plane = fieldData->GetArray(fields::SymmetryPlane);

@@ -24,6 +24,7 @@ struct RegionInput
 {
   int role = 0; // Vocabulary/RegionRoles.h
   double weight = 1;
+  bool dragging = false;   // its handle is being dragged (surface-only updates)
   mlsdeform::Plane mirror; // a Symmetric region's plane (unit normal)
   int group = 0;           // a Coplanar or Distance region's group
   mlsdeform::Vec3 axis = mlsdeform::Vec3::Zero(); // a Distance region's axis (zero: none)

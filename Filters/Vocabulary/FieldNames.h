@@ -15,6 +15,7 @@ constexpr const char* ConstraintGroup = "ConstraintGroup"; // field data, int: a
 constexpr const char* DistanceAxis = "DistanceAxis";       // field data, 3 components: a Distance region's axis (zero: none)
 constexpr const char* MinimumDistance = "MinimumDistance"; // field data, double: an Offset region's bound (0: its rest distance)
 constexpr const char* ReferenceTriangles = "ReferenceTriangles"; // field data, 9 components: an Offset region's reference surface
+constexpr const char* Dragging = "Dragging";               // field data, int: 1 while the region's handle is dragged (surface-only updates)
 // design variables (Adapters/DesignVariables.h): on a Handle region's output and, for all
 // regions together, on MLS Deform's output
 constexpr const char* DesignVariableNames = "DesignVariableNames";   // field data, string per variable

@@ -33,6 +33,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <tuple>
 
@@ -216,6 +217,95 @@ TEST(SurfaceAndVolumeDeformedTogether)
   CHECK(outCollection != nullptr);
   check(collection, outCollection, vtkPointSet::SafeDownCast(outCollection->GetPartition(0, 0)),
     vtkPointSet::SafeDownCast(outCollection->GetPartition(1, 0)));
+}
+
+// Issue 32, point 7: while a handle is dragged (vtkConstraintRegion::Dragging), an input with
+// surface and volume blocks moves its surface blocks only, the volume blocks keeping their last
+// positions; on release the volume follows, all with the set-up of the first update. Either
+// output equals a fresh deformation's with the same motion where it moved.
+TEST(DraggingMovesTheSurfaceThenTheVolume)
+{
+  vtkSmartPointer<vtkUnstructuredGrid> volume = tetrahedralBox(5);
+  vtkNew<vtkDataSetSurfaceFilter> boundary;
+  boundary->SetInputData(volume);
+  boundary->Update();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, volume);
+  blocks->SetBlock(1, boundary->GetOutput());
+  const double bottom[6] = { -1, 3, -1, 2, -0.01, 0.01 }, top[6] = { -1, 3, -1, 2, 0.99, 1.01 };
+  vtkNew<vtkBox> b, t;
+  b->SetBounds(bottom);
+  t->SetBounds(top);
+  auto scene = [&](double lift) {
+    auto made = std::make_unique<PlaneScene>(blocks);
+    made->fixed->SetRegion(b);
+    made->handle->SetRegion(t);
+    made->handle->SetTranslation(0.1, 0, lift);
+    return made;
+  };
+  auto block = [](vtkAlgorithm* f, int i) {
+    return vtkPointSet::SafeDownCast(vtkMultiBlockDataSet::SafeDownCast(f->GetOutputDataObject(0))->GetBlock(i));
+  };
+  // the largest coordinate difference of two point sets
+  auto difference = [](vtkPointSet* a, vtkPointSet* c) {
+    double largest = 0;
+    for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+      for (int d = 0; d < 3; ++d)
+        largest = std::max(largest, std::abs(a->GetPoint(i)[d] - c->GetPoint(i)[d]));
+    return largest;
+  };
+  // the same seed, samples and factorization as a fresh set-up: the same arithmetic, equal up to
+  // a few ulps of the coordinates (< 2: 2.2e-16 x 2 each); 1e-12 is far below any motion here
+  const double roundOff = 1e-12;
+
+  std::unique_ptr<PlaneScene> dragged = scene(0.2);
+  dragged->deform->Update();
+  vtkNew<vtkPoints> before;
+  before->DeepCopy(block(dragged->deform, 0)->GetPoints());
+  CHECK(fieldValue(dragged->deform->GetOutputDataObject(0), "InvertedCells") == 0);
+  dragged->handle->SetDragging(true);
+  for (double lift : { 0.25, 0.3 })
+  {
+    dragged->handle->SetTranslation(0.1, 0, lift);
+    dragged->deform->Update();
+    std::unique_ptr<PlaneScene> fresh = scene(lift);
+    fresh->deform->Update();
+    const double surface = difference(block(dragged->deform, 1), block(fresh->deform, 1));
+    vtkNew<vtkUnstructuredGrid> kept;
+    kept->SetPoints(before);
+    const double volumeKept = difference(block(dragged->deform, 0), kept);
+    std::printf("dragging, lift %g: surface off a fresh deformation by %g, volume off its last positions by %g\n", lift, surface, volumeKept);
+    CHECK(surface <= roundOff);
+    CHECK(volumeKept == 0);                                  // the volume stays where it was
+    CHECK(difference(block(dragged->deform, 0), block(fresh->deform, 0)) > 0.01); // (which is not the new motion's)
+    CHECK(block(dragged->deform, 0)->GetPointData()->GetArray("Displacement") != nullptr);
+    // no quality report of a volume that did not move
+    CHECK(fieldValue(dragged->deform->GetOutputDataObject(0), "InvertedCells") == -1);
+  }
+  dragged->handle->SetDragging(false); // released
+  dragged->deform->Update();
+  std::unique_ptr<PlaneScene> fresh = scene(0.3);
+  fresh->deform->Update();
+  const double volumeAfter = difference(block(dragged->deform, 0), block(fresh->deform, 0));
+  std::printf("released: volume off a fresh deformation by %g\n", volumeAfter);
+  CHECK(volumeAfter <= roundOff && difference(block(dragged->deform, 1), block(fresh->deform, 1)) <= roundOff);
+  CHECK(fieldValue(dragged->deform->GetOutputDataObject(0), "InvertedCells") == 0);
+  // one set-up for the whole drag
+  CHECK(dragged->deform->GetNumberOfSamplings() == 1 && dragged->deform->GetNumberOfFactorizations() == 1);
+  CHECK(dragged->deform->GetNumberOfSolves() == 4);
+
+  // a volume mesh alone (no surface block to show): a drag moves all of it
+  PlaneScene alone(volume), still(volume);
+  for (PlaneScene* one : { &alone, &still })
+  {
+    one->fixed->SetRegion(b);
+    one->handle->SetRegion(t);
+    one->handle->SetTranslation(0.1, 0, 0.3);
+  }
+  alone.handle->SetDragging(true);
+  alone.deform->Update();
+  still.deform->Update();
+  CHECK(difference(vtkPointSet::SafeDownCast(alone.deform->GetOutputDataObject(0)), vtkPointSet::SafeDownCast(still.deform->GetOutputDataObject(0))) <= roundOff);
 }
 
 TEST(HandleMotionReusesTheSetUp)
