@@ -121,7 +121,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
   else
   {
     vtkLogScopeF(TRACE, "MLS Deform: sampling");
-    samples = sampleDomain(mlsvtk::samplingDomain(inSets, group), samplingParameters(this), { &mlsvtk::reportProgress, this, 0.0, 0.4 }, group);
+    samples = sampleDomain(mlsvtk::samplingDomain(inSets, group), samplingParameters(this), mlsvtk::progressOf(this, 0.0, 0.4, group), group);
   }
   const BasisKind kind = static_cast<BasisKind>(this->Basis);
   if (this->EnergyDiscretization == SurfaceVertices)
@@ -141,7 +141,7 @@ std::unique_ptr<SpaceDeformation> vtkMLSDeformFilter::BuildSubspace(const std::v
     return std::make_unique<SpaceDeformation>(std::move(basis), std::move(energy), largestSide(mesh.points));
   }
   vtkLogScopeF(TRACE, "MLS Deform: basis and energy operators");
-  return std::make_unique<SpaceDeformation>(samples, kind, mlsdeform::Progress{ &mlsvtk::reportProgress, this, 0.4, 0.6 });
+  return std::make_unique<SpaceDeformation>(samples, kind, mlsvtk::progressOf(this, 0.4, 0.6, group));
 }
 
 void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)

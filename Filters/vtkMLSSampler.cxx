@@ -52,7 +52,7 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
     // and given out once, by the first (MLS Deform gathers its Samples input from every process).
     const mlsvtk::ProcessCollective group;
     const mlsdeform::SamplingDomain domain = mlsvtk::samplingDomain(mlsvtk::pointSets(input), group);
-    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, { &mlsvtk::reportProgress, this }, group);
+    const mlsdeform::Samples samples = mlsdeform::sampleDomain(domain, parameters, mlsvtk::progressOf(this, 0, 1, group), group);
     mlsvtk::checkAbort(this, group);
     if (group.rank() > 0)
     {

@@ -263,7 +263,7 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
       throw mlsdeform::InvalidInputException("the surface has zero extent");
     }
     const std::vector<DetectedPrimitive> found =
-      mlsdeform::detectPrimitives(samples.barycenters, samples.normals, ransacParameters(this, diagonal), &mesh, { &mlsvtk::reportProgress, this });
+      mlsdeform::detectPrimitives(samples.barycenters, samples.normals, ransacParameters(this, diagonal), &mesh, mlsvtk::progressOf(this));
     mlsvtk::checkAbort(this);
     addPrimitiveArrays(output, found, mesh.faces, vertices);
     table->ShallowCopy(primitiveTable(found, samples.areas));

@@ -205,10 +205,23 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
                          "The output is the last iterate.");
     }
     this->SessionSolved = true;
+    this->OutputDeformed = true;
+  }
+  catch (const AbortedException& e)
+  {
+    // the previous update's points stay (the executive emptied the output before this request)
+    copyInput(input, output);
+    const bool kept = this->OutputDeformed && session.restoreOutput(inSets, pointSets(output));
+    this->OutputDeformed = kept;
+    this->SetErrorCode(vtkErrorCode::UserError);
+    return reportFailure(this, outputVector, e.what(),
+      kept ? "The output is the previous update's deformed points; what finished is kept, and the next update goes on from there."
+           : "The output is the unchanged input; what finished is kept, and the next update goes on from there.");
   }
   catch (const std::exception& e)
   {
     copyInput(input, output);
+    this->OutputDeformed = false;
     this->SetErrorCode(vtkErrorCode::UserError);
     return reportFailure(this, outputVector, e.what(), "The output is the unchanged input.");
   }

@@ -54,8 +54,9 @@
  * "DeformationError" holding the message, the message is in the output window, GetErrorCode() is
  * vtkErrorCode::UserError (NoError after a success), and the request itself succeeds, so that a
  * pipeline (ParaView's among them) updates normally once the input is fixed. Setting
- * AbortExecute (ParaView's progress bar's cancel) stops the set-up between its stages; the next
- * update continues from the last finished stage (Session/DeformationSession.h).
+ * AbortExecute (ParaView's progress bar's cancel) stops the set-up within its current stage (on
+ * one process; under MPI between stages) and leaves the previous update's output, if any; the
+ * next update continues from the last finished stage (Session/DeformationSession.h).
  */
 #ifndef vtkSubspaceDeformFilter_h
 #define vtkSubspaceDeformFilter_h
@@ -292,6 +293,7 @@ private:
   void WriteSensitivities(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
     const std::vector<char>& moving, vtkFieldData* field, const mlsdeform::Collective& group);
   bool SessionSolved = false; // the last update succeeded: the session's state is the output's
+  bool OutputDeformed = false; // the last output holds deformed points (a cancel leaves them)
   std::string SensitivityError;
   /// Runs a sensitivity request: false with the message on a failure or without a solved session.
   template <typename Request>

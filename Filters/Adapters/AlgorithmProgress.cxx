@@ -9,12 +9,24 @@ void reportProgress(void* algorithm, double fraction)
   static_cast<vtkAlgorithm*>(algorithm)->UpdateProgress(fraction);
 }
 
+namespace
+{
+bool abortRequested(void* algorithm)
+{
+  return static_cast<vtkAlgorithm*>(algorithm)->GetAbortExecute() != 0;
+}
+}
+
+mlsdeform::Progress progressOf(vtkAlgorithm* algorithm, double begin, double end, const mlsdeform::Collective& group)
+{
+  return { &reportProgress, algorithm, begin, end, group.size() == 1 ? &abortRequested : nullptr };
+}
+
 void checkAbort(vtkAlgorithm* algorithm, const mlsdeform::Collective& group)
 {
   if (group.any(algorithm->CheckAbort()))
   {
-    algorithm->SetAbortExecute(0); // the request stops this update only: the next one runs
-    throw mlsdeform::AbortedException("cancelled; what finished before is kept for the next update");
+    throw mlsdeform::AbortedException("cancelled");
   }
 }
 } // namespace mlsvtk

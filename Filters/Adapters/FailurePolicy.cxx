@@ -13,8 +13,10 @@ namespace mlsvtk
 {
 int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const std::string& message, const char* outcome)
 {
-  // a cancel (CheckAbort) asked the executive to empty the outputs: they keep this convention's instead
+  // a cancel (CheckAbort) asked the executive to empty the outputs: they keep this convention's
+  // instead; the request stopped this update only, the next one runs
   algorithm->SetAbortOutput(false);
+  algorithm->SetAbortExecute(0);
   for (int port = 0; port < outputs->GetNumberOfInformationObjects(); ++port)
   {
     vtkDataObject* output = vtkDataObject::GetData(outputs, port);

@@ -7,8 +7,10 @@
 // and to NoError at the start of RequestData.
 // The request itself succeeds, so that a pipeline (ParaView's among them) updates normally once
 // the input is fixed: a failed request left ParaView's representation stale after two failures in
-// a row. A cancel (vtkAlgorithm::CheckAbort between the stages of a long set-up) is a failure like
-// the others, so that the outputs are the same whatever stopped the update.
+// a row. A cancel (AbortExecute, checked within and between the stages of a long set-up) is a
+// failure like the others, except that a deformation filter leaves its previous output in place
+// (what the user had before asking for a change and cancelling it); reportFailure clears the
+// request, so that it stops one update only.
 #pragma once
 
 #include <string>

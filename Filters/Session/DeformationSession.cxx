@@ -158,7 +158,7 @@ void DeformationSession::updatePointRows(const Collective& group)
       Targets.invalidate(); // the region rows are views of these rows
       std::vector<int> outside;
       PointList projected;
-      PointRows = subspaceBlocks(Model->basis(), Extruded.evaluated(Points, projected), &outside, { &reportProgress, Owner, 0.6, 0.9 });
+      PointRows = subspaceBlocks(Model->basis(), Extruded.evaluated(Points, projected), &outside, progressOf(Owner, 0.6, 0.9, group));
       if (!outside.empty())
       {
         throw InvalidInputException(std::to_string(outside.size()) + " input point(s) lie outside every MLS support (e.g. point " +
@@ -235,7 +235,7 @@ void DeformationSession::updateExactTargets(double radius, bool exactConstraints
           }
         }
       }
-      Exact.build(targets, constrainedPositions, Extruded.evaluated(Points, projected), radius * Diagonal, { &reportProgress, Owner, 0.9, 0.95 });
+      Exact.build(targets, constrainedPositions, Extruded.evaluated(Points, projected), radius * Diagonal, progressOf(Owner, 0.9, 0.95, group));
       long i = 0;
       SiteSets.assign(constrained ? SetBegin.size() - 1 : 0, {});
       for (std::size_t t = 0; t < SiteSets.size(); ++t)

@@ -193,6 +193,9 @@ public:
   /// x + d(x) and Displacement into the output point sets for the last solve; a set that is not
   /// moving keeps the previous update's (DeformedOutput::write).
   void writeOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving);
+  /// The last written points and Displacement into the output point sets again (a cancelled
+  /// update leaves the previous output); false when they do not fit these sets.
+  bool restoreOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets) { return Output.restore(inSets, outSets); }
 
   /// The volume mesh's quality before and after, into field (MeshQualityReport.h).
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,

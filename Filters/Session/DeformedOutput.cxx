@@ -55,6 +55,39 @@ Object* reusable(vtkSmartPointer<Object>& kept, bool fits)
 }
 }
 
+bool DeformedOutput::fits(std::size_t s, vtkPointSet* in) const
+{
+  const vtkIdType n = in->GetNumberOfPoints();
+  return n == 0 ||
+    (s < Moved.size() && Moved[s] && Moved[s]->GetNumberOfPoints() == n && Moved[s]->GetDataType() == in->GetPoints()->GetDataType() &&
+      Displacement[s] && Displacement[s]->GetNumberOfTuples() == n);
+}
+
+void DeformedOutput::keep(std::size_t s, vtkPointSet* out) const
+{
+  if (out->GetNumberOfPoints() > 0)
+  {
+    out->SetPoints(Moved[s]);
+    out->GetPointData()->AddArray(Displacement[s]);
+  }
+}
+
+bool DeformedOutput::restore(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets)
+{
+  for (std::size_t s = 0; s < inSets.size(); ++s)
+  {
+    if (!fits(s, inSets[s]))
+    {
+      return false;
+    }
+  }
+  for (std::size_t s = 0; s < inSets.size(); ++s)
+  {
+    keep(s, outSets[s]);
+  }
+  return true;
+}
+
 void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const PointList& points,
   const DisplacementField& displace, const std::vector<char>& moving)
 {
@@ -69,11 +102,9 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
       continue;
     }
     const int type = inSets[s]->GetPoints()->GetDataType();
-    if (!moving[s] && Moved[s] && Moved[s]->GetNumberOfPoints() == n && Moved[s]->GetDataType() == type && Displacement[s] &&
-      Displacement[s]->GetNumberOfTuples() == n)
+    if (!moving[s] && fits(s, inSets[s]))
     {
-      outSets[s]->SetPoints(Moved[s]); // unchanged since the previous write
-      outSets[s]->GetPointData()->AddArray(Displacement[s]);
+      keep(s, outSets[s]); // unchanged since the previous write
       offset += n;
       continue;
     }

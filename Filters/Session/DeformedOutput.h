@@ -33,7 +33,16 @@ public:
   void write(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, const mlsdeform::PointList& points,
     const DisplacementField& d, const std::vector<char>& moving);
 
+  /// The previous write's points and d into the output point sets again (a cancelled update);
+  /// returns false, leaving the sets as they are, when it does not fit the sets (other inputs).
+  bool restore(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets);
+
 private:
+  /// Whether set s's previous write fits the input set (its number of points and precision).
+  bool fits(std::size_t s, vtkPointSet* in) const;
+  /// Set s's previous write into the output set.
+  void keep(std::size_t s, vtkPointSet* out) const;
+
   std::vector<vtkSmartPointer<vtkPoints>> Moved;
   std::vector<vtkSmartPointer<vtkDoubleArray>> Displacement;
 };

@@ -53,6 +53,7 @@ def figures(times):
 view = pvs.CreateRenderView()
 view.ViewSize = [800, 600]
 if mesh.endswith('.foam'):
+    pvs.LoadPlugin(plugin, remote=False)  # its proxies into paraview.simple, where mlsdeform.foam finds them
     sys.path.insert(0, os.path.join(examples, 'OpenFOAM'))
     import openfoam_variant  # noqa: E402
     hull, fixed, slip = ['hull'], ['inlet', 'outlet'], ['sideYmin', 'sideYmax', 'bottom', 'top']

@@ -412,48 +412,6 @@ TEST(SessionStagesRunWhenTheirKeysChange)
 // Cancelling (AbortExecute, ParaView's progress bar) stops the set-up between stages with the
 // failure convention; the next update finishes it from the last finished stage and gives the
 // uninterrupted answer bitwise.
-TEST(CancelledSetUpResumes)
-{
-  vtkSmartPointer<vtkPolyData> plane = figurePlane();
-  PlaneScene uninterrupted(plane);
-  uninterrupted.deform->Update();
-  auto* expected = vtkDoubleArray::SafeDownCast(
-    vtkPointSet::SafeDownCast(uninterrupted.deform->GetOutputDataObject(0))->GetPointData()->GetArray("Displacement"));
-  CHECK(expected != nullptr);
-
-  PlaneScene scene(plane);
-  vtkNew<vtkCallbackCommand> cancel; // cancels once, during the sampling (progress 0 to 0.4)
-  bool cancelled = false;
-  cancel->SetClientData(&cancelled);
-  cancel->SetCallback([](vtkObject* caller, unsigned long, void* once, void* progress) {
-    if (*static_cast<double*>(progress) >= 0.1 && !*static_cast<bool*>(once))
-    {
-      *static_cast<bool*>(once) = true;
-      static_cast<vtkAlgorithm*>(caller)->SetAbortExecuteAndUpdateTime();
-    }
-  });
-  const unsigned long observer = scene.deform->AddObserver(vtkCommand::ProgressEvent, cancel);
-  auto messages = MessageCollector::watch(scene.deform);
-  scene.deform->Update();
-  vtkDataObject* out = scene.deform->GetOutputDataObject(0);
-  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::UserError);
-  CHECK(messages->errorContains("cancelled"));
-  CHECK(out->GetFieldData()->GetAbstractArray("DeformationError") != nullptr);
-  CHECK(vtkPointSet::SafeDownCast(out)->GetPoints() == plane->GetPoints()); // the unchanged input
-  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 0);
-
-  scene.deform->RemoveObserver(observer);
-  CHECK(scene.deform->GetAbortExecute() == 0); // the request stopped that update only
-  scene.deform->Modified();
-  scene.deform->Update();
-  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::NoError);
-  CHECK(scene.deform->GetNumberOfSamplings() == 1); // the finished sampling was kept
-  CHECK(scene.deform->GetNumberOfFactorizations() == 1);
-  auto* resumed = vtkDoubleArray::SafeDownCast(vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0))->GetPointData()->GetArray("Displacement"));
-  CHECK(resumed != nullptr && resumed->GetNumberOfValues() == expected->GetNumberOfValues());
-  CHECK(resumed && std::equal(resumed->GetPointer(0), resumed->GetPointer(0) + resumed->GetNumberOfValues(), expected->GetPointer(0)));
-}
-
 namespace
 {
 // The output's Displacement array, copied (bitwise comparisons between updates).
@@ -463,6 +421,96 @@ std::vector<double> displacementOf(vtkAlgorithm* deform)
   return d ? std::vector<double>(d->GetPointer(0), d->GetPointer(0) + 3 * d->GetNumberOfTuples()) : std::vector<double>();
 }
 
+}
+
+// Issue 32, point 5: a cancel (AbortExecute, as ParaView's progress bar sets it) stops the set-up
+// within the stage it is in, leaves the previous output (the input when there is none) and the
+// next update goes on from the last finished stage to the uninterrupted answer.
+TEST(CancelledSetUpResumes)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  auto answer = [&](int samples) {
+    PlaneScene uninterrupted(plane);
+    uninterrupted.deform->SetNumberOfSamples(samples);
+    uninterrupted.deform->Update();
+    return displacementOf(uninterrupted.deform);
+  };
+  const std::vector<double> expected = answer(300), expectedMore = answer(400);
+  CHECK(!expected.empty() && !expectedMore.empty());
+
+  // cancels once when the progress passes `at`; records the progress reached after it
+  struct Cancel
+  {
+    double at = 2, reached = 0;
+    bool done = false;
+  } cancel;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&cancel);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* progress) {
+    auto* c = static_cast<Cancel*>(data);
+    const double p = *static_cast<double*>(progress);
+    if (c->done)
+    {
+      if (p < 1) // (not the executive's 1 at the end of the request)
+      {
+        c->reached = std::max(c->reached, p);
+      }
+    }
+    else if (p >= c->at)
+    {
+      c->done = true;
+      c->reached = p;
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    }
+  });
+  PlaneScene scene(plane);
+  scene.deform->SetNumberOfSamples(300);
+  scene.deform->AddObserver(vtkCommand::ProgressEvent, observer);
+  auto messages = MessageCollector::watch(scene.deform);
+
+  // within the sampling (progress 0 to 0.4): stopped there, the output is the unchanged input
+  cancel = Cancel{ 0.1 };
+  scene.deform->Update();
+  vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+  std::printf("cancelled at %g, progress reached %g\n", 0.1, cancel.reached);
+  CHECK(cancel.done && cancel.reached < 0.4);
+  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::UserError);
+  CHECK(messages->errorContains("cancelled") && messages->errorContains("unchanged input"));
+  CHECK(out->GetFieldData()->GetAbstractArray("DeformationError") != nullptr);
+  CHECK(vtkPointSet::SafeDownCast(out)->GetPoints() == plane->GetPoints());
+  CHECK(scene.deform->GetNumberOfSamplings() == 0 && scene.deform->GetNumberOfFactorizations() == 0);
+  CHECK(scene.deform->GetAbortExecute() == 0); // the request stopped that update only
+
+  // the next update runs through
+  cancel = Cancel{};
+  scene.deform->Modified();
+  scene.deform->Update();
+  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::NoError);
+  CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 1);
+  CHECK(displacementOf(scene.deform) == expected);
+
+  // a new set-up cancelled in the energies (0.4 to 0.6; this small one has one block of them, so
+  // it stops after it): the previous output stays
+  scene.deform->SetNumberOfSamples(400);
+  cancel = Cancel{ 0.45 };
+  scene.deform->Update();
+  std::printf("cancelled at %g, progress reached %g\n", 0.45, cancel.reached);
+  CHECK(cancel.done && cancel.reached <= 0.6); // not on to the point rows (0.6 to 0.9)
+  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::UserError && messages->errorContains("previous update's deformed points"));
+  CHECK(displacementOf(scene.deform) == expected);
+  CHECK(scene.deform->GetNumberOfFactorizations() == 1);
+
+  // and the next update goes on to the uninterrupted answer of the new set-up
+  cancel = Cancel{};
+  scene.deform->Modified();
+  scene.deform->Update();
+  CHECK(scene.deform->GetErrorCode() == vtkErrorCode::NoError);
+  CHECK(scene.deform->GetNumberOfFactorizations() == 2);
+  CHECK(displacementOf(scene.deform) == expectedMore);
+}
+
+namespace
+{
 // Updates the scene and checks which steps ran again and whether the answer changed.
 struct StepCounter
 {

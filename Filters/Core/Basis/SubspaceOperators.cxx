@@ -4,6 +4,7 @@
 #include "Common/ZOrder.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include <omp.h>
 
@@ -35,6 +36,7 @@ RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, 
   A.blocks.resize(chunks);
   std::vector<std::vector<int>> outsideOf(chunks);
   long done = 0;
+  std::atomic<bool> stopped{ false }; // asked to stop: the chunks not begun are skipped
 #pragma omp parallel
   {
     ShapeFunctionValues phi;
@@ -45,6 +47,10 @@ RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, 
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < chunks; ++c)
     {
+      if (stopped)
+      {
+        continue;
+      }
       columns.clear();
       values.clear();
       const long first = c * Chunk, last = std::min(n, first + Chunk);
@@ -103,8 +109,13 @@ RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, 
       if (omp_get_thread_num() == 0)
       {
         progress.report(static_cast<double>(done) / chunks);
+        stopped = progress.stopping();
       }
     }
+  }
+  if (stopped) // thrown after the parallel region: no exception may leave it
+  {
+    throw AbortedException("cancelled");
   }
   if (outside)
   {
@@ -473,8 +484,8 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
   {
     const long last = std::min(n, first + block);
     const PointList points(integrationPoints.begin() + first, integrationPoints.begin() + last);
-    const Progress part{ progress.callback, progress.client, progress.begin + (progress.end - progress.begin) * first / n,
-      progress.begin + (progress.end - progress.begin) * last / n };
+    progress.stopIfAsked();
+    const Progress part = progress.part(static_cast<double>(first) / n, static_cast<double>(last) / n);
     // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
     SparseRowMatrix D = concatenate(assembleRows(
       basis, points, 4, true,

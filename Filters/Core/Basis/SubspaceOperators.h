@@ -23,7 +23,8 @@ struct RowBlocks
 };
 
 /// Phi at the positions (one row each), as row blocks. Rows of positions outside every support
-/// are empty; their indices are appended to outside when given.
+/// are empty; their indices are appended to outside when given. Throws AbortedException when
+/// progress asks to stop (checked after each block of positions).
 RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
 /// Phi rows evaluated before at some positions (with the same shape functions), to be used
@@ -221,7 +222,8 @@ EnergyNormals normalMatrices(const DeformationEnergy& energy);
 /// (eq. 12, 13): the gradient rows multiplied by sqrt(V_i) * gradientScale, the Laplacian rows
 /// by sqrt(V_i) * laplacianScale. The rows are formed for a block of points at a time (the
 /// derivatives evaluated once per point), multiplied into the normal matrices and dropped, so
-/// a global basis needs memory ~k^2, not ~N k (Fig. 4 up to k = 10k).
+/// a global basis needs memory ~k^2, not ~N k (Fig. 4 up to k = 10k). Throws AbortedException
+/// when progress asks to stop.
 EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointList& integrationPoints, const std::vector<double>& volume,
   double gradientScale, double laplacianScale, const Progress& progress = {});
 

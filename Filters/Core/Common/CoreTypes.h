@@ -47,17 +47,34 @@ struct AbortedException : Error
 
 /// Reports the fraction [0,1] of a long computation; may be empty.
 using ProgressCallback = void (*)(void* client, double fraction);
+/// Whether the client asks a long computation to stop (a cancel); may be empty. Any thread may
+/// ask.
+using StopRequest = bool (*)(void* client);
 struct Progress
 {
   ProgressCallback callback = nullptr;
   void* client = nullptr;
   double begin = 0.0;
   double end = 1.0;
+  StopRequest stop = nullptr;
   void report(double fraction) const
   {
     if (callback)
     {
       callback(client, begin + (end - begin) * fraction);
+    }
+  }
+  /// The part [from, to] of this range (fractions of it), for the same client.
+  Progress part(double from, double to) const { return { callback, client, begin + (end - begin) * from, begin + (end - begin) * to, stop }; }
+  /// Whether the client asks to stop.
+  bool stopping() const { return stop && stop(client); }
+  /// Throws AbortedException when the client asks to stop: called between the steps of a long
+  /// computation, outside parallel regions, where stopping leaves nothing half-built.
+  void stopIfAsked() const
+  {
+    if (stopping())
+    {
+      throw AbortedException("cancelled");
     }
   }
 };

@@ -311,19 +311,20 @@ PointList select(const PointList& points, const std::vector<int>& indices)
 // Surface samples by farthest points on the surface, then volume samples by farthest points in
 // the volume away from them, then a combined Lloyd relaxation with the surface weighted higher.
 PointList placeSites(const DenseSamples& dense, int surfaceCount, int volumeCount, const SamplingParameters& parameters,
-  const PointList& allDense, const std::vector<double>& weights, std::uint64_t seed, int& surfaceSites)
+  const PointList& allDense, const std::vector<double>& weights, std::uint64_t seed, int& surfaceSites, const Progress& progress)
 {
-  PointList sites = select(dense.surface, farthestPointSelection(dense.surface, surfaceCount, {}, seed, dense.surfaceSpacing));
+  PointList sites = select(dense.surface, farthestPointSelection(dense.surface, surfaceCount, {}, seed, dense.surfaceSpacing, progress));
   surfaceSites = static_cast<int>(sites.size());
-  const PointList volumeSites = select(dense.volume, farthestPointSelection(dense.volume, volumeCount, sites, seed + 1, dense.volumeSpacing));
+  const PointList volumeSites =
+    select(dense.volume, farthestPointSelection(dense.volume, volumeCount, sites, seed + 1, dense.volumeSpacing, progress));
   sites.insert(sites.end(), volumeSites.begin(), volumeSites.end());
-  lloydRelaxation(sites, allDense, weights, parameters.lloydIterations);
+  lloydRelaxation(sites, allDense, weights, parameters.lloydIterations, progress);
   return sites;
 }
 } // namespace
 
 std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed,
-  const std::vector<double>& spacing)
+  const std::vector<double>& spacing, const Progress& progress)
 {
   std::vector<int> chosen;
   if (candidates.empty() || count <= 0)
@@ -397,15 +398,20 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
       candidateTree.setRadii(minDistance);
       storeAt *= 2;
     }
+    if (chosen.size() % 256 == 0)
+    {
+      progress.stopIfAsked();
+    }
   }
   return chosen;
 }
 
-void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations)
+void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations, const Progress& progress)
 {
   std::vector<int> owner(dense.size());
   for (int iteration = 0; iteration < iterations && !sites.empty(); ++iteration)
   {
+    progress.stopIfAsked();
     const KdTree tree(sites);
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < static_cast<long>(dense.size()); ++i)
@@ -578,10 +584,11 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
   std::fill(weights.begin(), weights.begin() + dense.surface.size(), parameters.surfaceWeight);
 
   Samples out;
-  out.centers = placeSites(dense, ks, kv, parameters, all, weights, parameters.randomSeed + 11, out.numberOfSurfaceCenters);
+  out.centers = placeSites(dense, ks, kv, parameters, all, weights, parameters.randomSeed + 11, out.numberOfSurfaceCenters, progress);
   progress.report(0.4);
   int surfaceIntegrationPoints = 0;
-  out.integrationPoints = placeSites(dense, ns, nv, parameters, all, weights, parameters.randomSeed + 23, surfaceIntegrationPoints);
+  out.integrationPoints =
+    placeSites(dense, ns, nv, parameters, all, weights, parameters.randomSeed + 23, surfaceIntegrationPoints, progress);
   progress.report(0.7);
   if (out.centers.size() < 4)
   {

@@ -55,7 +55,8 @@ struct Samples
 /// (each holding its own elements and points) gives every process the samples of the whole
 /// domain, the same as sampling it whole on one process: dense samples are drawn per element from
 /// random numbers keyed by its vertices' positions and sorted, so that neither the order nor the
-/// split of the elements matters.
+/// split of the elements matters. Throws AbortedException when progress asks to stop (a
+/// request that every process must make alike under MPI).
 Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& parameters, const Progress& progress = {},
   const Collective& group = serial());
 
@@ -63,13 +64,14 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
 /// already chosen (or from a random candidate): each step takes the candidate farthest from the
 /// chosen ones in units of its spacing (distance / spacing[i]; empty spacing: 1, plain
 /// distance), so that selected points lie about as far apart as their spacing says. Stops early
-/// when only duplicates remain.
+/// when only duplicates remain. Throws AbortedException when progress asks to stop.
 std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed,
-  const std::vector<double>& spacing = {});
+  const std::vector<double>& spacing = {}, const Progress& progress = {});
 
 /// Weighted Lloyd relaxation: each site moves to the weighted barycenter of the dense points
-/// closest to it.
-void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations);
+/// closest to it. Throws AbortedException when progress asks to stop.
+void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations,
+  const Progress& progress = {});
 
 /// Support radii following the local sample density (the distance to the s-th nearest fellow
 /// sample), enlarged so that each of the positions lies within reach of at least s samples (its
