@@ -1,0 +1,233 @@
+#include "pqSetUpCancel.h"
+
+#include "vtkDeformationQuality.h"
+#include "vtkMLSSampler.h"
+#include "vtkPrimitiveDetector.h"
+#include "vtkSubspaceDeformFilter.h"
+
+#include <pqApplicationCore.h>
+#include <pqPipelineSource.h>
+#include <pqProgressManager.h>
+#include <pqProgressWidget.h>
+#include <pqServerManagerModel.h>
+#include <vtkAlgorithm.h>
+#include <vtkCommand.h>
+#include <vtkEventQtSlotConnect.h>
+#include <vtkPVGeneralSettings.h>
+#include <vtkSMProxy.h>
+#include <vtkTimerLog.h>
+
+#include <QApplication>
+#include <QMouseEvent>
+#include <QThread>
+#include <QToolButton>
+
+namespace
+{
+// Seconds between two event processings within one update: the progress bar repaints ten times a
+// second and a click reaches the algorithm within that, at a negligible cost to the update.
+constexpr double ProcessingInterval = 0.1;
+
+// The plugin's algorithms that check AbortExecute within or between their stages.
+bool cancellable(vtkObject* object)
+{
+  return vtkSubspaceDeformFilter::SafeDownCast(object) || vtkMLSSampler::SafeDownCast(object) ||
+    vtkPrimitiveDetector::SafeDownCast(object) || vtkDeformationQuality::SafeDownCast(object);
+}
+
+vtkAlgorithm* algorithmOf(pqPipelineSource* source)
+{
+  // the object itself on the built-in server only (none on a remote server's client)
+  vtkObjectBase* object = source && source->getProxy() ? source->getProxy()->GetClientSideObject() : nullptr;
+  auto* algorithm = vtkAlgorithm::SafeDownCast(object);
+  return algorithm && cancellable(algorithm) ? algorithm : nullptr;
+}
+
+// The progress bar's abort button, if the main window has one.
+QToolButton* abortButton()
+{
+  for (const QPointer<QObject>& object : pqApplicationCore::instance()->getProgressManager()->nonBlockableObjects())
+  {
+    if (auto* bar = qobject_cast<pqProgressWidget*>(object.data()))
+    {
+      return bar->abortButton();
+    }
+  }
+  return nullptr;
+}
+
+bool userInput(QEvent::Type type)
+{
+  switch (type)
+  {
+    case QEvent::MouseButtonRelease:
+    case QEvent::MouseButtonDblClick:
+    case QEvent::MouseMove:
+    case QEvent::KeyPress:
+    case QEvent::KeyRelease:
+    case QEvent::ShortcutOverride:
+    case QEvent::Shortcut:
+    case QEvent::Wheel:
+    case QEvent::ContextMenu:
+    case QEvent::Enter:
+    case QEvent::Leave:
+    case QEvent::HoverEnter:
+    case QEvent::HoverLeave:
+    case QEvent::HoverMove:
+    case QEvent::TabletPress:
+    case QEvent::TabletRelease:
+    case QEvent::TabletMove:
+    case QEvent::TouchBegin:
+    case QEvent::TouchUpdate:
+    case QEvent::TouchEnd:
+    case QEvent::DragEnter:
+    case QEvent::DragMove:
+    case QEvent::Drop:
+    case QEvent::Close:
+      return true;
+    default:
+      return false;
+  }
+}
+}
+
+pqSetUpCancel::pqSetUpCancel(QObject* parent)
+  : QObject(parent)
+{
+}
+
+pqSetUpCancel::~pqSetUpCancel() = default;
+
+void pqSetUpCancel::onStartup()
+{
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  QObject::connect(model, &pqServerManagerModel::sourceAdded, this, &pqSetUpCancel::sourceAdded);
+  QObject::connect(model, &pqServerManagerModel::preSourceRemoved, this, &pqSetUpCancel::sourceRemoved);
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    this->sourceAdded(source);
+  }
+  QObject::connect(pqApplicationCore::instance()->getProgressManager(), &pqProgressManager::abort, this, &pqSetUpCancel::abort);
+}
+
+void pqSetUpCancel::sourceAdded(pqPipelineSource* source)
+{
+  if (vtkAlgorithm* algorithm = algorithmOf(source))
+  {
+    this->Connections->Connect(algorithm, vtkCommand::StartEvent, this, SLOT(started(vtkObject*)));
+    this->Connections->Connect(algorithm, vtkCommand::ProgressEvent, this, SLOT(progressed(vtkObject*)));
+    this->Connections->Connect(algorithm, vtkCommand::EndEvent, this, SLOT(ended(vtkObject*)));
+  }
+}
+
+void pqSetUpCancel::sourceRemoved(pqPipelineSource* source)
+{
+  if (vtkAlgorithm* algorithm = algorithmOf(source))
+  {
+    this->Connections->Disconnect(algorithm);
+  }
+}
+
+void pqSetUpCancel::started(vtkObject* algorithm)
+{
+  if (this->Running)
+  {
+    return; // one of the plugin's algorithms updates another (the first one keeps the button)
+  }
+  this->Running = vtkAlgorithm::SafeDownCast(algorithm);
+  this->Cancelled = false;
+  this->LastProcessed = 0; // the first progress report already processes events
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(true);
+}
+
+void pqSetUpCancel::progressed(vtkObject* algorithm)
+{
+  const double now = vtkTimerLog::GetUniversalTime();
+  if (algorithm != this->Running || this->Processing || QThread::currentThread() != qApp->thread() ||
+    now - this->LastProcessed < ProcessingInterval)
+  {
+    return;
+  }
+  this->Processing = true;
+  qApp->installEventFilter(this); // called before the other filters (ParaView's progress manager's)
+  QCoreApplication::processEvents();
+  qApp->removeEventFilter(this);
+  this->LastProcessed = vtkTimerLog::GetUniversalTime();
+  this->Processing = false;
+}
+
+bool pqSetUpCancel::eventFilter(QObject* object, QEvent* event)
+{
+  if (event->type() == QEvent::Timer)
+  {
+    return true; // a timer fires again at its next interval, after the update
+  }
+  if (event->type() == QEvent::MouseButtonPress)
+  {
+    // a press on the abort button, whether the window or the button receives it: the abort
+    // itself (ParaView's progress manager would hold back the window's press)
+    QToolButton* button = abortButton();
+    const QPoint at = static_cast<QMouseEvent*>(event)->globalPos();
+    if (button && button->isEnabled() && button->isVisible() && button->rect().contains(button->mapFromGlobal(at)))
+    {
+      pqApplicationCore::instance()->getProgressManager()->triggerAbort();
+    }
+    return true;
+  }
+  return userInput(event->type()) || this->QObject::eventFilter(object, event);
+}
+
+void pqSetUpCancel::abort()
+{
+  if (this->Running)
+  {
+    this->Cancelled = true;
+    this->Running->SetAbortExecute(1); // checked by the set-up within and between its stages
+  }
+}
+
+void pqSetUpCancel::ended(vtkObject* algorithm)
+{
+  if (algorithm != this->Running)
+  {
+    return;
+  }
+  this->Running = nullptr;
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
+  if (!this->Cancelled)
+  {
+    return;
+  }
+  this->Cancelled = false;
+  auto* cancelled = vtkAlgorithm::SafeDownCast(algorithm);
+  cancelled->SetAbortExecute(0); // a request that came after the last check stops nothing later
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    if (algorithmOf(source) == cancelled)
+    {
+      // Apply lit again: applied, the set-up starts anew (with Auto Apply, a change starts it)
+      this->CancelledSource = source;
+      QObject::connect(source, &pqProxy::modifiedStateChanged, this, &pqSetUpCancel::reapplied, Qt::UniqueConnection);
+      if (!vtkPVGeneralSettings::GetInstance()->GetAutoApply())
+      {
+        source->setModifiedState(pqProxy::MODIFIED);
+      }
+    }
+  }
+}
+
+void pqSetUpCancel::reapplied(pqServerManagerModelItem* item)
+{
+  pqPipelineSource* source = this->CancelledSource;
+  if (!source || item != source || source->modifiedState() != pqProxy::UNMODIFIED)
+  {
+    return;
+  }
+  QObject::disconnect(source, &pqProxy::modifiedStateChanged, this, &pqSetUpCancel::reapplied);
+  this->CancelledSource = nullptr;
+  if (vtkAlgorithm* algorithm = algorithmOf(source))
+  {
+    algorithm->Modified(); // runs again at the render that follows the Apply
+  }
+}
