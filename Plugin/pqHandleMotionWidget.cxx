@@ -1,4 +1,5 @@
 #include "pqHandleMotionWidget.h"
+#include "pqSelectionBoxLabels.h"
 
 #include "Adapters/HandleMotion.h"
 #include "Vocabulary/RegionRoles.h"
@@ -123,6 +124,10 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     this->connect(source, SIGNAL(modifiedStateChanged(pqServerManagerModelItem*)), SLOT(dragEnded()));
   }
   this->showOnTop(this->view()); // the base class showed the box in the view it was made in
+  if (parent)
+  {
+    new pqSelectionBoxLabels(parent); // the Region's selection box beside it, in its own words
+  }
 }
 
 pqHandleMotionWidget::~pqHandleMotionWidget()

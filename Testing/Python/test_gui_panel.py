@@ -298,16 +298,16 @@ try:
     panel = check_panel(app, 'ConstraintRegion', handle, {'Role', 'Weight', 'SelectionMode', 'Region', 'InsideOut', 'DesignVariables'},
                         'Handle, ImplicitFunction')
     if panel is not None:
-        # issue 32, point 2: no label of the plugin's twice in the Handle's panel (the Region's box
-        # widget and the handle motion each had a Translation, a Rotation and a Show Box); ParaView's
-        # own box widget ('InteractiveBox') labels its Rotation field and its Rotation check box
-        # alike, which is not the plugin's to change
+        # issue 32, point 2: no label twice in the Handle's panel (the Region's box widget and the
+        # handle motion each had a Translation, a Rotation and a Show Box; ParaView's box widget
+        # itself a Rotation field and a Rotation check box), and the boxes' Show check boxes say which
         labels = [w for w in panel.findChildren(QLabel) + panel.findChildren(QCheckBox)
                   if w.isVisibleTo(panel) and w.text() and not w.text().startswith('<html>')]
         texts = [w.text() for w in labels]
-        twice = sorted({w.text() for w in labels
-                        if texts.count(w.text()) > 1 and w.parent().objectName() != 'InteractiveBox'})
+        twice = sorted({text for text in texts if texts.count(text) > 1})
         check(not twice, 'ConstraintRegion panel (Handle): labels shown twice: %s' % twice)
+        check({'Show Selection Box', 'Show Handle Box'} <= set(texts),
+              'ConstraintRegion panel (Handle): the Show check boxes name their boxes: %s' % [t for t in texts if 'Show' in t])
         check(property_widget(panel, 'UseCentroid') is not None and property_widget(panel, 'UseCentroid').isVisibleTo(panel),
               'ConstraintRegion panel (Handle): UseCentroid hidden')
         choose(app, panel, 'Role', 'Rigid')
