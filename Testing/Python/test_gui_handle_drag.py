@@ -6,6 +6,7 @@ move is applied while the drag goes on). Edit > Undo once must return the handle
 before the drag, and Edit > Redo once must bring the whole drag back. Then the model is made
 opaque white: the box's centre sphere, inside it at the pivot, must show at its pixel, and a mouse
 drag on that pixel (press, moves, release through the view's interactor) must move the handle.
+Saved and loaded as a state, the Handle shows both boxes again, the handle box red.
 Writes 'ok' or the failures to MLSDEFORM_GUI_RESULT."""
 import os
 import time
@@ -168,6 +169,29 @@ try:
     check(list(selection.GetBounds()) == selection_bounds, 'the selection box stayed where it was: %s, before %s'
           % (list(selection.GetBounds()), selection_bounds))
     settings.SetAutoApply(auto_apply)
+
+    # Point 2, restored from a state file: the Handle's boxes come back told apart, the handle box
+    # red over the white selection box
+    import tempfile
+    state = os.path.join(tempfile.mkdtemp(), 'drag.pvsm')
+    pvs.SaveState(state)
+    names = {proxy: name for (name, _), proxy in pvs.GetSources().items()}
+    handle_name = names[handle]
+    for proxy in (deformed, handle, fixed, part):
+        pvs.Delete(proxy)
+    settle(seconds=0.5)
+    pvs.LoadState(state)
+    pvs.SetActiveSource(pvs.FindSource(handle_name))
+    settle(seconds=1.0)
+    view = pvs.GetActiveView()
+    shown = [p.SMProxy for p in view.GetProperty('HiddenRepresentations')
+             if p.SMProxy.GetXMLName() == 'BoxWidgetRepresentation' and p.SMProxy.GetProperty('Visibility').GetElement(0)]
+    reloaded = [b for b in shown if (b.GetLogName() or '').startswith('handle motion box of ')]
+    check(len(reloaded) == 1 and len(shown) == 2, 'after Load State: the handle box and the selection box shown (%d handle '
+          'boxes of %d)' % (len(reloaded), len(shown)))
+    if reloaded:
+        colour = list(reloaded[0].GetRepresentationProxy().GetClientSideObject().GetOutlineProperty().GetColor())
+        check(colour == red, 'after Load State: the handle box is drawn in %s (the Handle colour %s)' % (colour, red))
     write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception as error:  # reported through the result file, the GUI swallows exceptions
     write_result(os.environ['MLSDEFORM_GUI_RESULT'], error)
