@@ -11,9 +11,13 @@ void reportProgress(void* algorithm, double fraction)
 
 namespace
 {
-bool abortRequested(void* algorithm)
+// Asked at the core's checks: the progress is reported again first, so that a GUI listening to it
+// can take a cancel between two of the core's reports (ParaView's progress bar, pqSetUpCancel).
+bool abortRequested(void* client)
 {
-  return static_cast<vtkAlgorithm*>(algorithm)->GetAbortExecute() != 0;
+  auto* algorithm = static_cast<vtkAlgorithm*>(client);
+  algorithm->UpdateProgress(algorithm->GetProgress());
+  return algorithm->GetAbortExecute() != 0;
 }
 }
 

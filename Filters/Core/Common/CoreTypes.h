@@ -47,8 +47,9 @@ struct AbortedException : Error
 
 /// Reports the fraction [0,1] of a long computation; may be empty.
 using ProgressCallback = void (*)(void* client, double fraction);
-/// Whether the client asks a long computation to stop (a cancel); may be empty. Any thread may
-/// ask.
+/// Whether the client asks a long computation to stop (a cancel); may be empty. Asked by the
+/// calling thread (thread 0 of a parallel region), more often than progress is reported: the
+/// client may take the request then (a GUI's cancel button).
 using StopRequest = bool (*)(void* client);
 struct Progress
 {
