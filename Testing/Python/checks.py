@@ -33,3 +33,16 @@ def write_result(path, error=None):
     lines = failures + (['error: %s' % error] if error else [])
     with open(path, 'w') as f:
         f.write(('\n'.join(lines) if lines else 'ok') + '\n')
+
+
+def settle(app, until=lambda: False, seconds=10.0):
+    """For a script inside the paraview GUI: lets the Qt application's panel and Auto Apply timers
+    run, until the condition holds or the time is up."""
+    import time
+    end = time.time() + seconds
+    while True:
+        for _ in range(20):
+            app.processEvents()
+        if until() or time.time() > end:
+            return
+        time.sleep(0.02)

@@ -9,9 +9,9 @@ drag on that pixel (press, moves, release through the view's interactor) must mo
 Saved and loaded as a state, the Handle shows both boxes again, the handle box red.
 Writes 'ok' or the failures to MLSDEFORM_GUI_RESULT."""
 import os
-import time
 
-from checks import check, write_result  # Testing/Python, on PYTHONPATH
+import checks  # Testing/Python, on PYTHONPATH
+from checks import check, write_result
 
 STEPS = 5
 # The box's transform round trip (vtkBoxRepresentation::GetTransform and the Euler angles of
@@ -29,14 +29,7 @@ try:
     app = QApplication.instance()
 
     def settle(until=lambda: False, seconds=10.0):
-        """Lets the panel's and Auto Apply's timers run, until the condition holds or the time is up."""
-        end = time.time() + seconds
-        while True:
-            for _ in range(20):
-                app.processEvents()
-            if until() or time.time() > end:
-                return
-            time.sleep(0.02)
+        checks.settle(app, until, seconds)
 
     def edit_action(name):
         """The main window's Edit > Undo or Redo."""

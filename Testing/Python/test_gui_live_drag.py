@@ -7,9 +7,9 @@ of before the drag (zero). On release Dragging goes off and the volume block fol
 set-up: its largest displacement is then the surface's, and Undo leaves Dragging off.
 Writes 'ok' or the failures to MLSDEFORM_GUI_RESULT."""
 import os
-import time
 
-from checks import check, write_result  # Testing/Python, on PYTHONPATH
+import checks  # Testing/Python, on PYTHONPATH
+from checks import check, write_result
 
 STEPS = 3
 
@@ -24,14 +24,7 @@ try:
     app = QApplication.instance()
 
     def settle(until=lambda: False, seconds=10.0):
-        """Lets the panel's and Auto Apply's timers run, until the condition holds or the time is up."""
-        end = time.time() + seconds
-        while True:
-            for _ in range(20):
-                app.processEvents()
-            if until() or time.time() > end:
-                return
-            time.sleep(0.02)
+        checks.settle(app, until, seconds)
 
     def largest_displacement(block):
         """The largest displacement magnitude in one block of the deformed output (0 volume, 1 surface)."""
