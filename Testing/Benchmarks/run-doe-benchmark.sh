@@ -57,6 +57,9 @@ plugin_path=$run/plugin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 
 echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs; $(lscpu | sed -n 's/^Core(s) per socket: */cores per socket /p'), $(lscpu | sed -n 's/^Thread(s) per core: */threads per core /p')"
 # the BLAS CHOLMOD's solves and factorization run on (Debian's alternatives: OpenBLAS or the reference BLAS)
+# what makes fresh memory cheap or dear on this machine (mlsdeform/allocator.py): transparent huge
+# pages (the batch allocator asks for them by madvise) and the kernel's page-table isolation
+echo "Transparent huge pages: $(cat /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null || echo unknown); page-table isolation: $(cat /sys/devices/system/cpu/vulnerabilities/meltdown 2>/dev/null || echo unknown)"
 echo "BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3), LAPACK: $(readlink -f /usr/lib/x86_64-linux-gnu/liblapack.so.3)"
 echo "Case: $(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' ') $(grep -E '^ *points:' "$case/log.checkMesh" | tr -s ' '); $samples variants"
 # the machine's CPU time so far: all of it and the part the hypervisor gave to other guests
