@@ -128,19 +128,20 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
   // faces took 6 s on a 1M-cell mesh), in face order, so that the first of a pair is the owner
   // (the lower cell). Groups are matched in parallel: each writes only its own faces' entries.
   const long faceCount = cells.faces();
-  std::vector<int> cellOf(static_cast<std::size_t>(faceCount));
+  UninitializedVector<int> cellOf(static_cast<std::size_t>(faceCount)); // the arrays here: set in parallel loops
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < cells.cells(); ++c)
   {
     std::fill(cellOf.begin() + cells.firstFace(c), cellOf.begin() + cells.firstFace(c + 1), c);
   }
-  std::vector<int> smallest(static_cast<std::size_t>(faceCount), -1); // -1: an empty face
+  UninitializedVector<int> smallest(static_cast<std::size_t>(faceCount)); // -1: an empty face
   int points = 0;
 #pragma omp parallel for reduction(max : points)
   for (long f = 0; f < faceCount; ++f)
   {
     const int* face = cells.face(f);
     const std::size_t n = cells.faceSize(f);
+    smallest[f] = -1;
     if (n > 0)
     {
       smallest[f] = *std::min_element(face, face + n);
@@ -158,7 +159,7 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
     }
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<long> grouped(static_cast<std::size_t>(start.back()));
+  UninitializedVector<long> grouped(static_cast<std::size_t>(start.back()));
   {
     std::vector<long> next(start.begin(), start.end() - 1);
     for (long f = 0; f < faceCount; ++f)
@@ -169,10 +170,15 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       }
     }
   }
-  std::vector<int>().swap(smallest);
+  UninitializedVector<int>().swap(smallest);
 
   // neighbour[f]: the other cell of the owner's copy f; -2 marks a neighbour's copy
-  std::vector<int> neighbour(static_cast<std::size_t>(faceCount), -1);
+  UninitializedVector<int> neighbour(static_cast<std::size_t>(faceCount));
+#pragma omp parallel for schedule(static)
+  for (long f = 0; f < faceCount; ++f)
+  {
+    neighbour[f] = -1;
+  }
   long shared = faceCount; // the lowest owner's face found in a third cell (the same for any thread count)
 #pragma omp parallel
   {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "Common/CoreTypes.h"
+#include "Common/UninitializedVector.h"
 
 #include <algorithm>
 #include <numeric>
@@ -87,17 +88,19 @@ public:
   std::size_t faceSize(long f) const { return static_cast<std::size_t>(FaceStart[f + 1] - FaceStart[f]); }
 
 private:
-  std::vector<long> CellStart{ 0 };
-  std::vector<long> FaceStart{ 0 };
-  std::vector<int> Points;
+  // filled in parallel by build(), which sets every entry (first touched by the threads)
+  UninitializedVector<long> CellStart{ 0 };
+  UninitializedVector<long> FaceStart{ 0 };
+  UninitializedVector<int> Points;
 };
 
 template <typename NewVisitor>
 CellFaceList CellFaceList::build(int count, NewVisitor newVisitor)
 {
   CellFaceList list;
-  list.CellStart.assign(static_cast<std::size_t>(count) + 1, 0);
-  std::vector<long> pointStart(static_cast<std::size_t>(count) + 1, 0);
+  list.CellStart.resize(static_cast<std::size_t>(count) + 1);
+  UninitializedVector<long> pointStart(static_cast<std::size_t>(count) + 1);
+  list.CellStart[0] = pointStart[0] = 0;
 #pragma omp parallel
   {
     auto visitor = newVisitor();
@@ -115,7 +118,8 @@ CellFaceList CellFaceList::build(int count, NewVisitor newVisitor)
   }
   std::partial_sum(list.CellStart.begin(), list.CellStart.end(), list.CellStart.begin());
   std::partial_sum(pointStart.begin(), pointStart.end(), pointStart.begin());
-  list.FaceStart.assign(static_cast<std::size_t>(list.CellStart.back()) + 1, 0);
+  list.FaceStart.resize(static_cast<std::size_t>(list.CellStart.back()) + 1);
+  list.FaceStart[0] = 0;
   list.Points.resize(static_cast<std::size_t>(pointStart.back()));
 #pragma omp parallel
   {
