@@ -11,7 +11,7 @@
 # Then --movemesh variants (default 3) by moveMesh (displacementLaplacian from the hull's
 # prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
 # batch time is their median times the number of variants (an extrapolation, as the table says).
-# Prints the machine (CPU model, cores per socket, threads per core), then per thread count: the
+# Prints the machine (CPU model, cores per socket, threads per core; what fresh memory costs), then per thread count: the
 # share of CPU time the hypervisor gave to other guests during the run (steal), the same first
 # variant in pvpython on paraview.simple proxies (openfoam/first_variant.py), the whole batch's
 # wall time (process start to the last variant), variants per hour, seconds per
@@ -60,6 +60,23 @@ echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs; $(lscpu |
 # what makes fresh memory cheap or dear on this machine (mlsdeform/allocator.py): transparent huge
 # pages (the batch allocator asks for them by madvise) and the kernel's page-table isolation
 echo "Transparent huge pages: $(cat /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null || echo unknown); page-table isolation: $(cat /sys/devices/system/cpu/vulnerabilities/meltdown 2>/dev/null || echo unknown)"
+# and what it costs: 256 MiB of fresh memory touched once per 4 KiB page, with and without huge pages
+/usr/bin/python3 - << 'PROBE'
+import mmap, time
+size = 256 << 20
+figures = []
+for huge in (False, True):
+    block = mmap.mmap(-1, size, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
+    if huge:
+        block.madvise(mmap.MADV_HUGEPAGE)
+    began = time.perf_counter()
+    for offset in range(0, size, 4096):
+        block[offset] = 1
+    seconds = time.perf_counter() - began
+    figures.append('%.2f us per 4 KiB page (%.2f s per GiB)%s' % (seconds / (size / 4096) * 1e6, seconds * (1 << 30) / size, ' with huge pages' if huge else ''))
+    block.close()
+print('Fresh memory, first touch: ' + '; '.join(figures))
+PROBE
 echo "BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3), LAPACK: $(readlink -f /usr/lib/x86_64-linux-gnu/liblapack.so.3)"
 echo "Case: $(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' ') $(grep -E '^ *points:' "$case/log.checkMesh" | tr -s ' '); $samples variants"
 # the machine's CPU time so far: all of it and the part the hypervisor gave to other guests
