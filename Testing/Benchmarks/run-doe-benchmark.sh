@@ -10,7 +10,8 @@
 # written: openfoam/doe_benchmark.py), with OMP_NUM_THREADS 1 and 2 (--threads).
 # Then --movemesh variants (default 3) by moveMesh (displacementLaplacian from the hull's
 # prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
-# batch time is their median times the number of variants (an extrapolation, as the table says).
+# batch time is their median times the number of variants (an extrapolation, as the table says);
+# and the first once more with the batch allocator's glibc tunables (mlsdeform/allocator.py).
 # Prints the machine (CPU model, cores per socket, threads per core; what fresh memory costs), then per thread count: the
 # share of CPU time the hypervisor gave to other guests during the run (steal), the same first
 # variant in pvpython on paraview.simple proxies (openfoam/first_variant.py), the whole batch's
@@ -109,4 +110,16 @@ for ((i = 0; i < movemesh; i++)); do
   (cd "$copy" && checkMesh -latestTime > "$run/checkMesh.moveMesh-$i" 2>&1) || true
   du -sb "$copy" | cut -f1 > "$run/moveMesh-$i.bytes"
 done
+# moveMesh once more on the first variant, started with the batch allocator's glibc tunables
+# (mlsdeform/allocator.py): what the same setting gives OpenFOAM on this machine
+if ((movemesh > 0)); then
+  echo "moveMesh variant 1 with the batch allocator's tunables (load $(cut -d' ' -f1-3 /proc/loadavg))"
+  copy=$run/moveMesh-tuned
+  mkdir -p "$copy"
+  cp -r "$case/0" "$case/constant" "$case/system" "$copy/"
+  cp "$run/mls-$first/pointDisplacement-0" "$copy/0/pointDisplacement"
+  (cd "$copy" && GLIBC_TUNABLES=$(python3 "$run/plugin/mlsdeform/allocator.py") /usr/bin/time -v -o "$run/moveMesh-tuned.time" moveMesh \
+    > "$run/moveMesh-tuned.log" 2>&1) || { tail -30 "$run/moveMesh-tuned.log"; exit 1; }
+  rm -rf "$copy"
+fi
 python3 "$here/doe_report.py" "$run" "$threads" "$movemesh"

@@ -2,8 +2,8 @@
 // default-initializes where std::allocator value-initializes (zeroes). A large array that a
 // parallel loop fills is then first touched by the threads that fill it, so the kernel faults its
 // pages in and zeroes them on every core, not on the one thread of a memset before the loop
-// (where fresh memory is dear, a virtual machine with page-table isolation, that memset made the
-// 1M-cell mesh's cell faces a serial stage).
+// (where fresh memory is dear, as on some virtual machines, that memset made the 1M-cell mesh's
+// cell faces a serial stage).
 #pragma once
 
 #include <memory>

@@ -2,6 +2,7 @@
 thread count) beside moveMesh's timed variants, against issue 30's targets.
 Usage: python3 doe_report.py RUN_FOLDER "THREADS" MOVEMESH"""
 import json
+import os
 import re
 import statistics
 import sys
@@ -71,6 +72,13 @@ row('CPU time stolen by the hypervisor', ['%.1f%%' % r['steal_percent'] for r in
 row('variants passing the thresholds', ['%d/%d' % (r['ok'], n) for r in T], '')
 print('\nmoveMesh: %d variants timed (%s s), the batch extrapolated from their median.' % (
     movemesh, ', '.join('%.1f' % s for s in figures['moveMesh']['seconds'])))
+tuned = '%s/moveMesh-tuned.time' % run
+if os.path.exists(tuned):
+    seconds, rss = elapsed(tuned)
+    figures['moveMesh']['tuned'] = {'seconds': seconds, 'rss_mib': rss}
+    print("moveMesh with the batch allocator's tunables (variant 1): %.1f s, %.0f MiB; the first variant against it: %s" % (
+        seconds, rss, ', '.join('%.2fx (%s thr)' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / seconds, t)
+                                for t, r in zip(threads, T))))
 for t, r in zip(threads, T):
     first = (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm
     memory = r['rss_mib'] / figures['moveMesh']['rss_mib']
