@@ -145,12 +145,17 @@ Reading readText(const std::string& path, const std::string& text)
   return { reader->GetOutput(), error->count, error->text };
 }
 
-const std::string path = std::string(TEST_OUTPUT_DIR) + "/fuzz.off";
+// A file of each test's own: ctest -j runs the tests of this program side by side.
+std::string outputFile(const std::string& name)
+{
+  return std::string(TEST_OUTPUT_DIR) + "/" + name;
+}
 }
 
 TEST(HugeCountsAreRefusedBeforeAllocating)
 {
   // 10^12 vertices would be 24 TB of points; a face of 2e9 vertices 16 GB of ids
+  const std::string path = outputFile("fuzz-huge-counts.off");
   const Reading vertices = readText(path, "OFF\n999999999999 1 0\n0 0 0\n");
   std::printf("%s\n", vertices.message.c_str());
   CHECK(vertices.message.find("announces 999999999999 vertices") != std::string::npos && vertices.output->GetNumberOfPoints() == 0);
@@ -161,6 +166,7 @@ TEST(HugeCountsAreRefusedBeforeAllocating)
 
 TEST(MutatedFilesGiveAValidMeshOrOneClearError)
 {
+  const std::string path = outputFile("fuzz-mutated.off");
   std::mt19937 random(20261123);
   int errors = 0, read = 0, unclear = 0, broken = 0;
   const int files = 5000;
