@@ -99,27 +99,27 @@ for t in $threads; do
 done
 
 first=$(set -- $threads; echo "$1")
-for ((i = 0; i < movemesh; i++)); do
-  echo "moveMesh variant $((i + 1))/$movemesh (load $(cut -d' ' -f1-3 /proc/loadavg))"
-  copy=$run/moveMesh-$i
+# moveMesh on a copy of the case with variant I's hull displacement, timed into NAME.time (its
+# output in NAME.log); the copy stays in $run/NAME. Environment GLIBC_TUNABLES passes through.
+move_mesh() {
+  local i=$1 name=$2 copy=$run/$2
   mkdir -p "$copy"
   cp -r "$case/0" "$case/constant" "$case/system" "$copy/"
   cp "$run/mls-$first/pointDisplacement-$i" "$copy/0/pointDisplacement"
-  (cd "$copy" && /usr/bin/time -v -o "$run/moveMesh-$i.time" moveMesh > "$run/moveMesh-$i.log" 2>&1) ||
-    { tail -30 "$run/moveMesh-$i.log"; exit 1; }
-  (cd "$copy" && checkMesh -latestTime > "$run/checkMesh.moveMesh-$i" 2>&1) || true
-  du -sb "$copy" | cut -f1 > "$run/moveMesh-$i.bytes"
+  (cd "$copy" && /usr/bin/time -v -o "$run/$name.time" moveMesh > "$run/$name.log" 2>&1) ||
+    { tail -30 "$run/$name.log"; exit 1; }
+}
+for ((i = 0; i < movemesh; i++)); do
+  echo "moveMesh variant $((i + 1))/$movemesh (load $(cut -d' ' -f1-3 /proc/loadavg))"
+  move_mesh "$i" "moveMesh-$i"
+  (cd "$run/moveMesh-$i" && checkMesh -latestTime > "$run/checkMesh.moveMesh-$i" 2>&1) || true
+  du -sb "$run/moveMesh-$i" | cut -f1 > "$run/moveMesh-$i.bytes"
 done
 # moveMesh once more on the first variant, started with the batch allocator's glibc tunables
 # (mlsdeform/allocator.py): what the same setting gives OpenFOAM on this machine
 if ((movemesh > 0)); then
   echo "moveMesh variant 1 with the batch allocator's tunables (load $(cut -d' ' -f1-3 /proc/loadavg))"
-  copy=$run/moveMesh-tuned
-  mkdir -p "$copy"
-  cp -r "$case/0" "$case/constant" "$case/system" "$copy/"
-  cp "$run/mls-$first/pointDisplacement-0" "$copy/0/pointDisplacement"
-  (cd "$copy" && GLIBC_TUNABLES=$(python3 "$run/plugin/mlsdeform/allocator.py") /usr/bin/time -v -o "$run/moveMesh-tuned.time" moveMesh \
-    > "$run/moveMesh-tuned.log" 2>&1) || { tail -30 "$run/moveMesh-tuned.log"; exit 1; }
-  rm -rf "$copy"
+  GLIBC_TUNABLES=$(python3 "$run/plugin/mlsdeform/allocator.py") move_mesh 0 moveMesh-tuned
+  rm -rf "$run/moveMesh-tuned"
 fi
 python3 "$here/doe_report.py" "$run" "$threads" "$movemesh"

@@ -49,14 +49,21 @@ def row(label, values, moveMesh=''):
 
 
 T = [figures['threads'][t] for t in threads]
+
+
+def first_variant_s(r):
+    """The first variant's seconds: the process's start-up, the set-up (read included), the variant."""
+    return r['startup_s'] + r['setup_s'] + r['variant_s']['first']
+
+
 row('batch of %d variants [s]' % n, ['%.1f' % r['process_s'] for r in T], '%.1f (%d x median)' % (n * mm, n))
 row('  (process start to the last write)', [''] * len(T), '')
 row('variants per hour', ['%.0f' % r['per_hour'] for r in T], '%.0f' % (3600 / mm))
 row('  after the set-up (median)', ['%.0f' % r['steady_per_hour'] for r in T], '')
 row('first variant: process start to', [''] * len(T), '')
-row('  its write [s] (python3 start-up,', ['%.2f' % (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) for r in T],
+row('  its write [s] (python3 start-up,', ['%.2f' % first_variant_s(r) for r in T],
     '%.2f' % mm)
-row('  read, set-up, deform, verdict)', ['%.2fx' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm) for r in T], '')
+row('  read, set-up, deform, verdict)', ['%.2fx' % (first_variant_s(r) / mm) for r in T], '')
 row('the same in pvpython (paraview.simple', ['%.2f' % r['pv']['first_s'] for r in T], '')
 row('  proxies, mlsdeform.foam) [s]', ['%.2fx' % (r['pv']['first_s'] / mm) for r in T], '')
 row('  its peak RSS [MiB]', ['%.0f: %.2fx' % (r['pv']['rss_mib'], r['pv']['rss_mib'] / figures['moveMesh']['rss_mib'])
@@ -77,10 +84,10 @@ if os.path.exists(tuned):
     seconds, rss = elapsed(tuned)
     figures['moveMesh']['tuned'] = {'seconds': seconds, 'rss_mib': rss}
     print("moveMesh with the batch allocator's tunables (variant 1): %.1f s, %.0f MiB; the first variant against it: %s" % (
-        seconds, rss, ', '.join('%.2fx (%s thr)' % ((r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / seconds, t)
+        seconds, rss, ', '.join('%.2fx (%s thr)' % (first_variant_s(r) / seconds, t)
                                 for t, r in zip(threads, T))))
 for t, r in zip(threads, T):
-    first = (r['startup_s'] + r['setup_s'] + r['variant_s']['first']) / mm
+    first = first_variant_s(r) / mm
     memory = r['rss_mib'] / figures['moveMesh']['rss_mib']
     print('targets, %s thread(s): %d variants/hour (target %d: %s); a variant %.2fx its points file (target <= %.1f: %s); '
           'the first variant %.2fx moveMesh (target <= 0.6: %s); memory %.2fx moveMesh (target <= 1.5: %s)' % (
