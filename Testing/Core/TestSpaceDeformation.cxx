@@ -7,6 +7,7 @@
 #include "../TestHarness.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 using namespace mlsdeform;
@@ -131,9 +132,9 @@ TEST(VolumetricNormalsAreGramMatricesOfTheDerivativeRows)
 TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
 {
   // Phi at 10,000 positions (3 row blocks) and 5 far outside: every row holds the shape functions
-  // as evaluated (the same operations, so exactly), the concatenation is the same matrix, and
-  // d = Phi w over a row range that crosses blocks is the same in either form (each row summed in
-  // its order by one thread).
+  // as evaluated, rounded to PhiValue (the same operations, so exactly; within 2^-24 relative of
+  // the double values), the double matrix holds the same values, and d = Phi w over a row range
+  // that crosses blocks is the same in either form (each row summed in its order by one thread).
   const Scene scene;
   const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
   PointList x = testgeometry::randomPoints(10000, Vec3(0, 0, 0), Vec3(3, 1, 1), 3);
@@ -147,16 +148,25 @@ TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
   CHECK(Phi.rows() == blocks.rows() && Phi.cols() == blocks.columns);
   ShapeFunctionValues phi;
   bool rowsExact = true;
+  double rounding = 0; // the largest relative change of an entry by its rounding
   for (long i = 0; i < Phi.rows(); ++i)
   {
     basis.evaluate(x[i], phi, false);
     Eigen::VectorXd expected = Eigen::VectorXd::Zero(Phi.cols());
     for (std::size_t a = 0; a < phi.index.size(); ++a)
-      expected[phi.index[a]] = phi.value[a];
-    rowsExact = rowsExact && Eigen::VectorXd(Phi.row(i).transpose()) == expected &&
-      Phi.row(i).nonZeros() == static_cast<long>(phi.index.size());
+    {
+      expected[phi.index[a]] = static_cast<PhiValue>(phi.value[a]);
+      rounding = std::max(rounding, std::abs(expected[phi.index[a]] - phi.value[a]) / std::abs(phi.value[a]));
+    }
+    const RowSpan<PhiValue> row = rowOf(blocks, i);
+    Eigen::VectorXd fromBlock = Eigen::VectorXd::Zero(Phi.cols());
+    for (long a = 0; a < row.size; ++a)
+      fromBlock[row.index[a]] = row.value[a];
+    rowsExact = rowsExact && Eigen::VectorXd(Phi.row(i).transpose()) == expected && fromBlock == expected &&
+      Phi.row(i).nonZeros() == static_cast<long>(phi.index.size()) && row.size == Phi.row(i).nonZeros();
   }
   CHECK(rowsExact);
+  CHECK(rounding <= std::ldexp(1.0, -24));
   const Displacements w = Displacements::Random(Phi.cols(), 3);
   const long begin = 3000, end = 9000;
   PointDisplacements fromBlocks(end - begin, 3), fromMatrix(end - begin, 3);
@@ -198,8 +208,10 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
   bool same = gathered.rows() == evaluated.rows();
   for (long i = 0; same && i < evaluated.rows(); ++i)
   {
-    const RowSpan a = rowOf(gathered, i), b = rowOf(evaluated, i);
-    same = a.size == b.size && std::equal(a.index, a.index + a.size, b.index) && std::equal(a.value, a.value + a.size, b.value);
+    const RowSpan<PhiValue> a = rowOf(gathered, i);
+    const RowSpan<double> b = rowOf(evaluated, i);
+    same = a.size == b.size && std::equal(a.index, a.index + a.size, b.index) &&
+      std::equal(a.value, a.value + a.size, b.value, [](PhiValue f, double v) { return f == v; });
   }
   CHECK(same);
 }
@@ -216,10 +228,16 @@ TEST(CommonTranslationMovesEveryPointByIt)
     const Displacements w = model.solve(scene.uniform(t, t)).w;
     const Displacements d = evaluate(model, w, scene.box.points);
     const double error = (d.rowwise() - t.transpose()).rowwise().norm().maxCoeff() / t.norm();
-    // Exact in exact arithmetic (MLS reproduces constants, on which every energy vanishes), so the
-    // solve's round-off: k eps cond for k coefficients, with CHOLMOD's estimate 1 / rcond of the
-    // condition (the values are partitions of unity of the coefficients' errors).
-    const double roundOff = static_cast<double>(model.basis().size()) * Epsilon / model.reciprocalCondition();
+    // Exact in exact arithmetic with exact shape functions (MLS reproduces constants, on which
+    // every energy vanishes), so: the solve's round-off, k eps cond for k coefficients, with
+    // CHOLMOD's estimate 1 / rcond of the condition (the values are partitions of unity of the
+    // coefficients' errors); and Phi's entries rounded to PhiValue, each by at most 2^-24 of its
+    // size, a relative change of a row by 2^-24 sum_j |Phi_ij|, which the least-squares solution
+    // amplifies by at most the condition (first order).
+    const SparseRowMatrix Phi = subspaceMatrix(model.basis(), scene.box.points);
+    const double rowSum = Eigen::VectorXd(Phi.cwiseAbs() * Eigen::VectorXd::Ones(Phi.cols())).maxCoeff();
+    const double roundOff =
+      (static_cast<double>(model.basis().size()) * Epsilon + std::ldexp(1.0, -24) * rowSum) / model.reciprocalCondition();
     std::printf("gamma_s %g gamma_b %g: max relative error %g, rcond %g, round-off bound %g\n", weights.stretch, weights.bend, error,
       model.reciprocalCondition(), roundOff);
     CHECK(error <= roundOff);

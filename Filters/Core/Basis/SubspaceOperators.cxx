@@ -22,15 +22,15 @@ namespace
 // from its shape functions. Within a chunk the positions are taken in Z-order, Group at a time,
 // so that a group shares one search for its candidate shape functions (the result does not
 // depend on the grouping: each position filters the candidates with the exact support test).
-template <typename Fill>
-RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
+template <typename Scalar, typename Fill>
+RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
   Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
   constexpr long Chunk = 4096;
   constexpr std::size_t Group = 16;
   const long chunks = (n + Chunk - 1) / Chunk;
-  RowBlocks A;
+  RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> A;
   A.rowsPerBlock = Chunk * rowsPerPoint;
   A.columns = static_cast<long>(basis.size());
   A.blocks.resize(chunks);
@@ -86,8 +86,9 @@ RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, 
         }
       });
       std::sort(outsideOf[c].begin(), outsideOf[c].end());
-      // the block in compressed row storage, at its exact size, in the positions' order
-      SparseRowMatrix& block = A.blocks[c];
+      // the block in compressed row storage, at its exact size, in the positions' order (values
+      // rounded to Scalar)
+      auto& block = A.blocks[c];
       block.resize((last - first) * rowsPerPoint, A.columns);
       block.resizeNonZeros(static_cast<long>(values.size()));
       auto* outer = block.outerIndexPtr();
@@ -128,19 +129,20 @@ RowBlocks assembleRows(const ShapeFunctions& basis, const PointList& positions, 
 }
 
 // The blocks as one matrix.
-SparseRowMatrix concatenate(const RowBlocks& A)
+template <typename Matrix>
+Matrix concatenate(const RowBlocksOf<Matrix>& A)
 {
   long nonZeros = 0;
-  for (const SparseRowMatrix& block : A.blocks)
+  for (const Matrix& block : A.blocks)
   {
     nonZeros += block.nonZeros();
   }
-  SparseRowMatrix B(A.rows(), A.columns);
+  Matrix B(A.rows(), A.columns);
   B.resizeNonZeros(nonZeros);
   auto* outer = B.outerIndexPtr();
   outer[0] = 0;
   long row = 0;
-  for (const SparseRowMatrix& block : A.blocks)
+  for (const Matrix& block : A.blocks)
   {
     const long offset = outer[row];
     std::copy(block.innerIndexPtr(), block.innerIndexPtr() + block.nonZeros(), B.innerIndexPtr() + offset);
@@ -217,7 +219,7 @@ void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::
     Eigen::MatrixXd B = Eigen::MatrixXd::Zero(rows, Size);
     for (long row = 0; row < rows; ++row)
     {
-      const RowSpan r = rowOf(A, begin + row);
+      const auto r = rowOf(A, begin + row);
       for (long a = 0; a < r.size; ++a)
       {
         B(row, r.index[a]) = r.value[a];
@@ -254,7 +256,7 @@ void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::
       used.clear();
       for (long row = first; row < last; ++row)
       {
-        const RowSpan r = rowOf(A, begin + row);
+        const auto r = rowOf(A, begin + row);
         for (long e = 0; e < r.size; ++e)
         {
           if (local[r.index[e]] < 0)
@@ -273,7 +275,7 @@ void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::
       G.setZero(m, m);
       for (long row = first; row < last; ++row)
       {
-        const RowSpan r = rowOf(A, begin + row);
+        const auto r = rowOf(A, begin + row);
         const long n = r.size;
         rowEntries.resize(n);
         for (long a = 0; a < n; ++a)
@@ -367,22 +369,28 @@ SparseMatrix weightedGram(const GatheredRows& A, long begin, long end, const Eig
   return gramOf(A, begin, end, rowWeight);
 }
 
-long RowBlocks::rows() const
+
+
+namespace
 {
-  long rows = 0;
-  for (const SparseRowMatrix& block : blocks)
-  {
-    rows += block.rows();
-  }
-  return rows;
+// Phi at the positions in row blocks of Scalar (Phi_ij = phi_j(x_i)), each entry rounded to
+// PhiValue whatever Scalar holds it: the same Phi wherever it is evaluated.
+template <typename Scalar>
+RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> phiBlocks(
+  const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+{
+  return assembleRows<Scalar>(
+    basis, positions, 1, false,
+    [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
+      std::transform(phi.value.begin(), phi.value.end(), rows[0].begin(), [](double v) { return static_cast<double>(static_cast<PhiValue>(v)); });
+    },
+    outside, progress);
+}
 }
 
 RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
-  return assembleRows(
-    basis, positions, 1, false,
-    [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) { rows[0] = phi.value; },
-    outside, progress);
+  return phiBlocks<PhiValue>(basis, positions, outside, progress);
 }
 
 std::vector<long> positionsAmong(const PointList& points, const PointList& positions)
@@ -423,7 +431,7 @@ std::vector<long> positionsAmong(const PointList& points, const PointList& posit
 
 SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
-  return concatenate(subspaceBlocks(basis, positions, outside, progress));
+  return concatenate(phiBlocks<double>(basis, positions, outside, progress));
 }
 
 GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside)
@@ -442,7 +450,7 @@ GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions,
   }
   GatheredRows A;
   std::vector<int> outsideMissing;
-  A.Own = std::make_unique<SparseRowMatrix>(subspaceMatrix(basis, missing, &outsideMissing));
+  A.Own = std::make_unique<PhiRowMatrix>(concatenate(subspaceBlocks(basis, missing, &outsideMissing)));
   if (outside)
   {
     for (int m : outsideMissing)
@@ -457,7 +465,7 @@ GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions,
   long next = 0;
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
-    const RowSpan row = usable && known.row[i] >= 0 ? rowOf(*known.known, known.row[i]) : rowOf(*A.Own, next++);
+    const RowSpan<PhiValue> row = usable && known.row[i] >= 0 ? rowOf(*known.known, known.row[i]) : rowOf(*A.Own, next++);
     A.Index[i] = row.index;
     A.Value[i] = row.value;
     A.Length[i] = row.size;
@@ -487,7 +495,7 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
     progress.stopIfAsked();
     const Progress part = progress.part(static_cast<double>(first) / n, static_cast<double>(last) / n);
     // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
-    SparseRowMatrix D = concatenate(assembleRows(
+    SparseRowMatrix D = concatenate(assembleRows<double>(
       basis, points, 4, true,
       [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
         const double g = std::sqrt(volume[first + i]) * gradientScale, l = std::sqrt(volume[first + i]) * laplacianScale;

@@ -11,16 +11,36 @@
 
 namespace mlsdeform
 {
+/// Phi's entries: single precision, wherever Phi is evaluated (subspaceBlocks, gatherRows and
+/// subspaceMatrix alike, so that every operator meets the same Phi). Phi is about 90 entries a row
+/// on a CFD mesh, 435 MB at 400k points in double, the larger part of a set-up's memory. A float
+/// rounds a shape function's value by at most 2^-24 relative, which moves a point by at most
+/// 6e-8 of the nearby samples' displacements, far below the MLS discretization's own error; the
+/// output stays an exact linear map of w (derivatives and exact targets exact). The rows kept for
+/// every point hold floats; operators assembled once for the k x k systems hold doubles.
+using PhiValue = float;
+using PhiRowMatrix = Eigen::SparseMatrix<PhiValue, Eigen::RowMajor>;
+
 /// A sparse matrix kept as blocks of consecutive rows, each a row-major matrix of rowsPerBlock
 /// rows (the last may hold fewer): rows evaluated in parallel chunks stay where they were
 /// assembled. Phi at a 1M-point mesh (80M entries) copied into one matrix doubled the peak memory.
-struct RowBlocks
+template <typename Matrix>
+struct RowBlocksOf
 {
-  std::vector<SparseRowMatrix> blocks;
+  std::vector<Matrix> blocks;
   long rowsPerBlock = 1;
   long columns = 0;
-  long rows() const;
+  long rows() const
+  {
+    long rows = 0;
+    for (const Matrix& block : blocks)
+    {
+      rows += block.rows();
+    }
+    return rows;
+  }
 };
+using RowBlocks = RowBlocksOf<PhiRowMatrix>;
 
 /// Phi at the positions (one row each), as row blocks. Rows of positions outside every support
 /// are empty; their indices are appended to outside when given. Throws AbortedException when
@@ -39,7 +59,7 @@ struct KnownRows
 /// For each position, the first index of points at exactly that position (+0 = -0), or -1.
 std::vector<long> positionsAmong(const PointList& points, const PointList& positions);
 
-/// Phi at the positions as one matrix (subspaceBlocks, concatenated).
+/// Phi at the positions as one matrix (the entries of subspaceBlocks, held as doubles).
 SparseRowMatrix subspaceMatrix(
   const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside = nullptr, const Progress& progress = {});
 
@@ -53,14 +73,14 @@ public:
   long rows() const { return static_cast<long>(Length.size()); }
   long cols() const { return Columns; }
   const int* index(long i) const { return Index[i]; }
-  const double* value(long i) const { return Value[i]; }
+  const PhiValue* value(long i) const { return Value[i]; }
   long size(long i) const { return Length[i]; }
 
 private:
   friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*);
-  std::unique_ptr<SparseRowMatrix> Own; // the rows evaluated here (on the heap: the views outlive a move)
+  std::unique_ptr<PhiRowMatrix> Own; // the rows evaluated here (on the heap: the views outlive a move)
   std::vector<const int*> Index;
-  std::vector<const double*> Value;
+  std::vector<const PhiValue*> Value;
   std::vector<long> Length;
   long Columns = 0;
 };
@@ -71,22 +91,24 @@ GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions,
 
 /// Row i of a row-major sparse matrix, of row blocks or of gathered rows: its column indices and
 /// values (the one way the products below read a row).
+template <typename Scalar>
 struct RowSpan
 {
   const int* index;
-  const double* value;
+  const Scalar* value;
   long size;
 };
-inline RowSpan rowOf(const SparseRowMatrix& A, long i)
+template <typename Scalar>
+RowSpan<Scalar> rowOf(const Eigen::SparseMatrix<Scalar, Eigen::RowMajor>& A, long i)
 {
   const long begin = A.outerIndexPtr()[i];
   return { A.innerIndexPtr() + begin, A.valuePtr() + begin, A.outerIndexPtr()[i + 1] - begin };
 }
-inline RowSpan rowOf(const RowBlocks& A, long i)
+inline RowSpan<PhiValue> rowOf(const RowBlocks& A, long i)
 {
   return rowOf(A.blocks[i / A.rowsPerBlock], i % A.rowsPerBlock);
 }
-inline RowSpan rowOf(const GatheredRows& A, long i)
+inline RowSpan<PhiValue> rowOf(const GatheredRows& A, long i)
 {
   return { A.index(i), A.value(i), A.size(i) };
 }
@@ -96,7 +118,7 @@ inline RowSpan rowOf(const GatheredRows& A, long i)
 template <typename Rows, typename Dense>
 void multiplyRow(const Rows& A, long i, const Eigen::MatrixBase<Dense>& X, double* out)
 {
-  const RowSpan row = rowOf(A, i);
+  const auto row = rowOf(A, i);
   double x = 0, y = 0, z = 0;
   for (long a = 0; a < row.size; ++a)
   {
@@ -150,10 +172,10 @@ Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eige
     sum.setZero(A.cols(), 3);
     for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
     {
-      const RowSpan row = rowOf(A, i);
+      const auto row = rowOf(A, i);
       for (long a = 0; a < row.size; ++a)
       {
-        sum.row(row.index[a]) += row.value[a] * X.row(i - begin);
+        sum.row(row.index[a]) += static_cast<double>(row.value[a]) * X.row(i - begin);
       }
     }
   }
