@@ -23,8 +23,8 @@ namespace
 // so that a group shares one search for its candidate shape functions (the result does not
 // depend on the grouping: each position filters the candidates with the exact support test).
 template <typename Scalar, typename Fill>
-RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint, bool withDerivatives,
-  Fill fill, std::vector<int>* outside, const Progress& progress)
+RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> assembleRows(const ShapeFunctions& basis, const PointList& positions,
+  int rowsPerPoint, bool withDerivatives, Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
   constexpr long Chunk = 4096;
@@ -369,8 +369,6 @@ SparseMatrix weightedGram(const GatheredRows& A, long begin, long end, const Eig
   return gramOf(A, begin, end, rowWeight);
 }
 
-
-
 namespace
 {
 // Phi at the positions in row blocks of Scalar (Phi_ij = phi_j(x_i)), each entry rounded to
@@ -382,7 +380,8 @@ RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> phiBlocks(
   return assembleRows<Scalar>(
     basis, positions, 1, false,
     [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
-      std::transform(phi.value.begin(), phi.value.end(), rows[0].begin(), [](double v) { return static_cast<double>(static_cast<PhiValue>(v)); });
+      std::transform(phi.value.begin(), phi.value.end(), rows[0].begin(),
+        [](double v) { return static_cast<double>(static_cast<PhiValue>(v)); });
     },
     outside, progress);
 }
