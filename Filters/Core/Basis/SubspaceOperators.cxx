@@ -17,20 +17,24 @@ namespace mlsdeform
 {
 namespace
 {
+// Row blocks of Scalar entries.
+template <typename Scalar>
+using ScalarRowBlocks = RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>>;
+
 // Assembles a row-major sparse matrix with rowsPerPoint rows per position in row blocks of
 // Chunk positions, evaluated in parallel; fill(i, values, rows) writes the rows of position i
 // from its shape functions. Within a chunk the positions are taken in Z-order, Group at a time,
 // so that a group shares one search for its candidate shape functions (the result does not
 // depend on the grouping: each position filters the candidates with the exact support test).
 template <typename Scalar, typename Fill>
-RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> assembleRows(const ShapeFunctions& basis, const PointList& positions,
-  int rowsPerPoint, bool withDerivatives, Fill fill, std::vector<int>* outside, const Progress& progress)
+ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint,
+  bool withDerivatives, Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
   constexpr long Chunk = 4096;
   constexpr std::size_t Group = 16;
   const long chunks = (n + Chunk - 1) / Chunk;
-  RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> A;
+  ScalarRowBlocks<Scalar> A;
   A.rowsPerBlock = Chunk * rowsPerPoint;
   A.columns = static_cast<long>(basis.size());
   A.blocks.resize(chunks);
@@ -374,8 +378,7 @@ namespace
 // Phi at the positions in row blocks of Scalar (Phi_ij = phi_j(x_i)), each entry rounded to
 // PhiValue whatever Scalar holds it: the same Phi wherever it is evaluated.
 template <typename Scalar>
-RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>> phiBlocks(
-  const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+ScalarRowBlocks<Scalar> phiBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
   return assembleRows<Scalar>(
     basis, positions, 1, false,
