@@ -103,7 +103,7 @@ void starTetrahedra(Faces faces, const PositionOrder& before, Add add)
 // order); other cells (quadratic ones) are triangulated by VTK. Chunks of cells are split in
 // parallel and appended in cell order, so the list does not depend on the thread count.
 template <std::size_t N>
-void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, std::vector<std::array<int, N>>& out)
+void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int offset, mlsdeform::Simplices<N>& out)
 {
   const int simplexType = N == 3 ? VTK_TRIANGLE : VTK_TETRA;
   auto* pointSet = vtkPointSet::SafeDownCast(set);
@@ -212,16 +212,18 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
       }
     }
   }
-  std::size_t total = out.size();
-  for (const auto& part : parts)
+  // appended in parallel: each part copied by one thread into its place
+  std::vector<std::size_t> start(parts.size() + 1, out.size());
+  for (std::size_t part = 0; part < parts.size(); ++part)
   {
-    total += part.size();
+    start[part + 1] = start[part] + parts[part].size();
   }
-  out.reserve(total);
-  for (auto& part : parts)
+  out.resize(start.back());
+#pragma omp parallel for schedule(static)
+  for (long part = 0; part < static_cast<long>(parts.size()); ++part)
   {
-    out.insert(out.end(), part.begin(), part.end());
-    std::vector<std::array<int, N>>().swap(part);
+    std::copy(parts[part].begin(), parts[part].end(), out.begin() + start[part]);
+    std::vector<std::array<int, N>>().swap(parts[part]);
   }
 }
 }

@@ -110,7 +110,7 @@ Vec3 uniformPoint(const std::array<Vec3, N>& v, KeyedRandom& random)
 
 // The sum of the measures over all processes, exactly: each in fixed point (2^62 units of the
 // largest), summed as integers in 32-bit limbs, so that it does not depend on the split or order.
-double exactTotal(const std::vector<double>& measures, const Collective& group)
+double exactTotal(const UninitializedVector<double>& measures, const Collective& group)
 {
   std::vector<double> largest{ 0.0 };
   for (double m : measures)
@@ -149,11 +149,11 @@ double exactTotal(const std::vector<double>& measures, const Collective& group)
 // measure^(1/dimension) of its element (1 when uniform) and the share measure (1 when uniform);
 // out gets every process's points sorted, total the measure of all elements.
 template <std::size_t N>
-void sampleSimplices(const PointList& x, const std::vector<std::uint64_t>& keys, const std::vector<std::array<int, N>>& elements,
-  int count, bool grading, std::uint64_t seed, const Collective& group, std::vector<double>& out, double& total)
+void sampleSimplices(const PointList& x, const UninitializedVector<std::uint64_t>& keys, const Simplices<N>& elements, int count,
+  bool grading, std::uint64_t seed, const Collective& group, std::vector<double>& out, double& total)
 {
   const long n = static_cast<long>(elements.size());
-  std::vector<double> measures(elements.size());
+  UninitializedVector<double> measures(elements.size()); // set by the loop below
 #pragma omp parallel for schedule(static)
   for (long e = 0; e < n; ++e)
   {
@@ -236,7 +236,7 @@ DenseSamples denseSampling(const SamplingDomain& domain, int surfaceCount, int v
   const PointList& x = domain.points;
   const bool grading = parameters.followMeshGrading;
   // the vertices' keys (PositionHash.h), summed per element
-  std::vector<std::uint64_t> keys(x.size());
+  UninitializedVector<std::uint64_t> keys(x.size()); // set by the loop below
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < static_cast<long>(x.size()); ++i)
   {
