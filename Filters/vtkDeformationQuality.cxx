@@ -35,6 +35,7 @@ namespace
 using mlsdeform::CellFaceList;
 using mlsdeform::FaceMeasures;
 using mlsdeform::InteriorFace;
+using mlsdeform::InteriorFaces;
 using mlsdeform::PointList;
 
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
@@ -78,7 +79,7 @@ struct Measures
 };
 
 Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellFaceList& cells,
-  const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+  const InteriorFaces& faces, const std::vector<int>& orientation)
 {
   Measures m;
   m.scaledJacobian = mlsvtk::scaledJacobians(grid);

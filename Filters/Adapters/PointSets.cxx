@@ -53,7 +53,9 @@ std::vector<vtkPointSet*> pointSets(vtkDataObject* input, int* skipped)
 void copyPoints(vtkPointSet* set, mlsdeform::Vec3* out)
 {
   const vtkIdType n = set->GetNumberOfPoints();
+  // in parallel: fresh memory is first touched, and zeroed by the kernel, on every core
   auto copy = [&](const auto* in) {
+#pragma omp parallel for schedule(static)
     for (vtkIdType i = 0; i < n; ++i)
     {
       out[i] = mlsdeform::Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]);

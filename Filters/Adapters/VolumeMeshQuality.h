@@ -55,14 +55,14 @@ public:
   QualitySummary summary(vtkUnstructuredGrid* grid);
 
   const mlsdeform::CellFaceList& cells() const { return Cells; }
-  const std::vector<mlsdeform::InteriorFace>& faces() const { return Faces; }
+  const mlsdeform::InteriorFaces& faces() const { return Faces; }
   const std::vector<int>& orientation() const { return Orientation; }
 
 private:
   QualitySummary summarizeMeasures() const;
 
   mlsdeform::CellFaceList Cells;
-  std::vector<mlsdeform::InteriorFace> Faces;
+  mlsdeform::InteriorFaces Faces;
   std::vector<int> Orientation;
   bool Has3DCells = false;
   mlsdeform::PointList Points;

@@ -114,7 +114,7 @@ TEST(InteriorFacesAreMatchedAndOriented)
   std::vector<CellFaces> nested = { cube(0), cube(1) };
   std::reverse(nested[0][1].begin(), nested[0][1].end());
   const CellFaceList cells(nested);
-  const std::vector<InteriorFace> faces = interiorFaces(cells);
+  const InteriorFaces faces = interiorFaces(cells);
   CHECK(faces.size() == 1);
   CHECK(faces[0].owner == 0 && faces[0].neighbour == 1 && faces[0].face == 1);
   const std::vector<int> orientation = faceOrientation(points, cells, faces);
@@ -143,7 +143,7 @@ TEST(InteriorFacesAreMatchedAndOriented)
   const std::vector<int> repeated = { 2, 2, 2, 1, 3 }, other = { 2, 1, 1, 3, 3 };
   CHECK(interiorFaces(CellFaceList(std::vector<CellFaces>{ { repeated }, { other } })).empty());
   const std::vector<int> reversed(repeated.rbegin(), repeated.rend());
-  const std::vector<InteriorFace> degenerate = interiorFaces(CellFaceList(std::vector<CellFaces>{ { repeated }, { reversed } }));
+  const InteriorFaces degenerate = interiorFaces(CellFaceList(std::vector<CellFaces>{ { repeated }, { reversed } }));
   CHECK(degenerate.size() == 1 && degenerate[0].owner == 0 && degenerate[0].neighbour == 1);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <omp.h>
 #include <stdexcept>
 #include <string>
 
@@ -122,7 +123,7 @@ CellFaceList::CellFaceList(const std::vector<CellFaces>& cells)
 {
 }
 
-std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
+InteriorFaces interiorFaces(const CellFaceList& cells)
 {
   // Faces grouped by their smallest point (a group holds a few faces; a map keyed by the sorted
   // faces took 6 s on a 1M-cell mesh), in face order, so that the first of a pair is the owner
@@ -148,28 +149,49 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       points = std::max(points, *std::max_element(face, face + n) + 1);
     }
   }
-  // a counting sort by the smallest point, in face order within each group (two sequential
-  // passes: faster than atomic counters shared by the threads and a sort of every group)
-  std::vector<long> start(static_cast<std::size_t>(points) + 1, 0);
-  for (long f = 0; f < faceCount; ++f)
+  // A counting sort by the smallest point, in face order within each group: the faces cut into
+  // a few consecutive parts, each counted and then placed by one thread after the parts before it
+  // (faster than atomic counters shared by the threads and a sort of every group; the parts'
+  // counters cost 8 bytes a point each, hence at most four).
+  const int parts = std::max(1, std::min(4, omp_get_max_threads()));
+  std::vector<UninitializedVector<long>> next(static_cast<std::size_t>(parts)); // per part and point
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int part = 0; part < parts; ++part)
   {
-    if (smallest[f] >= 0)
-    {
-      ++start[smallest[f] + 1];
-    }
-  }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  UninitializedVector<long> grouped(static_cast<std::size_t>(start.back()));
-  {
-    std::vector<long> next(start.begin(), start.end() - 1);
-    for (long f = 0; f < faceCount; ++f)
+    next[part].assign(static_cast<std::size_t>(points), 0);
+    for (long f = faceCount * part / parts; f < faceCount * (part + 1) / parts; ++f)
     {
       if (smallest[f] >= 0)
       {
-        grouped[next[smallest[f]]++] = f;
+        ++next[part][smallest[f]];
       }
     }
   }
+  std::vector<long> start(static_cast<std::size_t>(points) + 1, 0); // of each point's group
+  for (int p = 0; p < points; ++p)
+  {
+    long at = start[p];
+    for (int part = 0; part < parts; ++part)
+    {
+      const long count = next[part][p];
+      next[part][p] = at; // where the part's first face of the group goes
+      at += count;
+    }
+    start[p + 1] = at;
+  }
+  UninitializedVector<long> grouped(static_cast<std::size_t>(start.back()));
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int part = 0; part < parts; ++part)
+  {
+    for (long f = faceCount * part / parts; f < faceCount * (part + 1) / parts; ++f)
+    {
+      if (smallest[f] >= 0)
+      {
+        grouped[next[part][smallest[f]]++] = f;
+      }
+    }
+  }
+  std::vector<UninitializedVector<long>>().swap(next);
   UninitializedVector<int>().swap(smallest);
 
   // neighbour[f]: the other cell of the owner's copy f; -2 marks a neighbour's copy
@@ -241,7 +263,7 @@ std::vector<InteriorFace> interiorFaces(const CellFaceList& cells)
       [](int n) { return n >= 0; });
   }
   std::partial_sum(offset.begin(), offset.end(), offset.begin());
-  std::vector<InteriorFace> faces(static_cast<std::size_t>(offset.back()));
+  InteriorFaces faces(static_cast<std::size_t>(offset.back()));
 #pragma omp parallel for schedule(static)
   for (long c = 0; c < chunks; ++c)
   {
@@ -286,7 +308,7 @@ void cellCentres(const PointList& points, const CellFaceList& cells, std::vector
 // face's geometry computed again from its owner's copy (cheaper than keeping it: a 1M-cell mesh's
 // 3M interior faces took 150 MB). Each face is oriented by `orientation`, or, without it, as
 // faceOrientation decides on these points, written to `decided`.
-void measureFaces(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+void measureFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
   const std::vector<int>* orientation, std::vector<int>* decided, const FaceWorkspace& work, FaceMeasures& m)
 {
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
@@ -319,7 +341,7 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const std:
 }
 
 std::vector<int> faceOrientation(
-  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, FaceWorkspace& work, FaceMeasures& out)
+  const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, FaceWorkspace& work, FaceMeasures& out)
 {
   cellCentres(points, cells, out.inverted, work);
   std::vector<int> orientation(faces.size(), 1);
@@ -327,14 +349,14 @@ std::vector<int> faceOrientation(
   return orientation;
 }
 
-std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces)
+std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces)
 {
   FaceWorkspace work;
   FaceMeasures measures;
   return faceOrientation(points, cells, faces, work, measures);
 }
 
-void faceMeasures(const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces,
+void faceMeasures(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
   const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
 {
   cellCentres(points, cells, m.inverted, work);
@@ -342,7 +364,7 @@ void faceMeasures(const PointList& points, const CellFaceList& cells, const std:
 }
 
 FaceMeasures faceMeasures(
-  const PointList& points, const CellFaceList& cells, const std::vector<InteriorFace>& faces, const std::vector<int>& orientation)
+  const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation)
 {
   FaceWorkspace work;
   FaceMeasures m;
