@@ -11,7 +11,9 @@
 # Then --movemesh variants (default 3) by moveMesh (displacementLaplacian from the hull's
 # prescribed displacement, the same map, on a copy of the case each), timed one by one: moveMesh's
 # batch time is their median times the number of variants (an extrapolation, as the table says);
-# and the first once more with the batch allocator's glibc tunables (mlsdeform/allocator.py).
+# between them MLS Deform's first variant again in a process of its own per thread count, so that
+# the first variant's ratio is a median of --movemesh runs against a median of as many; and
+# moveMesh's first once more with the batch allocator's glibc tunables (mlsdeform/allocator.py).
 # Prints the machine (CPU model, cores per socket, threads per core; what fresh memory costs), then per thread count: the
 # share of CPU time the hypervisor gave to other guests during the run (steal), the same first
 # variant in pvpython on paraview.simple proxies (openfoam/first_variant.py), the whole batch's
@@ -114,6 +116,17 @@ for ((i = 0; i < movemesh; i++)); do
   move_mesh "$i" "moveMesh-$i"
   (cd "$run/moveMesh-$i" && checkMesh -latestTime > "$run/checkMesh.moveMesh-$i" 2>&1) || true
   du -sb "$run/moveMesh-$i" | cut -f1 > "$run/moveMesh-$i.bytes"
+  # between moveMesh's runs, MLS Deform's first variant once more per thread count (a process that
+  # makes one variant), so that both sides' medians come from the same stretch of time
+  if ((i + 1 < movemesh)); then
+    for t in $threads; do
+      echo "MLS Deform's first variant again, OMP_NUM_THREADS=$t (load $(cut -d' ' -f1-3 /proc/loadavg))"
+      OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path \
+        /usr/bin/python3 "$here/doe_benchmark.py" "$run/plugin" "$case/case.foam" "$run/first-$t-$i" 1 0 \
+        > "$run/first-$t-$i.log" 2>&1 || { tail -30 "$run/first-$t-$i.log"; exit 1; }
+      rm -rf "$run/first-$t-$i"
+    done
+  fi
 done
 # moveMesh once more on the first variant, started with the batch allocator's glibc tunables
 # (mlsdeform/allocator.py): what the same setting gives OpenFOAM on this machine
