@@ -1,5 +1,7 @@
 #include "vtkSubspaceDeformFilter.h"
 
+#include "Adapters/CaseFaces.h"
+#include "Adapters/CasePath.h"
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
@@ -183,7 +185,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     // the volume mesh is measured once it moved (not during a drag's surface-only updates)
     if (this->MeshQuality && !group.any(std::find(moving.begin(), moving.end(), 0) != moving.end()))
     {
-      session.reportQuality(inSets, outSets, output->GetFieldData(), group);
+      session.reportQuality(inSets, outSets, output->GetFieldData(), mlsvtk::casePathOf(input), group);
     }
     if (!session.targetConflicts().empty())
     {
@@ -368,6 +370,14 @@ int vtkSubspaceDeformFilter::GetNumberOfFactorizations()
 int vtkSubspaceDeformFilter::GetNumberOfSolves()
 {
   return this->Session->runs().solve;
+}
+
+void vtkSubspaceDeformFilter::PrefetchCaseFaces(const char* casePath)
+{
+  if (casePath && *casePath)
+  {
+    mlsvtk::prefetchCaseFaces(casePath);
+  }
 }
 
 void vtkSubspaceDeformFilter::PrintSelf(ostream& os, vtkIndent indent)

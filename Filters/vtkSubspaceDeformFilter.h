@@ -205,6 +205,12 @@ public:
   vtkBooleanMacro(MeshQuality, vtkTypeBool);
   ///@}
 
+  /// The mesh quality of an OpenFOAM case's mesh (an input with the reader's field data
+  /// CasePath) is measured on the case's own faces (constant/polyMesh: faces, owner, neighbour).
+  /// This starts reading them in a background thread, for the next deformation of that case: a
+  /// batch calls it before VTK's reader reads the case, so that both read at once. Optional.
+  static void PrefetchCaseFaces(const char* casePath);
+
   ///@{
   /// Add the point array dX/d<p> of every design variable p to the output (default off: each
   /// costs 3 doubles per point and a tangent solve per update).

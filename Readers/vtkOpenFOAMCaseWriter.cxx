@@ -1,6 +1,7 @@
 #include "vtkOpenFOAMCaseWriter.h"
 
-#include "FoamPointsFile.h"
+#include "Foam/PolyMeshFiles.h"
+#include "Adapters/CasePath.h"
 #include "Adapters/ProcessCollective.h"
 #include "Adapters/TypedPoints.h"
 #include "Vocabulary/FieldNames.h"
@@ -58,26 +59,14 @@ vtkPointSet* internalMesh(vtkDataObject* input)
   throw std::runtime_error("the input has no internalMesh block: select internalMesh in the OpenFOAM reader's Mesh Regions");
 }
 
-// The reader's field data CasePath (a char array, or a string array), on the input or its mesh.
+// The reader's field data CasePath, on the input or its mesh.
 std::string casePath(vtkDataObject* input, vtkPointSet* mesh)
 {
   for (vtkDataObject* data : { input, static_cast<vtkDataObject*>(mesh) })
   {
-    vtkAbstractArray* array = data->GetFieldData()->GetAbstractArray("CasePath");
-    if (auto* strings = vtkStringArray::SafeDownCast(array))
+    const std::string path = mlsvtk::casePathOf(data);
+    if (!path.empty())
     {
-      if (strings->GetNumberOfValues() > 0)
-      {
-        return strings->GetValue(0);
-      }
-    }
-    if (auto* chars = vtkCharArray::SafeDownCast(array))
-    {
-      std::string path;
-      for (vtkIdType i = 0; i < chars->GetNumberOfValues() && chars->GetValue(i) != '\0'; ++i)
-      {
-        path += chars->GetValue(i);
-      }
       return path;
     }
   }

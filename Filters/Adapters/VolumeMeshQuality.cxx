@@ -1,5 +1,6 @@
 #include "Adapters/VolumeMeshQuality.h"
 
+#include "Adapters/CaseFaces.h"
 #include "Adapters/CellFaces.h"
 #include "Adapters/MeshCells.h"
 #include "Adapters/PointSets.h"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace mlsvtk
 {
@@ -93,8 +95,15 @@ mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
   return points;
 }
 
-VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
+VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath)
 {
+  std::optional<CaseMesh> own = casePath.empty() ? std::nullopt : caseFaces(casePath, rest);
+  if (own)
+  {
+    Cells = std::move(own->faces.cells);
+    Faces = std::move(own->faces.interior);
+  }
+  else
   {
     vtkLogScopeF(TRACE, "mesh quality: the cells' faces");
     Cells = cellFaces(rest);
@@ -103,13 +112,23 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest)
   Measures.perFace = false; // the summary's maxima only
   if (Has3DCells)
   {
+    if (!own)
     {
       vtkLogScopeF(TRACE, "mesh quality: interior faces");
       Faces = mlsdeform::interiorFaces(Cells);
     }
     vtkLogScopeF(TRACE, "mesh quality: the undeformed mesh's figures");
     gridPoints(rest, "the mesh's points", Points);
-    Orientation = mlsdeform::faceOrientation(Points, Cells, Faces, Work, Measures);
+    if (own && own->points == Points)
+    {
+      vtkLogF(TRACE, "mesh quality: the case's points are the grid's, their figures read with the faces");
+      Orientation = std::move(own->orientation);
+      Measures = std::move(own->measures);
+    }
+    else
+    {
+      Orientation = mlsdeform::faceOrientation(Points, Cells, Faces, Work, Measures);
+    }
     Original = summarizeMeasures();
   }
 }

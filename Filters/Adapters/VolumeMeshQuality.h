@@ -6,6 +6,8 @@
 
 #include "Quality/FaceQuality.h"
 
+#include <string>
+
 class vtkUnstructuredGrid;
 
 namespace mlsvtk
@@ -42,7 +44,10 @@ struct QualitySummary
 class VolumeMeshQuality
 {
 public:
-  explicit VolumeMeshQuality(vtkUnstructuredGrid* rest);
+  /// The faces of rest's cells, matched by their points; or, when rest is the mesh of the
+  /// OpenFOAM case folder casePath as it numbers it, the case's own (caseFaces), with the
+  /// figures of the case's points when those are rest's.
+  explicit VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath = std::string());
 
   /// Whether the grid has 3D cells to measure.
   bool hasCells() const { return Has3DCells; }

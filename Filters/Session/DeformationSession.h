@@ -197,9 +197,10 @@ public:
   /// update leaves the previous output); false when they do not fit these sets.
   bool restoreOutput(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets) { return Output.restore(inSets, outSets); }
 
-  /// The volume mesh's quality before and after, into field (MeshQualityReport.h).
+  /// The volume mesh's quality before and after, into field (MeshQualityReport.h); casePath: the
+  /// OpenFOAM case folder the input was read from, or "".
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-    const mlsdeform::Collective& group);
+    const std::string& casePath, const mlsdeform::Collective& group);
 
   /// Design sensitivities of the last solve (DesignSensitivities.h). The design variables of this
   /// update's Handle regions:

@@ -34,7 +34,7 @@ bool samePoints(vtkPointSet* a, vtkPointSet* b)
 }
 
 void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-  const Collective& group, vtkObject* owner)
+  const std::string& casePath, const Collective& group, vtkObject* owner)
 {
   Stamp stamp = cellsStamp(inSets);
   const Stamp points = pointsStamp(inSets);
@@ -49,7 +49,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
       for (vtkPointSet* set : inSets)
       {
         auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
-        Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid) : nullptr);
+        Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid, casePath) : nullptr);
         if (Quality.back() && Quality.back()->hasCells())
         {
           Original.add(Quality.back()->original());

@@ -9,6 +9,7 @@
 #include "Common/Collective.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 class vtkFieldData;
@@ -24,8 +25,10 @@ public:
   /// field when some process has volume cells. Split over processes, each measures its own piece
   /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
   /// it cannot measure give a warning (from owner) once per input mesh; the deformation stands.
+  /// casePath: the OpenFOAM case folder the input was read from (or ""), whose own faces a grid
+  /// that is its mesh is measured on (VolumeMeshQuality).
   void report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-    const mlsdeform::Collective& group, vtkObject* owner);
+    const std::string& casePath, const mlsdeform::Collective& group, vtkObject* owner);
 
 private:
   Stamp Measured; // of the cells and points the faces and the original's measures come from

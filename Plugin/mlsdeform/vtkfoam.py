@@ -45,8 +45,11 @@ def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
 
 def open_case(foam_file, patches, decompose_polyhedra=True):
     """The case's internal mesh and the named patches (no fields), read by VTK's OpenFOAM reader
-    (configured_reader), updated. Raises ValueError naming a missing patch."""
+    (configured_reader), updated; meanwhile a background thread reads the case's faces for MLS
+    Deform's mesh quality (vtkSubspaceDeformFilter.PrefetchCaseFaces). Raises ValueError naming a
+    missing patch."""
     reader = configured_reader(foam_file, patches, decompose_polyhedra)
+    _load_wrapping().vtkSubspaceDeformFilter.PrefetchCaseFaces(os.path.dirname(os.path.abspath(foam_file)))
     reader.Update()
     return reader
 

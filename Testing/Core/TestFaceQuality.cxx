@@ -147,4 +147,85 @@ TEST(InteriorFacesAreMatchedAndOriented)
   CHECK(degenerate.size() == 1 && degenerate[0].owner == 0 && degenerate[0].neighbour == 1);
 }
 
+TEST(OwnerNeighbourFacesAreOpenFOAMs)
+{
+  // A row of three unit cubes in OpenFOAM's form: the two faces between them first (normal +x,
+  // out of the owner), then each cube's boundary faces; its cells' faces and interior faces must
+  // be what matching the cubes' faces finds, and measure the same.
+  PointList points;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i)
+        points.push_back(Vec3(i, j, k));
+  auto v = [](int i, int j, int k) { return i + 4 * j + 8 * k; };
+  auto cube = [&](int x) {
+    return CellFaces{ { v(x, 0, 0), v(x, 0, 1), v(x, 1, 1), v(x, 1, 0) },
+      { v(x + 1, 0, 0), v(x + 1, 1, 0), v(x + 1, 1, 1), v(x + 1, 0, 1) },
+      { v(x, 0, 0), v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1) }, { v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 1), v(x + 1, 1, 0) },
+      { v(x, 0, 0), v(x, 1, 0), v(x + 1, 1, 0), v(x + 1, 0, 0) }, { v(x, 0, 1), v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1) } };
+  };
+  std::vector<int> start = { 0 }, facePoints, owner, neighbour;
+  auto addFace = [&](const std::vector<int>& face, int o) {
+    facePoints.insert(facePoints.end(), face.begin(), face.end());
+    start.push_back(static_cast<int>(facePoints.size()));
+    owner.push_back(o);
+  };
+  for (int x = 0; x < 2; ++x)
+  {
+    addFace(cube(x)[1], x); // the +x face, out of cube x into cube x + 1
+    neighbour.push_back(x + 1);
+  }
+  for (int x = 0; x < 3; ++x)
+    for (int f : { 0, 1, 2, 3, 4, 5 })
+      if ((f != 0 || x == 0) && (f != 1 || x == 2))
+        addFace(cube(x)[f], x);
+  const int pointCount = static_cast<int>(points.size());
+  const MeshFaces mesh = ownerNeighbourFaces(start, facePoints, owner, neighbour, pointCount);
+  CHECK(mesh.cells.cells() == 3 && mesh.cells.faces() == 18 && mesh.interior.size() == 2);
+  for (int x = 0; x < 2; ++x)
+  {
+    const InteriorFace& f = mesh.interior[x];
+    CHECK(f.owner == x && f.neighbour == x + 1);
+    // the owner's copy is the face as listed; the neighbour lists it reversed, out of itself
+    const std::vector<int> shared = cube(x)[1];
+    CHECK(std::equal(shared.begin(), shared.end(), mesh.cells.face(f.face)));
+    CHECK(faceGeometry(points, mesh.cells.face(f.face), 4).area.isApprox(Vec3(1, 0, 0)));
+    const long copy = mesh.cells.firstFace(x + 1); // face 0 of cube x + 1 is the shared one (lowest number)
+    CHECK(faceGeometry(points, mesh.cells.face(copy), 4).area.isApprox(Vec3(-1, 0, 0)));
+  }
+  // every cell's faces point out of it: no negative pyramid, orientation +1, as matched
+  std::vector<CellFaces> nested = { cube(0), cube(1), cube(2) };
+  const CellFaceList matchedCells(nested);
+  const InteriorFaces matched = interiorFaces(matchedCells);
+  CHECK(matched.size() == 2 && matched[0].owner == 0 && matched[1].owner == 1);
+  // a sheared, non-dyadic point set: both forms sum the same face terms in another order, so
+  // they agree to round-off (a few dozen operations of size <= 4: 1e-13 relative)
+  PointList sheared = points;
+  for (Vec3& p : sheared)
+    p += Vec3(0.1 * p.y() + 0.03 * p.z() * p.x(), 0.07 * p.x() * p.z(), 0.01 * p.x() * p.y());
+  const FaceMeasures own = faceMeasures(sheared, mesh.cells, mesh.interior, faceOrientation(sheared, mesh.cells, mesh.interior));
+  const FaceMeasures byPoints = faceMeasures(sheared, matchedCells, matched, faceOrientation(sheared, matchedCells, matched));
+  CHECK(faceOrientation(sheared, mesh.cells, mesh.interior) == std::vector<int>({ 1, 1 }));
+  CHECK(own.invertedCells == 0 && byPoints.invertedCells == 0);
+  std::printf("sheared row: non-orthogonality %.17g and %.17g, skewness %.17g and %.17g\n", own.maxNonOrthogonality,
+    byPoints.maxNonOrthogonality, own.maxSkewness, byPoints.maxSkewness);
+  CHECK(own.maxNonOrthogonality > 1 && std::abs(own.maxNonOrthogonality - byPoints.maxNonOrthogonality) <= 1e-13 * own.maxNonOrthogonality);
+  CHECK(own.maxSkewness > 1e-3 && std::abs(own.maxSkewness - byPoints.maxSkewness) <= 1e-13 * own.maxSkewness);
+
+  // bad input: each an invalid_argument, never an out-of-range access
+  CHECK_THROWS(ownerNeighbourFaces(start, facePoints, std::vector<int>(owner.begin() + 1, owner.end()), neighbour, pointCount),
+    std::invalid_argument); // fewer owners than faces
+  CHECK_THROWS(ownerNeighbourFaces(start, facePoints, owner, neighbour, pointCount - 1), std::invalid_argument); // a point beyond
+  std::vector<int> wrong = owner;
+  wrong[0] = -1;
+  CHECK_THROWS(ownerNeighbourFaces(start, facePoints, wrong, neighbour, pointCount), std::invalid_argument);
+  CHECK_THROWS(ownerNeighbourFaces(start, facePoints, owner, std::vector<int>{ 0, 2 }, pointCount), std::invalid_argument); // owner = neighbour
+  wrong = owner;
+  std::replace(wrong.begin(), wrong.end(), 1, 3); // cell 1 loses its boundary faces, cube 2 its own
+  CHECK_THROWS(ownerNeighbourFaces(start, facePoints, wrong, std::vector<int>{ 4, 2 }, pointCount), std::invalid_argument);
+  std::vector<int> unordered = start;
+  std::swap(unordered[1], unordered[2]);
+  CHECK_THROWS(ownerNeighbourFaces(unordered, facePoints, owner, neighbour, pointCount), std::invalid_argument);
+}
+
 TEST_MAIN

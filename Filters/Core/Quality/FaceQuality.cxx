@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <omp.h>
 #include <stdexcept>
@@ -338,6 +339,91 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const Inte
   m.maxNonOrthogonality = faces.empty() ? 0 : nonOrthogonalityOf(leastCosine);
   m.maxSkewness = maxSkewness;
 }
+}
+
+MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<int>& points, const std::vector<int>& owner,
+  const std::vector<int>& neighbour, int pointCount)
+{
+  const long faceCount = static_cast<long>(start.size()) - 1;
+  const long internal = static_cast<long>(neighbour.size());
+  if (faceCount < 0 || static_cast<long>(owner.size()) != faceCount || internal > faceCount || start.front() != 0 ||
+    start.back() != static_cast<long>(points.size()) || !std::is_sorted(start.begin(), start.end()))
+  {
+    throw std::invalid_argument("the faces (" + std::to_string(faceCount) + "), owners (" + std::to_string(owner.size()) +
+      ") and neighbours (" + std::to_string(internal) + ") do not fit together");
+  }
+  if (std::any_of(points.begin(), points.end(), [&](int p) { return p < 0 || p >= pointCount; }))
+  {
+    throw std::invalid_argument("a face has a point index outside 0 .. " + std::to_string(pointCount - 1));
+  }
+  int cells = 0;
+  for (long f = 0; f < faceCount; ++f)
+  {
+    const int o = owner[f], n = f < internal ? neighbour[f] : o + 1;
+    if (o < 0 || n < 0 || o == n)
+    {
+      throw std::invalid_argument("face " + std::to_string(f) + " has owner " + std::to_string(o) +
+        (f < internal ? " and neighbour " + std::to_string(n) : std::string()));
+    }
+    cells = std::max({ cells, o + 1, f < internal ? n + 1 : 0 });
+  }
+  // each cell's faces in face order: a counting sort of the (cell, face) pairs
+  std::vector<long> first(static_cast<std::size_t>(cells) + 1, 0);
+  for (long f = 0; f < faceCount; ++f)
+  {
+    ++first[owner[f] + 1];
+    if (f < internal)
+    {
+      ++first[neighbour[f] + 1];
+    }
+  }
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<long> next(first.begin(), first.end() - 1);
+  std::vector<int> faceOf(static_cast<std::size_t>(first.back()));
+  std::vector<long> ownerSlot(static_cast<std::size_t>(internal)); // an interior face's place in its owner's list
+  for (long f = 0; f < faceCount; ++f)
+  {
+    if (f < internal)
+    {
+      ownerSlot[f] = next[owner[f]] - first[owner[f]];
+      faceOf[next[neighbour[f]]++] = static_cast<int>(f);
+    }
+    faceOf[next[owner[f]]++] = static_cast<int>(f);
+  }
+  for (int c = 0; c < cells; ++c)
+  {
+    if (first[c] == first[c + 1])
+    {
+      throw std::invalid_argument("cell " + std::to_string(c) + " has no face");
+    }
+  }
+  MeshFaces mesh;
+  mesh.cells = CellFaceList::build(cells, [&]() {
+    return [&, reversed = std::vector<int>()](int c, auto add) mutable {
+      for (long slot = first[c]; slot < first[c + 1]; ++slot)
+      {
+        const int f = faceOf[slot];
+        const int* face = points.data() + start[f];
+        const std::size_t n = static_cast<std::size_t>(start[f + 1] - start[f]);
+        if (owner[f] == c)
+        {
+          add(face, n);
+        }
+        else
+        {
+          reversed.assign(std::make_reverse_iterator(face + n), std::make_reverse_iterator(face));
+          add(reversed.data(), n);
+        }
+      }
+    };
+  });
+  mesh.interior.resize(static_cast<std::size_t>(internal));
+#pragma omp parallel for schedule(static)
+  for (long f = 0; f < internal; ++f)
+  {
+    mesh.interior[f] = { owner[f], neighbour[f], mesh.cells.firstFace(owner[f]) + ownerSlot[f] };
+  }
+  return mesh;
 }
 
 std::vector<int> faceOrientation(

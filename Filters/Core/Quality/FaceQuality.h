@@ -152,6 +152,24 @@ using InteriorFaces = UninitializedVector<InteriorFace>;
 /// Throws std::invalid_argument for a face shared by more than two cells.
 InteriorFaces interiorFaces(const CellFaceList& cells);
 
+/// A mesh's cells as lists of faces, and the faces between two cells.
+struct MeshFaces
+{
+  CellFaceList cells;
+  InteriorFaces interior;
+};
+
+/// The cells' faces and the interior faces of a mesh in OpenFOAM's form (polyMesh), without
+/// matching faces by their points: face f, the points points[start[f]] .. points[start[f + 1] - 1]
+/// listed so that their normal points out of owner[f], lies between owner[f] and neighbour[f] for
+/// f < neighbour.size() and on the boundary of owner[f] after. The cells are 0 .. the largest
+/// owner or neighbour; each lists its faces in face order, those it is the neighbour of reversed
+/// (out of the cell, as VTK lists a cell's faces); an interior face's copy is its owner's. Throws
+/// std::invalid_argument when the lists' sizes disagree, a cell or point index is out of range
+/// (points: 0 .. pointCount - 1), a face's owner is its neighbour, or a cell has no face.
+MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<int>& points, const std::vector<int>& owner,
+  const std::vector<int>& neighbour, int pointCount);
+
 /// Per interior face, +1 or -1 so that the oriented area vector points out of the owner on
 /// `points`. OpenFOAM fixes that order in the topology, so decide it on the undeformed mesh and
 /// keep it: a neighbour whose centre folds over to the owner's side then shows above 90 degrees.

@@ -1,7 +1,8 @@
-// OpenFOAM polyMesh list files. A points file (constant/polyMesh/points): a FoamFile header and a vectorField of
-// double (or, with arch "scalar=32", float) coordinates, in ascii or binary format, plain or
-// gzip-compressed (points.gz). Read so that the same format can be written back with new
-// coordinates.
+// OpenFOAM polyMesh list files, in ascii or binary format, plain or gzip-compressed (name.gz). A
+// points file (constant/polyMesh/points): a FoamFile header and a vectorField of double (or, with
+// arch "scalar=32", float) coordinates, read so that the same format can be written back with new
+// coordinates; labelList files (owner, neighbour, pointProcAddressing); the faces
+// (faceCompactList, or an ascii faceList).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,31 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory);
 /// pointProcAddressing (for each of its points, the point of the whole mesh it is). Throws
 /// std::runtime_error with the file and the reason.
 std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, const std::string& name);
+
+/// readFoamLabels as int (a label beyond int's range is an error): the owner and neighbour lists.
+std::vector<int> readFoamIndices(const std::string& polyMeshDirectory, const std::string& name);
+
+/// A polyMesh's faces: face f's points are points[start[f]] .. points[start[f + 1] - 1], in
+/// OpenFOAM's order (their normal by the right-hand rule points out of the face's owner).
+struct FoamFaces
+{
+  std::vector<int> start{ 0 };
+  std::vector<int> points;
+  std::size_t size() const { return start.size() - 1; }
+};
+
+/// Reads polyMesh/faces (or faces.gz) of the polyMesh directory. Throws std::runtime_error with
+/// the file and the reason.
+FoamFaces readFoamFaces(const std::string& polyMeshDirectory);
+
+/// The mesh's size as OpenFOAM notes it in the owner file's header ("nPoints:435962
+/// nCells:370338 ..."), read without the lists; -1 where there is no such file or note.
+struct FoamMeshSize
+{
+  long long points = -1;
+  long long cells = -1;
+};
+FoamMeshSize readFoamMeshSize(const std::string& polyMeshDirectory);
 
 /// Writes the points xyz (3 per point) into directory/points (or points.gz when the original
 /// was compressed) with the original's header and format. Ascii coordinates are written in

@@ -1,6 +1,6 @@
-#include "FoamPointsFile.h"
+#include "Foam/PolyMeshFiles.h"
 
-#include <vtk_zlib.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 namespace mlsfoam
@@ -138,20 +139,22 @@ std::string entry(const std::string& dictionary, const std::string& keyword)
   return "";
 }
 
-// A FoamFile list file (points, pointProcAddressing) read up to its first element.
+// A FoamFile list file (points, labels, faces) read up to its first element.
 struct FoamList
 {
   std::string text;   // the whole file, decompressed
   std::string header; // everything before the count
   bool binary = false;
   std::string arch;   // e.g. LSB;label=32;scalar=64
+  std::string kind;   // its class
   std::size_t count = 0;
   std::size_t begin = 0; // the position after '('
 };
 
-// Reads path and checks its class; elementBytes: the least bytes of one element in binary and in
+// Reads path and checks its class (one of classes); elementBytes: the least bytes of one element in binary and in
 // ascii, so that a count that cannot fit the file is an error before anything is allocated.
-FoamList readList(const std::string& path, const std::string& expectedClass, std::size_t binaryBytes, std::size_t asciiBytes)
+FoamList readList(
+  const std::string& path, const std::vector<std::string>& classes, std::size_t binaryBytes, std::size_t asciiBytes)
 {
   FoamList list;
   list.text = readAll(path);
@@ -164,9 +167,15 @@ FoamList readList(const std::string& path, const std::string& expectedClass, std
     fail(path, "no FoamFile header");
   }
   const std::string dictionary = s.substr(open + 1, close - open - 1);
-  if (entry(dictionary, "class") != expectedClass)
+  list.kind = entry(dictionary, "class");
+  if (std::find(classes.begin(), classes.end(), list.kind) == classes.end())
   {
-    fail(path, "its class is '" + entry(dictionary, "class") + "', not " + expectedClass);
+    std::string expected;
+    for (const std::string& c : classes)
+    {
+      expected += (expected.empty() ? "" : " or ") + c;
+    }
+    fail(path, "its class is '" + list.kind + "', not " + expected);
   }
   const std::string format = entry(dictionary, "format");
   if (format != "ascii" && format != "binary")
@@ -225,7 +234,7 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
   }
   file.compressed = file.path.size() > 3 && file.path.compare(file.path.size() - 3, 3, ".gz") == 0;
   // a binary scalar has 4 bytes at least, an ascii point "(x y z)" 7 characters
-  const FoamList list = readList(file.path, "vectorField", 3 * 4, 7);
+  const FoamList list = readList(file.path, { "vectorField" }, 3 * 4, 7);
   file.scalarBytes = list.arch.find("scalar=32") != std::string::npos ? 4 : 8;
   file.binary = list.binary;
   file.header = list.header;
@@ -288,7 +297,68 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
   return file;
 }
 
-std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, const std::string& name)
+namespace
+{
+// The count labels of a list whose first element is at s[begin] (after its '('), binary (of
+// labelBytes each) or ascii, into labels; returns the position after its ')'. Labels that do not
+// fit Label are an error.
+template <typename Label>
+std::size_t readLabels(const std::string& path, const std::string& s, std::size_t begin, std::size_t count, bool binary,
+  std::size_t labelBytes, std::vector<Label>& labels)
+{
+  labels.resize(count);
+  if (binary)
+  {
+    if (begin + labelBytes * count >= s.size() || s[begin + labelBytes * count] != ')')
+    {
+      fail(path, "the binary list of " + std::to_string(count) + " labels is truncated");
+    }
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      std::int64_t label;
+      if (labelBytes == 8)
+      {
+        std::memcpy(&label, s.data() + begin + 8 * k, 8);
+      }
+      else
+      {
+        std::int32_t label32;
+        std::memcpy(&label32, s.data() + begin + 4 * k, 4);
+        label = label32;
+      }
+      if (label < std::numeric_limits<Label>::min() || label > std::numeric_limits<Label>::max())
+      {
+        fail(path, "label " + std::to_string(k) + " (" + std::to_string(label) + ") is out of range");
+      }
+      labels[k] = static_cast<Label>(label);
+    }
+    return begin + labelBytes * count + 1;
+  }
+  const char* p = s.c_str() + begin;
+  const char* last = s.c_str() + s.size();
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    if (!readNumber(p, last, labels[k]))
+    {
+      fail(path, "label " + std::to_string(k) + " is not a number (or out of range)");
+    }
+  }
+  const std::size_t close = skipBlank(s, static_cast<std::size_t>(p - s.c_str()));
+  if (close >= s.size() || s[close] != ')')
+  {
+    fail(path, "the list of " + std::to_string(count) + " labels has no ')' after its last");
+  }
+  return close + 1;
+}
+
+std::size_t labelBytesOf(const FoamList& list)
+{
+  return list.arch.find("label=64") != std::string::npos ? 8 : 4;
+}
+
+// The labelList file name (or name.gz) of a polyMesh directory.
+template <typename Label>
+std::vector<Label> readLabelList(const std::string& polyMeshDirectory, const std::string& name)
 {
   const std::string path = existing(polyMeshDirectory, name);
   if (path.empty())
@@ -296,41 +366,127 @@ std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, c
     fail(polyMeshDirectory + "/" + name, "there is no such file (nor " + name + ".gz)");
   }
   // a binary label has 4 bytes at least, an ascii one 2 characters with its separator
-  const FoamList list = readList(path, "labelList", 4, 2);
-  const std::size_t labelBytes = list.arch.find("label=64") != std::string::npos ? 8 : 4;
+  const FoamList list = readList(path, { "labelList" }, 4, 2);
+  std::vector<Label> labels;
+  readLabels(path, list.text, list.begin, list.count, list.binary, labelBytesOf(list), labels);
+  return labels;
+}
+} // namespace
+
+std::vector<std::int64_t> readFoamLabels(const std::string& polyMeshDirectory, const std::string& name)
+{
+  return readLabelList<std::int64_t>(polyMeshDirectory, name);
+}
+
+std::vector<int> readFoamIndices(const std::string& polyMeshDirectory, const std::string& name)
+{
+  return readLabelList<int>(polyMeshDirectory, name);
+}
+
+FoamMeshSize readFoamMeshSize(const std::string& polyMeshDirectory)
+{
+  FoamMeshSize size;
+  const std::string path = existing(polyMeshDirectory, "owner");
+  gzFile file = path.empty() ? nullptr : gzopen(path.c_str(), "rb");
+  if (!file)
+  {
+    return size;
+  }
+  std::string head(4096, '\0'); // the header: a FoamFile dictionary of a few lines
+  const int read = gzread(file, &head[0], static_cast<unsigned>(head.size()));
+  gzclose(file);
+  head.resize(read > 0 ? static_cast<std::size_t>(read) : 0);
+  const std::size_t open = head.find('{', head.find("FoamFile"));
+  const std::size_t close = open == std::string::npos ? open : head.find('}', open);
+  if (close == std::string::npos)
+  {
+    return size;
+  }
+  const std::string note = entry(head.substr(open + 1, close - open - 1), "note"); // blanks removed
+  for (auto [key, value] : { std::pair<const char*, long long*>{ "nPoints:", &size.points }, { "nCells:", &size.cells } })
+  {
+    const std::size_t at = note.find(key);
+    if (at != std::string::npos)
+    {
+      *value = std::strtoll(note.c_str() + at + std::strlen(key), nullptr, 10);
+    }
+  }
+  return size;
+}
+
+FoamFaces readFoamFaces(const std::string& polyMeshDirectory)
+{
+  const std::string path = existing(polyMeshDirectory, "faces");
+  if (path.empty())
+  {
+    fail(polyMeshDirectory + "/faces", "there is no faces file (nor faces.gz)");
+  }
+  FoamFaces faces;
+  // binary faces are a faceCompactList (the offsets, then the points); ascii ones a faceList
+  // ("4(0 1 2 3)" each) or a faceCompactList
+  const FoamList list = readList(path, { "faceCompactList", "faceList" }, 4, 2);
   const std::string& s = list.text;
-  std::vector<std::int64_t> labels(list.count);
+  const std::size_t labelBytes = labelBytesOf(list);
+  if (list.kind == "faceCompactList")
+  {
+    // the offsets (faces + 1), then "count(" and the points
+    std::size_t at = readLabels(path, s, list.begin, list.count, list.binary, labelBytes, faces.start);
+    at = skipBlank(s, at);
+    char* end = nullptr;
+    const long long count = std::strtoll(s.c_str() + at, &end, 10);
+    at = end == s.c_str() + at ? s.size() : skipBlank(s, static_cast<std::size_t>(end - s.c_str()));
+    if (count < 0 || at >= s.size() || s[at] != '(')
+    {
+      fail(path, "no list of points after the faces' offsets");
+    }
+    if (static_cast<unsigned long long>(count) > (s.size() - at) / (list.binary ? labelBytes : 2))
+    {
+      fail(path, "the list of " + std::to_string(count) + " points is truncated");
+    }
+    readLabels(path, s, at + 1, static_cast<std::size_t>(count), list.binary, labelBytes, faces.points);
+    if (faces.start.empty() || faces.start.front() != 0 || faces.start.back() != static_cast<int>(faces.points.size()) ||
+      !std::is_sorted(faces.start.begin(), faces.start.end()))
+    {
+      fail(path, "the faces' offsets do not run from 0 to the number of points in order");
+    }
+    return faces;
+  }
   if (list.binary)
   {
-    if (list.begin + labelBytes * list.count >= s.size() || s[list.begin + labelBytes * list.count] != ')')
-    {
-      fail(path, "the binary list of " + std::to_string(list.count) + " labels is truncated");
-    }
-    for (std::size_t k = 0; k < list.count; ++k)
-    {
-      if (labelBytes == 8)
-      {
-        std::memcpy(&labels[k], s.data() + list.begin + 8 * k, 8);
-      }
-      else
-      {
-        std::int32_t label;
-        std::memcpy(&label, s.data() + list.begin + 4 * k, 4);
-        labels[k] = label;
-      }
-    }
-    return labels;
+    fail(path, "a binary faceList (OpenFOAM writes binary faces as a faceCompactList)");
   }
   const char* p = s.c_str() + list.begin;
   const char* last = s.c_str() + s.size();
-  for (std::size_t k = 0; k < list.count; ++k)
+  faces.start.reserve(list.count + 1);
+  for (std::size_t f = 0; f < list.count; ++f)
   {
-    if (!readNumber(p, last, labels[k]))
+    int n = 0;
+    if (!readNumber(p, last, n) || n < 0 || p >= last || *p != '(')
     {
-      fail(path, "label " + std::to_string(k) + " is not a number");
+      fail(path, "face " + std::to_string(f) + " is not 'n(p0 p1 ...)'");
     }
+    ++p;
+    for (int k = 0; k < n; ++k)
+    {
+      int point = 0;
+      if (!readNumber(p, last, point))
+      {
+        fail(path, "face " + std::to_string(f) + " has no point " + std::to_string(k));
+      }
+      faces.points.push_back(point);
+    }
+    while (p < last && std::isspace(static_cast<unsigned char>(*p)))
+    {
+      ++p;
+    }
+    if (p >= last || *p != ')')
+    {
+      fail(path, "face " + std::to_string(f) + " has more points than its count");
+    }
+    ++p;
+    faces.start.push_back(static_cast<int>(faces.points.size()));
   }
-  return labels;
+  return faces;
 }
 
 namespace

@@ -1,0 +1,33 @@
+// The OpenFOAM case a dataset was read from: the field data CasePath that VTK's OpenFOAM reader
+// puts on its output. Header only: the case writer (Readers/) and the mesh quality share it.
+#pragma once
+
+#include <vtkAbstractArray.h>
+#include <vtkCharArray.h>
+#include <vtkDataObject.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
+
+#include <string>
+
+namespace mlsvtk
+{
+/// The CasePath field data of data (a char array, or a string array), or "" when it has none.
+inline std::string casePathOf(vtkDataObject* data)
+{
+  vtkAbstractArray* array = data && data->GetFieldData() ? data->GetFieldData()->GetAbstractArray("CasePath") : nullptr;
+  if (auto* strings = vtkStringArray::SafeDownCast(array))
+  {
+    return strings->GetNumberOfValues() > 0 ? strings->GetValue(0) : std::string();
+  }
+  std::string path;
+  if (auto* chars = vtkCharArray::SafeDownCast(array))
+  {
+    for (vtkIdType i = 0; i < chars->GetNumberOfValues() && chars->GetValue(i) != '\0'; ++i)
+    {
+      path += chars->GetValue(i);
+    }
+  }
+  return path;
+}
+} // namespace mlsvtk
