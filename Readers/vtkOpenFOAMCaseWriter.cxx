@@ -74,13 +74,6 @@ std::string casePath(vtkDataObject* input, vtkPointSet* mesh)
                            "ParaView's OpenFOAM reader, or set SourceCase)");
 }
 
-bool isTimeName(const std::string& name)
-{
-  char* end = nullptr;
-  std::strtod(name.c_str(), &end);
-  return !name.empty() && *end == '\0';
-}
-
 // The folders a new case needs of a case folder (the case, or one of its processor folders): the
 // required ones (system and constant, or constant), the earliest time and 0.orig.
 std::vector<fs::path> caseFolders(const fs::path& source, const std::vector<std::string>& required)
@@ -99,7 +92,7 @@ std::vector<fs::path> caseFolders(const fs::path& source, const std::vector<std:
   for (const fs::directory_entry& entry : fs::directory_iterator(source))
   {
     const std::string name = entry.path().filename().string();
-    if (entry.is_directory() && isTimeName(name) && std::strtod(name.c_str(), nullptr) < earliestTime)
+    if (entry.is_directory() && mlsfoam::isTimeName(name) && std::strtod(name.c_str(), nullptr) < earliestTime)
     {
       earliestTime = std::strtod(name.c_str(), nullptr);
       earliest = entry.path();
@@ -211,7 +204,7 @@ struct InputMesh
 // Whether a polyMesh folder holds a mesh (a decomposed case may keep an empty constant/polyMesh).
 bool hasPoints(const fs::path& polyMesh)
 {
-  return fs::exists(polyMesh / "points") || fs::exists(polyMesh / "points.gz");
+  return !mlsfoam::foamFile(polyMesh.string(), "points").empty();
 }
 
 // A mesh file of the case (the reconstructed mesh, processor -1, or a processor's) and the

@@ -39,11 +39,7 @@ bool changesCells(const fs::path& folder)
   std::error_code error;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
   {
-    const std::string name = entry.path().filename().string();
-    char* end = nullptr;
-    std::strtod(name.c_str(), &end);
-    const bool time = !name.empty() && *end == '\0';
-    if (time && (fs::exists(entry.path() / "polyMesh" / "faces") || fs::exists(entry.path() / "polyMesh" / "faces.gz")))
+    if (mlsfoam::isTimeName(entry.path().filename().string()) && !mlsfoam::foamFile((entry.path() / "polyMesh").string(), "faces").empty())
     {
       return true;
     }

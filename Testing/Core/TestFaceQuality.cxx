@@ -29,6 +29,27 @@ std::vector<std::vector<int>> boxFaces(PointList& points, double x0, double x1)
     { v(0, 0, 0), v(1, 0, 0), v(1, 0, 1), v(0, 0, 1) }, { v(0, 1, 0), v(0, 1, 1), v(1, 1, 1), v(1, 1, 0) },
     { v(0, 0, 0), v(0, 1, 0), v(1, 1, 0), v(1, 0, 0) }, { v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1) } };
 }
+
+// A row of count unit cubes along x sharing their faces' points (points replaced), each cube's six
+// faces as boxFaces lists them.
+std::vector<CellFaces> cubeRow(PointList& points, int count)
+{
+  points.clear();
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i <= count; ++i)
+        points.push_back(Vec3(i, j, k));
+  auto v = [count](int i, int j, int k) { return i + (count + 1) * (j + 2 * k); };
+  std::vector<CellFaces> cubes;
+  for (int x = 0; x < count; ++x)
+  {
+    cubes.push_back(CellFaces{ { v(x, 0, 0), v(x, 0, 1), v(x, 1, 1), v(x, 1, 0) },
+      { v(x + 1, 0, 0), v(x + 1, 1, 0), v(x + 1, 1, 1), v(x + 1, 0, 1) },
+      { v(x, 0, 0), v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1) }, { v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 1), v(x + 1, 1, 0) },
+      { v(x, 0, 0), v(x, 1, 0), v(x + 1, 1, 0), v(x + 1, 0, 0) }, { v(x, 0, 1), v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1) } });
+  }
+  return cubes;
+}
 }
 
 TEST(FaceCentresAndAreas)
@@ -100,18 +121,8 @@ TEST(InteriorFacesAreMatchedAndOriented)
   // Two unit cubes in a row sharing the four points at x = 1; the owner's shared face is listed
   // inward, which the orientation corrects.
   PointList points;
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 3; ++i)
-        points.push_back(Vec3(i, j, k));
+  std::vector<CellFaces> nested = cubeRow(points, 2);
   auto v = [](int i, int j, int k) { return i + 3 * j + 6 * k; };
-  auto cube = [&](int x) {
-    return CellFaces{ { v(x, 0, 0), v(x, 0, 1), v(x, 1, 1), v(x, 1, 0) },
-      { v(x + 1, 0, 0), v(x + 1, 1, 0), v(x + 1, 1, 1), v(x + 1, 0, 1) },
-      { v(x, 0, 0), v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1) }, { v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 1), v(x + 1, 1, 0) },
-      { v(x, 0, 0), v(x, 1, 0), v(x + 1, 1, 0), v(x + 1, 0, 0) }, { v(x, 0, 1), v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1) } };
-  };
-  std::vector<CellFaces> nested = { cube(0), cube(1) };
   std::reverse(nested[0][1].begin(), nested[0][1].end());
   const CellFaceList cells(nested);
   const InteriorFaces faces = interiorFaces(cells);
@@ -153,17 +164,7 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
   // out of the owner), then each cube's boundary faces; its cells' faces and interior faces must
   // be what matching the cubes' faces finds, and measure the same.
   PointList points;
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 4; ++i)
-        points.push_back(Vec3(i, j, k));
-  auto v = [](int i, int j, int k) { return i + 4 * j + 8 * k; };
-  auto cube = [&](int x) {
-    return CellFaces{ { v(x, 0, 0), v(x, 0, 1), v(x, 1, 1), v(x, 1, 0) },
-      { v(x + 1, 0, 0), v(x + 1, 1, 0), v(x + 1, 1, 1), v(x + 1, 0, 1) },
-      { v(x, 0, 0), v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1) }, { v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 1), v(x + 1, 1, 0) },
-      { v(x, 0, 0), v(x, 1, 0), v(x + 1, 1, 0), v(x + 1, 0, 0) }, { v(x, 0, 1), v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1) } };
-  };
+  const std::vector<CellFaces> cube = cubeRow(points, 3);
   std::vector<int> start = { 0 }, facePoints, owner, neighbour;
   auto addFace = [&](const std::vector<int>& face, int o) {
     facePoints.insert(facePoints.end(), face.begin(), face.end());
@@ -172,13 +173,13 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
   };
   for (int x = 0; x < 2; ++x)
   {
-    addFace(cube(x)[1], x); // the +x face, out of cube x into cube x + 1
+    addFace(cube[x][1], x); // the +x face, out of cube x into cube x + 1
     neighbour.push_back(x + 1);
   }
   for (int x = 0; x < 3; ++x)
     for (int f : { 0, 1, 2, 3, 4, 5 })
       if ((f != 0 || x == 0) && (f != 1 || x == 2))
-        addFace(cube(x)[f], x);
+        addFace(cube[x][f], x);
   const int pointCount = static_cast<int>(points.size());
   const MeshFaces mesh = ownerNeighbourFaces(start, facePoints, owner, neighbour, pointCount);
   CHECK(mesh.cells.cells() == 3 && mesh.cells.faces() == 18 && mesh.interior.size() == 2);
@@ -187,15 +188,14 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
     const InteriorFace& f = mesh.interior[x];
     CHECK(f.owner == x && f.neighbour == x + 1);
     // the owner's copy is the face as listed; the neighbour lists it reversed, out of itself
-    const std::vector<int> shared = cube(x)[1];
+    const std::vector<int> shared = cube[x][1];
     CHECK(std::equal(shared.begin(), shared.end(), mesh.cells.face(f.face)));
     CHECK(faceGeometry(points, mesh.cells.face(f.face), 4).area.isApprox(Vec3(1, 0, 0)));
     const long copy = mesh.cells.firstFace(x + 1); // face 0 of cube x + 1 is the shared one (lowest number)
     CHECK(faceGeometry(points, mesh.cells.face(copy), 4).area.isApprox(Vec3(-1, 0, 0)));
   }
   // every cell's faces point out of it: no negative pyramid, orientation +1, as matched
-  std::vector<CellFaces> nested = { cube(0), cube(1), cube(2) };
-  const CellFaceList matchedCells(nested);
+  const CellFaceList matchedCells(cube);
   const InteriorFaces matched = interiorFaces(matchedCells);
   CHECK(matched.size() == 2 && matched[0].owner == 0 && matched[1].owner == 1);
   // a sheared, non-dyadic point set: both forms sum the same face terms in another order, so

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace mlsfoam
 {
@@ -75,6 +77,21 @@ bool readNumber(const char*& p, const char* last, Number& value)
     return false;
   }
   p = next;
+  return true;
+}
+
+// Moves p past white space and the character c; false (p past the white space) when c is not next.
+bool passed(const char*& p, const char* last, char c)
+{
+  while (p < last && std::isspace(static_cast<unsigned char>(*p)))
+  {
+    ++p;
+  }
+  if (p >= last || *p != c)
+  {
+    return false;
+  }
+  ++p;
   return true;
 }
 
@@ -151,6 +168,42 @@ struct FoamList
   std::size_t begin = 0; // the position after '('
 };
 
+// The FoamFile dictionary of a file's text (between its braces) and the position after it;
+// npos when there is none.
+std::pair<std::string, std::size_t> headerOf(const std::string& s)
+{
+  const std::size_t foamFile = s.find("FoamFile");
+  const std::size_t open = foamFile == std::string::npos ? foamFile : s.find('{', foamFile);
+  const std::size_t close = open == std::string::npos ? open : s.find('}', open);
+  if (close == std::string::npos)
+  {
+    return { std::string(), std::string::npos };
+  }
+  return { s.substr(open + 1, close - open - 1), close + 1 };
+}
+
+// The count of a list that starts at s[i] ("count(") and the position after its '('; a count
+// that cannot fit the rest of the file (elementBytes each at least) is an error.
+std::pair<std::size_t, std::size_t> openList(const std::string& path, const std::string& s, std::size_t i, std::size_t elementBytes)
+{
+  char* end = nullptr;
+  const long long count = i < s.size() ? std::strtoll(s.c_str() + i, &end, 10) : -1;
+  if (end == nullptr || end == s.c_str() + i || count < 0)
+  {
+    fail(path, "no element count at byte " + std::to_string(i));
+  }
+  if (static_cast<unsigned long long>(count) > (s.size() - i) / elementBytes)
+  {
+    fail(path, "the list of " + std::to_string(count) + " elements does not fit the file's size (truncated)");
+  }
+  i = skipBlank(s, static_cast<std::size_t>(end - s.c_str()));
+  if (i >= s.size() || s[i] != '(')
+  {
+    fail(path, "no '(' after the count " + std::to_string(count) + " (a uniform list is not a mesh)");
+  }
+  return { static_cast<std::size_t>(count), i + 1 };
+}
+
 // Reads path and checks its class (one of classes); elementBytes: the least bytes of one element in binary and in
 // ascii, so that a count that cannot fit the file is an error before anything is allocated.
 FoamList readList(
@@ -159,14 +212,11 @@ FoamList readList(
   FoamList list;
   list.text = readAll(path);
   const std::string& s = list.text;
-  const std::size_t foamFile = s.find("FoamFile");
-  const std::size_t open = foamFile == std::string::npos ? foamFile : s.find('{', foamFile);
-  const std::size_t close = open == std::string::npos ? open : s.find('}', open);
-  if (close == std::string::npos)
+  const auto [dictionary, afterHeader] = headerOf(s);
+  if (afterHeader == std::string::npos)
   {
     fail(path, "no FoamFile header");
   }
-  const std::string dictionary = s.substr(open + 1, close - open - 1);
   list.kind = entry(dictionary, "class");
   if (std::find(classes.begin(), classes.end(), list.kind) == classes.end())
   {
@@ -188,30 +238,15 @@ FoamList readList(
   {
     fail(path, "big-endian binary files are not supported");
   }
-  std::size_t i = skipBlank(s, close + 1);
+  const std::size_t i = skipBlank(s, afterHeader);
   list.header = s.substr(0, i);
-  char* end = nullptr;
-  const long long count = std::strtoll(s.c_str() + i, &end, 10);
-  if (end == s.c_str() + i || count < 0)
-  {
-    fail(path, "no element count after the header");
-  }
-  if (static_cast<unsigned long long>(count) > (s.size() - i) / (list.binary ? binaryBytes : asciiBytes))
-  {
-    fail(path, "the count " + std::to_string(count) + " does not fit the file's size");
-  }
-  i = skipBlank(s, static_cast<std::size_t>(end - s.c_str()));
-  if (i >= s.size() || s[i] != '(')
-  {
-    fail(path, "no '(' after the count (a uniform list is not a mesh)");
-  }
-  list.count = static_cast<std::size_t>(count);
-  list.begin = i + 1;
+  std::tie(list.count, list.begin) = openList(path, s, i, list.binary ? binaryBytes : asciiBytes);
   return list;
 }
 
-// The file directory/name, or directory/name.gz; "" when there is neither.
-std::string existing(const std::string& directory, const std::string& name)
+} // namespace
+
+std::string foamFile(const std::string& directory, const std::string& name)
 {
   for (const std::string& path : { directory + "/" + name, directory + "/" + name + ".gz" })
   {
@@ -222,12 +257,11 @@ std::string existing(const std::string& directory, const std::string& name)
   }
   return "";
 }
-} // namespace
 
 FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
 {
   FoamPointsFile file;
-  file.path = existing(polyMeshDirectory, "points");
+  file.path = foamFile(polyMeshDirectory, "points");
   if (file.path.empty())
   {
     fail(polyMeshDirectory + "/points", "there is no points file (nor points.gz): not an OpenFOAM polyMesh directory");
@@ -268,15 +302,10 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
   const char* last = s.c_str() + s.size();
   for (std::size_t k = 0; k < n; ++k)
   {
-    while (p < last && std::isspace(static_cast<unsigned char>(*p)))
-    {
-      ++p;
-    }
-    if (p >= last || *p != '(')
+    if (!passed(p, last, '('))
     {
       fail(file.path, "point " + std::to_string(k) + " is not '(x y z)'");
     }
-    ++p;
     for (int c = 0; c < 3; ++c)
     {
       if (!readNumber(p, last, file.xyz[3 * k + c]))
@@ -284,15 +313,10 @@ FoamPointsFile readFoamPoints(const std::string& polyMeshDirectory)
         fail(file.path, "point " + std::to_string(k) + " has no coordinate " + std::to_string(c));
       }
     }
-    while (p < last && std::isspace(static_cast<unsigned char>(*p)))
-    {
-      ++p;
-    }
-    if (p >= last || *p != ')')
+    if (!passed(p, last, ')'))
     {
       fail(file.path, "point " + std::to_string(k) + " is not '(x y z)'");
     }
-    ++p;
   }
   return file;
 }
@@ -360,7 +384,7 @@ std::size_t labelBytesOf(const FoamList& list)
 template <typename Label>
 std::vector<Label> readLabelList(const std::string& polyMeshDirectory, const std::string& name)
 {
-  const std::string path = existing(polyMeshDirectory, name);
+  const std::string path = foamFile(polyMeshDirectory, name);
   if (path.empty())
   {
     fail(polyMeshDirectory + "/" + name, "there is no such file (nor " + name + ".gz)");
@@ -383,10 +407,17 @@ std::vector<int> readFoamIndices(const std::string& polyMeshDirectory, const std
   return readLabelList<int>(polyMeshDirectory, name);
 }
 
+bool isTimeName(const std::string& name)
+{
+  char* end = nullptr;
+  std::strtod(name.c_str(), &end);
+  return !name.empty() && *end == '\0';
+}
+
 FoamMeshSize readFoamMeshSize(const std::string& polyMeshDirectory)
 {
   FoamMeshSize size;
-  const std::string path = existing(polyMeshDirectory, "owner");
+  const std::string path = foamFile(polyMeshDirectory, "owner");
   gzFile file = path.empty() ? nullptr : gzopen(path.c_str(), "rb");
   if (!file)
   {
@@ -396,13 +427,7 @@ FoamMeshSize readFoamMeshSize(const std::string& polyMeshDirectory)
   const int read = gzread(file, &head[0], static_cast<unsigned>(head.size()));
   gzclose(file);
   head.resize(read > 0 ? static_cast<std::size_t>(read) : 0);
-  const std::size_t open = head.find('{', head.find("FoamFile"));
-  const std::size_t close = open == std::string::npos ? open : head.find('}', open);
-  if (close == std::string::npos)
-  {
-    return size;
-  }
-  const std::string note = entry(head.substr(open + 1, close - open - 1), "note"); // blanks removed
+  const std::string note = entry(headerOf(head).first, "note"); // blanks removed
   for (auto [key, value] : { std::pair<const char*, long long*>{ "nPoints:", &size.points }, { "nCells:", &size.cells } })
   {
     const std::size_t at = note.find(key);
@@ -416,7 +441,7 @@ FoamMeshSize readFoamMeshSize(const std::string& polyMeshDirectory)
 
 FoamFaces readFoamFaces(const std::string& polyMeshDirectory)
 {
-  const std::string path = existing(polyMeshDirectory, "faces");
+  const std::string path = foamFile(polyMeshDirectory, "faces");
   if (path.empty())
   {
     fail(polyMeshDirectory + "/faces", "there is no faces file (nor faces.gz)");
@@ -430,20 +455,9 @@ FoamFaces readFoamFaces(const std::string& polyMeshDirectory)
   if (list.kind == "faceCompactList")
   {
     // the offsets (faces + 1), then "count(" and the points
-    std::size_t at = readLabels(path, s, list.begin, list.count, list.binary, labelBytes, faces.start);
-    at = skipBlank(s, at);
-    char* end = nullptr;
-    const long long count = std::strtoll(s.c_str() + at, &end, 10);
-    at = end == s.c_str() + at ? s.size() : skipBlank(s, static_cast<std::size_t>(end - s.c_str()));
-    if (count < 0 || at >= s.size() || s[at] != '(')
-    {
-      fail(path, "no list of points after the faces' offsets");
-    }
-    if (static_cast<unsigned long long>(count) > (s.size() - at) / (list.binary ? labelBytes : 2))
-    {
-      fail(path, "the list of " + std::to_string(count) + " points is truncated");
-    }
-    readLabels(path, s, at + 1, static_cast<std::size_t>(count), list.binary, labelBytes, faces.points);
+    const std::size_t after = skipBlank(s, readLabels(path, s, list.begin, list.count, list.binary, labelBytes, faces.start));
+    const auto [count, begin] = openList(path, s, after, list.binary ? labelBytes : 2);
+    readLabels(path, s, begin, count, list.binary, labelBytes, faces.points);
     if (faces.start.empty() || faces.start.front() != 0 || faces.start.back() != static_cast<int>(faces.points.size()) ||
       !std::is_sorted(faces.start.begin(), faces.start.end()))
     {
@@ -461,11 +475,10 @@ FoamFaces readFoamFaces(const std::string& polyMeshDirectory)
   for (std::size_t f = 0; f < list.count; ++f)
   {
     int n = 0;
-    if (!readNumber(p, last, n) || n < 0 || p >= last || *p != '(')
+    if (!readNumber(p, last, n) || n < 0 || !passed(p, last, '('))
     {
       fail(path, "face " + std::to_string(f) + " is not 'n(p0 p1 ...)'");
     }
-    ++p;
     for (int k = 0; k < n; ++k)
     {
       int point = 0;
@@ -475,15 +488,10 @@ FoamFaces readFoamFaces(const std::string& polyMeshDirectory)
       }
       faces.points.push_back(point);
     }
-    while (p < last && std::isspace(static_cast<unsigned char>(*p)))
-    {
-      ++p;
-    }
-    if (p >= last || *p != ')')
+    if (!passed(p, last, ')'))
     {
       fail(path, "face " + std::to_string(f) + " has more points than its count");
     }
-    ++p;
     faces.start.push_back(static_cast<int>(faces.points.size()));
   }
   return faces;

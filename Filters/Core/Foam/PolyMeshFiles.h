@@ -47,6 +47,12 @@ struct FoamFaces
 /// the file and the reason.
 FoamFaces readFoamFaces(const std::string& polyMeshDirectory);
 
+/// The file directory/name, or directory/name.gz when only that exists; "" when neither does.
+std::string foamFile(const std::string& directory, const std::string& name);
+
+/// Whether a folder name is a time (a number: "0", "0.5", "1e-05"), as OpenFOAM names time folders.
+bool isTimeName(const std::string& name);
+
 /// The mesh's size as OpenFOAM notes it in the owner file's header ("nPoints:435962
 /// nCells:370338 ..."), read without the lists; -1 where there is no such file or note.
 struct FoamMeshSize
