@@ -1,5 +1,6 @@
 // Fig. 2 / section 5: farthest points, Lloyd relaxation, cover radii, Voronoi volumes.
 #include "Common/KdTree.h"
+#include "Common/PositionIndex.h"
 #include "Common/KeySort.h"
 #include "Basis/MLSBasis.h"
 #include "Sampling/Sampling.h"
@@ -59,6 +60,9 @@ TEST(KdTreeQueriesMatchBruteForce)
     std::vector<int> relative, candidates, meeting;
     std::vector<double> ratio2;
     tree.kNearest(x, 5, knn, d2);
+    CHECK(tree.nearest(x) == knn[0]);
+    for (int hint : { knn[0], knn[4], static_cast<int>(p) }) // a search bounded from the start finds the same
+      CHECK(tree.nearest(x, hint) == knn[0]);
     tree.leastRelativeCandidates(lower, upper, 5, candidates);
     CHECK(std::is_sorted(candidates.begin(), candidates.end()));
     tree.kLeastRelative(x, 5, candidates, relative, ratio2);
@@ -93,6 +97,26 @@ TEST(KdTreeQueriesMatchBruteForce)
     for (std::size_t count : { containingCount, containingCount + 1 })
       CHECK(tree.containedInAtLeast(x, static_cast<int>(count), meeting) == (containingCount >= count));
   }
+}
+
+TEST(PositionIndexNumbersDistinctPositions)
+{
+  // each distinct position (by its exact coordinates, -0 as +0) is numbered at its first
+  // appearance; a position one ulp away is another; so many that the table probes past collisions
+  PointList positions = randomPoints(5000, Vec3(0, 0, 0), Vec3(1, 1, 1), 7);
+  positions.push_back(positions[10]);
+  positions.push_back(Vec3(0, 0.5, 0.5));
+  positions.push_back(Vec3(-0.0, 0.5, 0.5));
+  positions.push_back(Vec3(std::nextafter(0.0, 1.0), 0.5, 0.5));
+  const PositionIndex index(positions);
+  CHECK(index.distinct().size() == 5002);
+  CHECK(index.numbers()[5000] == 10 && index.numbers()[5001] == 5000 && index.numbers()[5002] == 5000 && index.numbers()[5003] == 5001);
+  bool numbered = true;
+  for (long i = 0; i < 5000; ++i)
+    numbered = numbered && index.numbers()[i] == i && index.find(positions[i]) == i && index.distinct()[i] == positions[i];
+  CHECK(numbered);
+  CHECK(index.find(Vec3(-0.0, 0.5, 0.5)) == 5000 && index.find(Vec3(0.5, 0.5, 2)) == -1);
+  CHECK(PositionIndex({}).find(Vec3::Zero()) == -1);
 }
 
 TEST(SortByKeyIsAStableSort)

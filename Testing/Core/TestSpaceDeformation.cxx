@@ -198,6 +198,9 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
   positions.back().x() = std::nextafter(positions.back().x(), 10.0); // one ulp from a point: not it
   const std::vector<long> among = positionsAmong(x, positions);
   CHECK(among == std::vector<long>({ 9000, 5, 100, -1, -1, -1 }));
+  PointList twice = positions; // a position listed twice (two regions sharing a point) finds the same point
+  twice.push_back(x[5]);
+  CHECK(positionsAmong(x, twice) == std::vector<long>({ 9000, 5, 100, -1, -1, -1, 5 }));
   std::vector<int> outside, outsideGathered;
   const SparseRowMatrix evaluated = subspaceMatrix(basis, positions, &outside);
   GatheredRows moved = gatherRows(basis, positions, { &blocks, among }, &outsideGathered);

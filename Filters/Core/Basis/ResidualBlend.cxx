@@ -1,6 +1,5 @@
 #include "Basis/ResidualBlend.h"
 
-#include "Basis/SubspaceOperators.h"
 #include "Common/BoundingBox.h"
 
 #include <cmath>
@@ -22,6 +21,7 @@ double fade(double t) // beta(t) of the header
 ResidualBlend::ResidualBlend(const PointList& sites, double radius)
   : Sites(sites)
   , Radius(radius)
+  , SiteIndex(sites)
 {
   if (sites.empty() || !(radius > 0) || !std::isfinite(radius))
   {
@@ -33,21 +33,23 @@ ResidualBlend::ResidualBlend(const PointList& sites, double radius)
 
 void ResidualBlend::evaluate(const Vec3& x, ShapeFunctionValues& out, bool) const
 {
-  thread_local std::vector<int> nearest;
-  thread_local std::vector<double> squared;
-  Tree.kNearest(x, Neighbours + 1, nearest, squared);
   out.index.clear();
   out.value.clear();
   out.gradient.clear();
   out.laplacian.clear();
-  if (nearest.empty() || squared[0] >= Radius * Radius)
+  // at a site: its own residual, exactly (a region's points are sites: a fifth of a CFD case's
+  // points, each spared the search)
+  if (const long site = SiteIndex.find(x); site >= 0)
   {
+    out.index.push_back(static_cast<int>(site));
+    out.value.push_back(1.0);
     return;
   }
-  if (squared[0] == 0)
+  thread_local std::vector<int> nearest;
+  thread_local std::vector<double> squared;
+  Tree.kNearest(x, Neighbours + 1, nearest, squared);
+  if (nearest.empty() || squared[0] >= Radius * Radius)
   {
-    out.index.push_back(nearest[0]); // at a site: its own residual, exactly
-    out.value.push_back(1.0);
     return;
   }
   // all sites when there are no more than K (no (K+1)-th to taper towards)
@@ -86,20 +88,8 @@ void ResidualBlend::evaluate(const Vec3& x, ShapeFunctionValues& out, bool) cons
 
 PointList uniqueSites(const PointList& positions, std::vector<long>& siteOf)
 {
-  const std::vector<long> first = positionsAmong(positions, positions);
-  PointList sites;
-  std::vector<long> siteOfFirst(positions.size(), -1);
-  siteOf.assign(positions.size(), -1);
-  for (std::size_t i = 0; i < positions.size(); ++i)
-  {
-    long& site = siteOfFirst[first[i]];
-    if (site < 0)
-    {
-      site = static_cast<long>(sites.size());
-      sites.push_back(positions[i]);
-    }
-    siteOf[i] = site;
-  }
-  return sites;
+  const PositionIndex index(positions);
+  siteOf = index.numbers();
+  return index.distinct();
 }
 } // namespace mlsdeform

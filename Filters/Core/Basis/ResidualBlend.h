@@ -17,6 +17,7 @@
 #pragma once
 
 #include "Common/KdTree.h"
+#include "Common/PositionIndex.h"
 #include "Basis/ShapeFunctions.h"
 
 namespace mlsdeform
@@ -36,6 +37,7 @@ private:
   PointList Sites;
   double Radius;
   KdTree Tree;
+  PositionIndex SiteIndex;
 };
 
 /// The distinct positions among positions, in order of first appearance; siteOf[i] is the index

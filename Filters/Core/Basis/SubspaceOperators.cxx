@@ -1,6 +1,6 @@
 #include "Basis/SubspaceOperators.h"
 
-#include "Common/PositionHash.h"
+#include "Common/PositionIndex.h"
 #include "Common/ZOrder.h"
 
 #include <algorithm>
@@ -400,36 +400,27 @@ RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions
 
 std::vector<long> positionsAmong(const PointList& points, const PointList& positions)
 {
-  // the positions' keys sorted; each point looks its key up (in parallel), then the first point
-  // of each key is taken in point order
-  std::vector<std::pair<std::uint64_t, long>> keys(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i)
-  {
-    keys[i] = { positionKey(positions[i]), static_cast<long>(i) };
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<long> slotOf(points.size(), -1); // per point: its key's first entry in keys, or -1
+  // each point looks its position up among the positions' distinct ones (in parallel), then the
+  // first point of each is taken in point order
+  const PositionIndex index(positions);
+  std::vector<long> numberOf(points.size());
 #pragma omp parallel for schedule(static)
   for (long p = 0; p < static_cast<long>(points.size()); ++p)
   {
-    const std::uint64_t key = positionKey(points[p]);
-    const auto at = std::lower_bound(keys.begin(), keys.end(), std::make_pair(key, -1L));
-    if (at != keys.end() && at->first == key)
-    {
-      slotOf[p] = at - keys.begin();
-    }
+    numberOf[p] = index.find(points[p]);
   }
-  std::vector<long> found(positions.size(), -1);
+  std::vector<long> first(index.distinct().size(), -1);
   for (long p = 0; p < static_cast<long>(points.size()); ++p)
   {
-    for (long k = slotOf[p]; k >= 0 && k < static_cast<long>(keys.size()) && keys[k].first == keys[slotOf[p]].first; ++k)
+    if (numberOf[p] >= 0 && first[numberOf[p]] < 0)
     {
-      long& first = found[keys[k].second];
-      if (first < 0 && positions[keys[k].second].cwiseEqual(points[p]).all()) // the key's bits, compared exactly
-      {
-        first = p;
-      }
+      first[numberOf[p]] = p;
     }
+  }
+  std::vector<long> found(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    found[i] = first[index.numbers()[i]];
   }
   return found;
 }

@@ -159,10 +159,10 @@ void KdTree::setReach(int index)
   node.reachUpper = left.reachUpper.cwiseMax(right.reachUpper);
 }
 
-int KdTree::nearest(const Vec3& x) const
+int KdTree::nearest(const Vec3& x, int hint) const
 {
-  int best = -1;
-  double bestDistance = std::numeric_limits<double>::infinity();
+  int best = hint;
+  double bestDistance = hint >= 0 ? (Points[Position[hint]] - x).squaredNorm() : std::numeric_limits<double>::infinity();
   TraversalStack stack;
   if (!Nodes.empty())
   {

@@ -18,8 +18,10 @@ public:
   /// Gives each point a ball radius; enables containing().
   void setRadii(const std::vector<double>& radii);
 
-  /// Index of the nearest point (-1 if the tree is empty).
-  int nearest(const Vec3& x) const;
+  /// Index of the nearest point (-1 if the tree is empty). A hint (a point likely near x, such as
+  /// the answer for a nearby x) bounds the search from the start; of points as near as the hint,
+  /// the hint is returned.
+  int nearest(const Vec3& x, int hint = -1) const;
   /// Up to k nearest points, closest first, with squared distances.
   void kNearest(const Vec3& x, int k, std::vector<int>& indices, std::vector<double>& squaredDistances) const;
   /// For positions in the box [lower, upper] sharing one search (requires setRadii): the balls i

@@ -408,7 +408,7 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
 
 void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector<double>& denseWeight, int iterations, const Progress& progress)
 {
-  std::vector<int> owner(dense.size());
+  std::vector<int> owner(dense.size(), -1);
   for (int iteration = 0; iteration < iterations && !sites.empty(); ++iteration)
   {
     progress.stopIfAsked();
@@ -416,7 +416,7 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < static_cast<long>(dense.size()); ++i)
     {
-      owner[i] = tree.nearest(dense[i]);
+      owner[i] = tree.nearest(dense[i], owner[i]); // the sites moved little: the last owner bounds the search
     }
     PointList sum(sites.size(), Vec3::Zero());
     std::vector<double> weight(sites.size(), 0.0);
