@@ -112,6 +112,11 @@ bool MLSBasis::candidatesInBox(const Vec3& lower, const Vec3& upper, std::vector
   return true;
 }
 
+void MLSBasis::narrowCandidates(const Vec3& lower, const Vec3& upper, const std::vector<int>& candidates, std::vector<int>& narrowed) const
+{
+  Supports.meetingBoxAmong(lower, upper, candidates, narrowed);
+}
+
 void MLSBasis::evaluateAmong(const Vec3& x, const std::vector<int>& candidates, ShapeFunctionValues& out, bool withDerivatives) const
 {
   // Every candidate is written and the count advances only for those whose support holds x: a

@@ -30,6 +30,7 @@ public:
   /// Evaluates at x; the result is empty when x lies outside every support.
   void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const override;
   bool candidatesInBox(const Vec3& lower, const Vec3& upper, std::vector<int>& candidates) const override;
+  void narrowCandidates(const Vec3& lower, const Vec3& upper, const std::vector<int>& candidates, std::vector<int>& narrowed) const override;
   void evaluateAmong(const Vec3& x, const std::vector<int>& candidates, ShapeFunctionValues& out, bool withDerivatives) const override;
 
   /// w(r) = 1/2 cos(pi r / sigma) + 1/2 = cos^2(pi r / (2 sigma)) for r < sigma, else 0.

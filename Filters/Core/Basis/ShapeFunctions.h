@@ -34,6 +34,12 @@ public:
   {
     return false;
   }
+  /// The candidates of a box narrowed to those that may meet the box [lower, upper] inside it
+  /// (increasing): candidates for its positions, fewer to test each.
+  virtual void narrowCandidates(const Vec3& /*lower*/, const Vec3& /*upper*/, const std::vector<int>& candidates, std::vector<int>& narrowed) const
+  {
+    narrowed = candidates;
+  }
   /// evaluate(x, ...) given the candidates of a box holding x; the same result.
   virtual void evaluateAmong(const Vec3& x, const std::vector<int>& /*candidates*/, ShapeFunctionValues& out, bool withDerivatives) const
   {

@@ -337,20 +337,41 @@ bool KdTree::containedInAtLeast(const Vec3& x, int count, const std::vector<int>
   return found >= count;
 }
 
+namespace
+{
+// A ball containing x of the box [lower, upper] is nearer the box than its radius:
+// |p - box| <= |p - x| < r (rounding is monotonic). The margin keeps that true whatever order the
+// sums are taken in.
+constexpr double BoxMargin = 1 + 1e-9;
+double squaredDistanceBetweenBoxes(const Vec3& lower, const Vec3& upper, const Vec3& a, const Vec3& b)
+{
+  return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm();
+}
+}
+
 void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const
 {
-  // A ball containing x of the box is nearer the box than its radius: |p - box| <= |p - x| < r
-  // (rounding is monotonic). The margin keeps that true whatever order the sums are taken in.
-  constexpr double Margin = 1 + 1e-9;
-  const auto squaredDistance = [&](const Vec3& a, const Vec3& b) {
-    return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm(); // from the box [a, b]
-  };
   collectBalls(
     [&](const Node& node) {
       return !(upper.array() < node.reachLower.array()).any() && !(lower.array() > node.reachUpper.array()).any() &&
-        squaredDistance(node.lower, node.upper) < node.maxRadius * node.maxRadius * Margin;
+        squaredDistanceBetweenBoxes(lower, upper, node.lower, node.upper) < node.maxRadius * node.maxRadius * BoxMargin;
     },
-    [&](int i) { return squaredDistance(Points[i], Points[i]) < Radii[i] * Radii[i] * Margin; }, indices);
+    [&](int i) { return squaredDistanceBetweenBoxes(lower, upper, Points[i], Points[i]) < Radii[i] * Radii[i] * BoxMargin; },
+    indices);
+}
+
+void KdTree::meetingBoxAmong(const Vec3& lower, const Vec3& upper, const std::vector<int>& candidates, std::vector<int>& indices) const
+{
+  // every candidate written, the count advanced for those that meet the box (no branch to mispredict)
+  indices.resize(candidates.size());
+  std::size_t count = 0;
+  for (int j : candidates)
+  {
+    const int i = Position[j];
+    indices[count] = j;
+    count += squaredDistanceBetweenBoxes(lower, upper, Points[i], Points[i]) < Radii[i] * Radii[i] * BoxMargin;
+  }
+  indices.resize(count);
 }
 
 template <typename NodeMeets, typename BallMeets>

@@ -41,6 +41,9 @@ public:
   /// setRadii): a superset of containing(x) for every x in the box, so that nearby positions share
   /// one search and each filters the list with the exact test |p_i - x| < radius_i.
   void meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const;
+  /// meetingBox among candidates (increasing), such as those of a larger box: the same test, the
+  /// same order.
+  void meetingBoxAmong(const Vec3& lower, const Vec3& upper, const std::vector<int>& candidates, std::vector<int>& indices) const;
   /// The ball (requires setRadii) holding the object nearest to x, where squaredDistance(i) is the
   /// squared distance from x to the object inside ball i (a triangle inside the ball around its
   /// centroid): visits only the nodes whose balls come nearer than the best so far. -1 if empty.
