@@ -480,7 +480,9 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
   {
     const long count = static_cast<long>(list->size());
     constexpr long Chunk = 4096;
-    constexpr std::size_t Group = 16; // nearby positions sharing one search (the result does not depend on it)
+    // nearby positions sharing one search (the result does not depend on it): on the 400k hull
+    // case the sampling took 0.60-0.65 s with 16, 0.58-0.59 s with 32, 0.58-0.60 s with 64
+    constexpr std::size_t Group = 32;
 #pragma omp parallel
     {
       std::vector<double> local(centers.size(), 0.0);
