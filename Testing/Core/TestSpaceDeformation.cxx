@@ -1,6 +1,7 @@
 // Section 5, eq. 12-14: the normal matrices and invariants of the solve.
 #include "Basis/MLSBasis.h"
 #include "Basis/RadialBasis.h"
+#include "Basis/ResidualBlend.h"
 #include "Solver/SpaceDeformation.h"
 #include "Basis/SubspaceOperators.h"
 #include "TestGeometry.h"
@@ -217,6 +218,32 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
       std::equal(a.value, a.value + a.size, b.value, [](PhiValue f, double v) { return f == v; });
   }
   CHECK(same);
+}
+
+TEST(ResidualBlendInterpolatesTheSitesAndFades)
+{
+  // psi_j(x_j) = 1 exactly (a point at a site takes its own residual, -0 as +0); between sites a
+  // convex combination of the K nearest; nothing beyond R of every site; the sites must be distinct
+  std::vector<long> siteOf;
+  const PointList sites = uniqueSites(testgeometry::randomPoints(500, Vec3(0, 0, 0), Vec3(1, 1, 1), 9), siteOf);
+  const ResidualBlend blend(sites, 0.5);
+  ShapeFunctionValues psi;
+  blend.evaluate(sites[17], psi, false);
+  CHECK(psi.index == std::vector<int>({ 17 }) && psi.value == std::vector<double>({ 1.0 }));
+  PointList signedZero = { Vec3(0.0, 0.5, 0.5), Vec3(0.5, 0.5, 0.5) };
+  const ResidualBlend onAxis(signedZero, 0.5);
+  onAxis.evaluate(Vec3(-0.0, 0.5, 0.5), psi, false);
+  CHECK(psi.index == std::vector<int>({ 0 }) && psi.value == std::vector<double>({ 1.0 }));
+  blend.evaluate(Vec3(0.51, 0.49, 0.5), psi, false);
+  double sum = 0;
+  for (double v : psi.value)
+    sum += v;
+  // the weights sum to beta of the sites' distances over R: below 1, and above beta(0.4) = 0.337 as
+  // the 8 nearest of 500 points in the unit cube lie well within 0.2 of x
+  CHECK(psi.index.size() > 1 && psi.index.size() <= 8 && sum <= 1 + 1e-12 && sum > 0.33);
+  blend.evaluate(Vec3(5, 5, 5), psi, false);
+  CHECK(psi.empty());
+  CHECK_THROWS(ResidualBlend({ Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 0) }, 0.5), InvalidInputException);
 }
 
 TEST(CommonTranslationMovesEveryPointByIt)

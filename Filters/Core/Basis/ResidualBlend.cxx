@@ -19,15 +19,18 @@ double fade(double t) // beta(t) of the header
 }
 
 ResidualBlend::ResidualBlend(const PointList& sites, double radius)
-  : Sites(sites)
-  , Radius(radius)
-  , SiteIndex(sites)
+  : Radius(radius)
+  , Sites(sites)
 {
   if (sites.empty() || !(radius > 0) || !std::isfinite(radius))
   {
     throw InvalidInputException("exact targets need target points and a positive, finite blend radius");
   }
   requireFinite(sites, "target points");
+  if (Sites.distinct().size() != sites.size())
+  {
+    throw InvalidInputException("the exact targets' sites must be distinct positions (uniqueSites)");
+  }
   Tree.build(sites);
 }
 
@@ -39,7 +42,7 @@ void ResidualBlend::evaluate(const Vec3& x, ShapeFunctionValues& out, bool) cons
   out.laplacian.clear();
   // at a site: its own residual, exactly (a region's points are sites: a fifth of a CFD case's
   // points, each spared the search)
-  if (const long site = SiteIndex.find(x); site >= 0)
+  if (const long site = Sites.find(x); site >= 0)
   {
     out.index.push_back(static_cast<int>(site));
     out.value.push_back(1.0);

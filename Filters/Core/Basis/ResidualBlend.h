@@ -25,19 +25,19 @@ namespace mlsdeform
 class ResidualBlend : public ShapeFunctions
 {
 public:
-  /// The sites x_j (distinct positions: uniqueSites) and the fade radius R > 0.
+  /// The sites x_j (distinct positions: uniqueSites; throws InvalidInputException otherwise) and
+  /// the fade radius R > 0.
   ResidualBlend(const PointList& sites, double radius);
 
   /// psi_j(x) (no derivatives): empty beyond R of every site, one entry at a site.
   void evaluate(const Vec3& x, ShapeFunctionValues& out, bool withDerivatives) const override;
 
-  std::size_t size() const override { return Sites.size(); }
+  std::size_t size() const override { return Sites.distinct().size(); }
 
 private:
-  PointList Sites;
   double Radius;
+  PositionIndex Sites; // x_j, found by position
   KdTree Tree;
-  PositionIndex SiteIndex;
 };
 
 /// The distinct positions among positions, in order of first appearance; siteOf[i] is the index

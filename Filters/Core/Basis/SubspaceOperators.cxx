@@ -73,13 +73,8 @@ ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointLis
           const long i = *at;
           if (shared && (at - begin) % Part == 0) // the next Part positions' own candidates
           {
-            const int* partEnd = std::min(end, at + Part);
-            Vec3 partLower = positions[*at], partUpper = partLower;
-            for (const int* p = at + 1; p < partEnd; ++p)
-            {
-              partLower = partLower.cwiseMin(positions[*p]);
-              partUpper = partUpper.cwiseMax(positions[*p]);
-            }
+            Vec3 partLower, partUpper;
+            boundingBoxOf(positions, at, std::min(end, at + Part), partLower, partUpper);
             basis.narrowCandidates(partLower, partUpper, candidates, narrowed);
           }
           if (shared)

@@ -25,6 +25,16 @@ struct TraversalStack
   bool empty() const { return count == 0; }
 };
 
+// The squared distance between the boxes [lower, upper] and [a, b] (a point: a = b).
+double squaredDistanceBetweenBoxes(const Vec3& lower, const Vec3& upper, const Vec3& a, const Vec3& b)
+{
+  return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm();
+}
+
+// A ball containing x of a box is nearer the box than its radius: |p - box| <= |p - x| < r
+// (rounding is monotonic). The margin keeps that true whatever order the sums are taken in.
+constexpr double BoxMargin = 1 + 1e-9;
+
 // A ball's squared distance over its squared radius (infinite for radius 0: never taken).
 double squaredRatio(double squaredDistance, double radius)
 {
@@ -246,9 +256,7 @@ void KdTree::leastRelativeCandidates(const Vec3& lower, const Vec3& upper, int k
   }
   // Every x of the box has k balls with ratio at most U, the k-th least ratio of the box's farthest
   // point; a ball nearer to the box than U times its radius may be among x's k least, no other.
-  const auto nearest = [&](const Vec3& a, const Vec3& b) { // squared, from the box to the box [a, b]
-    return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm();
-  };
+  const auto nearest = [&](const Vec3& a, const Vec3& b) { return squaredDistanceBetweenBoxes(lower, upper, a, b); };
   const auto nodeBound = [&](const Node& node) { return squaredRatio(nearest(node.lower, node.upper), node.maxRadius); };
   std::vector<int> indices;
   std::vector<double> farthest;
@@ -335,18 +343,6 @@ bool KdTree::containedInAtLeast(const Vec3& x, int count, const std::vector<int>
     found += (Points[i] - x).squaredNorm() < Radii[i] * Radii[i]; // the test of containing
   }
   return found >= count;
-}
-
-namespace
-{
-// A ball containing x of the box [lower, upper] is nearer the box than its radius:
-// |p - box| <= |p - x| < r (rounding is monotonic). The margin keeps that true whatever order the
-// sums are taken in.
-constexpr double BoxMargin = 1 + 1e-9;
-double squaredDistanceBetweenBoxes(const Vec3& lower, const Vec3& upper, const Vec3& a, const Vec3& b)
-{
-  return (lower - b).cwiseMax(a - upper).cwiseMax(0.0).squaredNorm();
-}
 }
 
 void KdTree::meetingBox(const Vec3& lower, const Vec3& upper, std::vector<int>& indices) const

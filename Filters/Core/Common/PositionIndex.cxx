@@ -18,30 +18,29 @@ PositionIndex::PositionIndex(const PointList& positions)
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
     const std::uint64_t key = positionKey(positions[i]);
-    std::uint64_t slot = key & Mask;
-    while (Slots[slot].second >= 0 && !(Slots[slot].first == key && Distinct[Slots[slot].second].cwiseEqual(positions[i]).all()))
+    std::pair<std::uint64_t, long>& slot = Slots[slotOf(key, positions[i])];
+    if (slot.second < 0)
     {
-      slot = (slot + 1) & Mask;
-    }
-    if (Slots[slot].second < 0)
-    {
-      Slots[slot] = { key, static_cast<long>(Distinct.size()) };
+      slot = { key, static_cast<long>(Distinct.size()) };
       Distinct.push_back(positions[i]);
     }
-    Numbers[i] = Slots[slot].second;
+    Numbers[i] = slot.second;
   }
 }
 
 long PositionIndex::find(const Vec3& x) const
 {
-  const std::uint64_t key = positionKey(x);
-  for (std::uint64_t slot = key & Mask; Slots[slot].second >= 0; slot = (slot + 1) & Mask)
+  return Slots[slotOf(positionKey(x), x)].second;
+}
+
+std::size_t PositionIndex::slotOf(std::uint64_t key, const Vec3& x) const
+{
+  std::size_t slot = key & Mask;
+  // the key's bits, then the coordinates compared exactly
+  while (Slots[slot].second >= 0 && !(Slots[slot].first == key && Distinct[Slots[slot].second].cwiseEqual(x).all()))
   {
-    if (Slots[slot].first == key && Distinct[Slots[slot].second].cwiseEqual(x).all()) // the key's bits, compared exactly
-    {
-      return Slots[slot].second;
-    }
+    slot = (slot + 1) & Mask;
   }
-  return -1;
+  return slot;
 }
 } // namespace mlsdeform

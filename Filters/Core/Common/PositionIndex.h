@@ -21,6 +21,9 @@ public:
   const PointList& distinct() const { return Distinct; }
 
 private:
+  /// The slot holding x (of key positionKey(x)), or the empty slot where it would go.
+  std::size_t slotOf(std::uint64_t key, const Vec3& x) const;
+
   PointList Distinct;
   std::vector<long> Numbers;
   std::vector<std::pair<std::uint64_t, long>> Slots; // (key, number), number -1 where empty

@@ -16,6 +16,17 @@ std::uint64_t mortonCode(std::uint64_t x, std::uint64_t y, std::uint64_t z);
 /// (2^21 cells per axis; ties by index).
 std::vector<int> zOrder(const PointList& points, long first, long last);
 
+/// The bounding box [lower, upper] of points[*begin], ..., points[*(end - 1)] (begin < end).
+inline void boundingBoxOf(const PointList& points, const int* begin, const int* end, Vec3& lower, Vec3& upper)
+{
+  lower = upper = points[*begin];
+  for (const int* i = begin + 1; i < end; ++i)
+  {
+    lower = lower.cwiseMin(points[*i]);
+    upper = upper.cwiseMax(points[*i]);
+  }
+}
+
 /// Calls visit(begin, end, lower, upper) for each group of up to size consecutive indices
 /// [begin, end) of zOrder(points, first, last), with the group's bounding box [lower, upper].
 template <typename Visit>
@@ -26,12 +37,8 @@ void forEachNearbyGroup(const PointList& points, long first, long last, std::siz
   {
     const int* begin = order.data() + g;
     const int* end = order.data() + std::min(order.size(), g + size);
-    Vec3 lower = points[*begin], upper = lower;
-    for (const int* i = begin + 1; i < end; ++i)
-    {
-      lower = lower.cwiseMin(points[*i]);
-      upper = upper.cwiseMax(points[*i]);
-    }
+    Vec3 lower, upper;
+    boundingBoxOf(points, begin, end, lower, upper);
     visit(begin, end, lower, upper);
   }
 }
