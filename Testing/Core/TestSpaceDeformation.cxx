@@ -159,10 +159,10 @@ TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
       expected[phi.index[a]] = static_cast<PhiValue>(phi.value[a]);
       rounding = std::max(rounding, std::abs(expected[phi.index[a]] - phi.value[a]) / std::abs(phi.value[a]));
     }
-    const RowSpan<PhiValue> row = rowOf(blocks, i);
+    const PhiRowSpan row = rowOf(blocks, i);
     Eigen::VectorXd fromBlock = Eigen::VectorXd::Zero(Phi.cols());
     for (long a = 0; a < row.size; ++a)
-      fromBlock[row.index[a]] = row.value[a];
+      fromBlock[row.column(a)] = row.value[a];
     rowsExact = rowsExact && Eigen::VectorXd(Phi.row(i).transpose()) == expected && fromBlock == expected &&
       Phi.row(i).nonZeros() == static_cast<long>(phi.index.size()) && row.size == Phi.row(i).nonZeros();
   }
@@ -181,6 +181,72 @@ TEST(PhiInRowBlocksIsTheEvaluatedShapeFunctions)
     longest = std::max(longest, static_cast<long>(Phi.row(i).nonZeros()));
   const double roundOff = 2 * longest * Epsilon * PointDisplacements(Phi.cwiseAbs() * w.cwiseAbs()).maxCoeff();
   CHECK((fromMatrix - PointDisplacements((Phi * w).middleRows(begin, end - begin))).cwiseAbs().maxCoeff() <= roundOff);
+}
+
+// Shape functions of many columns scattered over [0, k): position (i, 0, 0) meets `width` of them,
+// a pseudo-random spread, with values that tell the entries apart.
+class ScatteredShapeFunctions : public ShapeFunctions
+{
+public:
+  ScatteredShapeFunctions(long k, long width)
+    : K(k)
+    , Width(width)
+  {
+  }
+  void evaluate(const Vec3& x, ShapeFunctionValues& out, bool) const override
+  {
+    const long i = std::lround(x.x());
+    out.index.clear();
+    out.value.clear();
+    for (long j = 0; j < Width; ++j)
+      out.index.push_back(static_cast<int>(((i * Width + j) * 7919) % K));
+    std::sort(out.index.begin(), out.index.end());
+    out.index.erase(std::unique(out.index.begin(), out.index.end()), out.index.end());
+    for (int column : out.index)
+      out.value.push_back(1.0 / (1.0 + column + i));
+  }
+  std::size_t size() const override { return static_cast<std::size_t>(K); }
+
+private:
+  long K, Width;
+};
+
+TEST(PhiRowsSplitWhereABlockMeetsMoreThan65536Columns)
+{
+  // 4096 positions meeting 40 of 200,000 columns each use more columns than one table's 65536
+  // places: the block holds several parts, and every row still reads back as evaluated. A row
+  // alone in more supports than that is refused with a clear error.
+  const ScatteredShapeFunctions wide(200000, 40);
+  PointList x;
+  for (int i = 0; i < 5000; ++i)
+    x.emplace_back(i, 0, 0);
+  const RowBlocks blocks = subspaceBlocks(wide, x);
+  CHECK(blocks.blocks.size() == 2 && blocks.blocks[0].parts.size() >= 2 && blocks.rows() == 5000);
+  bool same = true;
+  ShapeFunctionValues phi;
+  for (long i = 0; same && i < 5000; ++i)
+  {
+    wide.evaluate(x[i], phi, false);
+    const PhiRowSpan row = rowOf(blocks, i);
+    same = row.size == static_cast<long>(phi.index.size());
+    for (long a = 0; same && a < row.size; ++a)
+      same = row.column(a) == phi.index[a] && row.value[a] == static_cast<PhiValue>(phi.value[a]);
+  }
+  CHECK(same);
+  for (const PhiBlock& block : blocks.blocks)
+    for (const PhiRows& part : block.parts)
+      CHECK(part.columns.size() <= 65536);
+  const ScatteredShapeFunctions wider(200000, 70000);
+  bool refused = false;
+  try
+  {
+    subspaceBlocks(wider, PointList{ Vec3(1, 0, 0) });
+  }
+  catch (const InvalidInputException& e)
+  {
+    refused = std::string(e.what()).find("65536") != std::string::npos;
+  }
+  CHECK(refused);
 }
 
 TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
@@ -208,14 +274,15 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
   const GatheredRows gathered = std::move(moved);
   CHECK(outside == std::vector<int>({ 4 }) && outsideGathered == outside);
   CHECK(gathered.rows() == evaluated.rows() && gathered.cols() == evaluated.cols());
-  CHECK(gathered.index(0) == rowOf(blocks, 9000).index && gathered.value(1) == rowOf(blocks, 5).value); // views, not copies
+  CHECK(gathered.row(0).place == rowOf(blocks, 9000).place && gathered.row(1).value == rowOf(blocks, 5).value); // views, not copies
   bool same = gathered.rows() == evaluated.rows();
   for (long i = 0; same && i < evaluated.rows(); ++i)
   {
-    const RowSpan<PhiValue> a = rowOf(gathered, i);
+    const PhiRowSpan a = rowOf(gathered, i);
     const RowSpan<double> b = rowOf(evaluated, i);
-    same = a.size == b.size && std::equal(a.index, a.index + a.size, b.index) &&
-      std::equal(a.value, a.value + a.size, b.value, [](PhiValue f, double v) { return f == v; });
+    same = a.size == b.size && std::equal(a.value, a.value + a.size, b.value, [](PhiValue f, double v) { return f == v; });
+    for (long e = 0; same && e < a.size; ++e)
+      same = a.column(e) == b.column(e);
   }
   CHECK(same);
 }

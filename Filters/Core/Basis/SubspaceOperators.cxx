@@ -17,17 +17,125 @@ namespace mlsdeform
 {
 namespace
 {
-// Row blocks of Scalar entries.
 template <typename Scalar>
-using ScalarRowBlocks = RowBlocksOf<Eigen::SparseMatrix<Scalar, Eigen::RowMajor>>;
+using SparseRows = Eigen::SparseMatrix<Scalar, Eigen::RowMajor>;
+
+// A block's rows from its positions' entries, kept in the block's form. The entries of position
+// i (first <= i < last) are its rowsPerPoint rows, one after the other, each rowLength[i - first]
+// long, from start[i - first] in columns and values.
+struct BlockEntries
+{
+  const std::vector<int>& columns;
+  const std::vector<double>& values;
+  const std::vector<long>& start;
+  const std::vector<long>& rowLength;
+  long first, last;
+  int rowsPerPoint;
+  long rows() const { return (last - first) * rowsPerPoint; }
+  // the entries of row r of the block (of position first + r / rowsPerPoint)
+  long begin(long r) const { return start[r / rowsPerPoint] + (r % rowsPerPoint) * rowLength[r / rowsPerPoint]; }
+  long length(long r) const { return rowLength[r / rowsPerPoint]; }
+};
+
+// As a row-major sparse matrix of Scalar entries (true: any rows fit).
+template <typename Scalar>
+bool storeBlock(const BlockEntries& e, long columnCount, SparseRows<Scalar>& block, std::vector<int>&)
+{
+  long entries = 0;
+  for (long r = 0; r < e.rows(); ++r)
+  {
+    entries += e.length(r);
+  }
+  block.resize(e.rows(), columnCount);
+  block.resizeNonZeros(entries);
+  auto* outer = block.outerIndexPtr();
+  outer[0] = 0;
+  for (long r = 0; r < e.rows(); ++r)
+  {
+    const long from = e.begin(r), length = e.length(r);
+    std::copy(e.columns.begin() + from, e.columns.begin() + from + length, block.innerIndexPtr() + outer[r]);
+    std::copy(e.values.begin() + from, e.values.begin() + from + length, block.valuePtr() + outer[r]);
+    outer[r + 1] = static_cast<int>(outer[r] + length);
+  }
+  return true;
+}
+
+// As PhiRows: consecutive rows while their columns fit one table of 65536 places; false if a row
+// alone has more columns. mark (scratch: one entry per column, -1 but while a part is filled)
+// holds a column's place in the part.
+bool storeBlock(const BlockEntries& e, long columnCount, PhiBlock& block, std::vector<int>& mark)
+{
+  constexpr long Places = 1L << (8 * sizeof(PhiPlace));
+  if (mark.empty())
+  {
+    mark.assign(static_cast<std::size_t>(columnCount), -1);
+  }
+  std::vector<int> used;
+  auto close = [&](long firstRow, long lastRow) {
+    PhiRows part;
+    part.start.resize(static_cast<std::size_t>(lastRow - firstRow) + 1);
+    part.start[0] = 0;
+    for (long r = firstRow; r < lastRow; ++r)
+    {
+      part.start[r - firstRow + 1] = part.start[r - firstRow] + static_cast<int>(e.length(r));
+    }
+    part.place.resize(static_cast<std::size_t>(part.start.back()));
+    part.value.resize(part.place.size());
+    for (long r = firstRow; r < lastRow; ++r)
+    {
+      const long from = e.begin(r);
+      for (long a = 0; a < e.length(r); ++a)
+      {
+        part.place[part.start[r - firstRow] + a] = static_cast<PhiPlace>(mark[e.columns[from + a]]);
+        part.value[part.start[r - firstRow] + a] = static_cast<PhiValue>(e.values[from + a]);
+      }
+    }
+    for (int column : used)
+    {
+      mark[column] = -1;
+    }
+    part.columns = std::move(used);
+    used = std::vector<int>();
+    block.parts.push_back(std::move(part));
+  };
+  long firstRow = 0;
+  for (long r = 0; r < e.rows(); ++r)
+  {
+    const long from = e.begin(r), length = e.length(r);
+    long added = 0; // the row's columns new to the part
+    for (long a = 0; a < length; ++a)
+    {
+      added += mark[e.columns[from + a]] < 0 ? 1 : 0;
+    }
+    if (static_cast<long>(used.size()) + added > Places)
+    {
+      if (r == firstRow)
+      {
+        return false;
+      }
+      close(firstRow, r);
+      firstRow = r;
+    }
+    for (long a = 0; a < length; ++a)
+    {
+      if (mark[e.columns[from + a]] < 0) // a place in the order first met
+      {
+        mark[e.columns[from + a]] = static_cast<int>(used.size());
+        used.push_back(e.columns[from + a]);
+      }
+    }
+  }
+  close(firstRow, e.rows());
+  return true;
+}
 
 // Assembles a row-major sparse matrix with rowsPerPoint rows per position in row blocks of
 // Chunk positions, evaluated in parallel; fill(i, values, rows) writes the rows of position i
 // from its shape functions. Within a chunk the positions are taken in Z-order, Group at a time,
 // so that a group shares one search for its candidate shape functions (the result does not
 // depend on the grouping: each position filters the candidates with the exact support test).
-template <typename Scalar, typename Fill>
-ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint,
+template <typename Block, typename Fill>
+RowBlocksOf<Block> assembleRows(const ShapeFunctions& basis, const PointList& positions, int rowsPerPoint,
   bool withDerivatives, Fill fill, std::vector<int>* outside, const Progress& progress)
 {
   const long n = static_cast<long>(positions.size());
@@ -42,13 +150,14 @@ ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointLis
   // 0.33-0.34 s with 8, 0.36-0.41 s with 4.
   constexpr long Part = 8;
   const long chunks = (n + Chunk - 1) / Chunk;
-  ScalarRowBlocks<Scalar> A;
+  RowBlocksOf<Block> A;
   A.rowsPerBlock = Chunk * rowsPerPoint;
   A.columns = static_cast<long>(basis.size());
   A.blocks.resize(chunks);
   std::vector<std::vector<int>> outsideOf(chunks);
   long done = 0;
   std::atomic<bool> stopped{ false }; // asked to stop: the chunks not begun are skipped
+  std::atomic<bool> tooWide{ false };  // a row the block's form cannot hold
 #pragma omp parallel
   {
     ShapeFunctionValues phi;
@@ -56,6 +165,7 @@ ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointLis
     std::vector<int> columns, candidates, narrowed;
     std::vector<double> values;
     std::vector<long> start(Chunk), rowLength(Chunk); // of each position's rows in columns and values
+    std::vector<int> mark;                            // storeBlock's scratch
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < chunks; ++c)
     {
@@ -104,24 +214,10 @@ ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointLis
         }
       });
       std::sort(outsideOf[c].begin(), outsideOf[c].end());
-      // the block in compressed row storage, at its exact size, in the positions' order (values
-      // rounded to Scalar)
-      auto& block = A.blocks[c];
-      block.resize((last - first) * rowsPerPoint, A.columns);
-      block.resizeNonZeros(static_cast<long>(values.size()));
-      auto* outer = block.outerIndexPtr();
-      outer[0] = 0;
-      long entry = 0, row = 0;
-      for (long i = first; i < last; ++i)
+      // the block at its exact size, in the positions' order
+      if (!storeBlock(BlockEntries{ columns, values, start, rowLength, first, last, rowsPerPoint }, A.columns, A.blocks[c], mark))
       {
-        const long from = start[i - first], length = rowLength[i - first];
-        std::copy(columns.begin() + from, columns.begin() + from + rowsPerPoint * length, block.innerIndexPtr() + entry);
-        std::copy(values.begin() + from, values.begin() + from + rowsPerPoint * length, block.valuePtr() + entry);
-        for (int r = 0; r < rowsPerPoint; ++r, ++row)
-        {
-          entry += length;
-          outer[row + 1] = static_cast<int>(entry);
-        }
+        tooWide = true;
       }
 #pragma omp atomic
       ++done;
@@ -132,7 +228,12 @@ ScalarRowBlocks<Scalar> assembleRows(const ShapeFunctions& basis, const PointLis
       }
     }
   }
-  if (stopped) // thrown after the parallel region: no exception may leave it
+  if (tooWide) // thrown after the parallel region: no exception may leave it
+  {
+    throw InvalidInputException("a position lies in the supports of more than 65536 shape functions: too many samples for "
+                                "their support radii");
+  }
+  if (stopped)
   {
     throw AbortedException("cancelled");
   }
@@ -240,7 +341,7 @@ void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::
       const auto r = rowOf(A, begin + row);
       for (long a = 0; a < r.size; ++a)
       {
-        B(row, r.index[a]) = r.value[a];
+        B(row, r.column(a)) = r.value[a];
       }
     }
     B = rowWeight.cwiseSqrt().asDiagonal() * B;
@@ -277,10 +378,10 @@ void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::
         const auto r = rowOf(A, begin + row);
         for (long e = 0; e < r.size; ++e)
         {
-          if (local[r.index[e]] < 0)
+          if (local[r.column(e)] < 0)
           {
-            local[r.index[e]] = 0;
-            used.push_back(r.index[e]);
+            local[r.column(e)] = 0;
+            used.push_back(r.column(e));
           }
         }
       }
@@ -298,7 +399,7 @@ void GramAccumulator::addRows(const Rows& A, long begin, long end, const Eigen::
         rowEntries.resize(n);
         for (long a = 0; a < n; ++a)
         {
-          rowEntries[a] = { local[r.index[a]], r.value[a] };
+          rowEntries[a] = { local[r.column(a)], r.value[a] };
         }
         if (!std::is_sorted(rowEntries.begin(), rowEntries.end())) // Phi's rows are; others need not be
         {
@@ -389,12 +490,12 @@ SparseMatrix weightedGram(const GatheredRows& A, long begin, long end, const Eig
 
 namespace
 {
-// Phi at the positions in row blocks of Scalar (Phi_ij = phi_j(x_i)), each entry rounded to
-// PhiValue whatever Scalar holds it: the same Phi wherever it is evaluated.
-template <typename Scalar>
-ScalarRowBlocks<Scalar> phiBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
+// Phi at the positions in row blocks (Phi_ij = phi_j(x_i)), each entry rounded to PhiValue
+// whatever Block holds it: the same Phi wherever it is evaluated.
+template <typename Block>
+RowBlocksOf<Block> phiBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
-  return assembleRows<Scalar>(
+  return assembleRows<Block>(
     basis, positions, 1, false,
     [](long, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
       std::transform(phi.value.begin(), phi.value.end(), rows[0].begin(),
@@ -406,7 +507,7 @@ ScalarRowBlocks<Scalar> phiBlocks(const ShapeFunctions& basis, const PointList& 
 
 RowBlocks subspaceBlocks(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
-  return phiBlocks<PhiValue>(basis, positions, outside, progress);
+  return phiBlocks<PhiBlock>(basis, positions, outside, progress);
 }
 
 std::vector<long> positionsAmong(const PointList& points, const PointList& positions)
@@ -438,7 +539,7 @@ std::vector<long> positionsAmong(const PointList& points, const PointList& posit
 
 SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& positions, std::vector<int>* outside, const Progress& progress)
 {
-  return concatenate(phiBlocks<double>(basis, positions, outside, progress));
+  return concatenate(phiBlocks<SparseRowMatrix>(basis, positions, outside, progress));
 }
 
 GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside)
@@ -457,7 +558,7 @@ GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions,
   }
   GatheredRows A;
   std::vector<int> outsideMissing;
-  A.Own = std::make_unique<PhiRowMatrix>(concatenate(subspaceBlocks(basis, missing, &outsideMissing)));
+  A.Own = std::make_unique<RowBlocks>(subspaceBlocks(basis, missing, &outsideMissing));
   if (outside)
   {
     for (int m : outsideMissing)
@@ -466,16 +567,11 @@ GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions,
     }
   }
   A.Columns = static_cast<long>(basis.size());
-  A.Index.resize(positions.size());
-  A.Value.resize(positions.size());
-  A.Length.resize(positions.size());
+  A.Rows.resize(positions.size());
   long next = 0;
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
-    const RowSpan<PhiValue> row = usable && known.row[i] >= 0 ? rowOf(*known.known, known.row[i]) : rowOf(*A.Own, next++);
-    A.Index[i] = row.index;
-    A.Value[i] = row.value;
-    A.Length[i] = row.size;
+    A.Rows[i] = usable && known.row[i] >= 0 ? rowOf(*known.known, known.row[i]) : rowOf(*A.Own, next++);
   }
   return A;
 }
@@ -502,7 +598,7 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
     progress.stopIfAsked();
     const Progress part = progress.part(static_cast<double>(first) / n, static_cast<double>(last) / n);
     // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
-    SparseRowMatrix D = concatenate(assembleRows<double>(
+    SparseRowMatrix D = concatenate(assembleRows<SparseRowMatrix>(
       basis, points, 4, true,
       [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
         const double g = std::sqrt(volume[first + i]) * gradientScale, l = std::sqrt(volume[first + i]) * laplacianScale;

@@ -7,40 +7,82 @@
 #include "Basis/ShapeFunctions.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 
 namespace mlsdeform
 {
 /// Phi's entries: single precision, wherever Phi is evaluated (subspaceBlocks, gatherRows and
-/// subspaceMatrix alike, so that every operator meets the same Phi). Phi is about 90 entries a row
-/// on a CFD mesh, 435 MB at 400k points in double, the larger part of a set-up's memory. A float
-/// rounds a shape function's value by at most 2^-24 relative, which moves a point by at most
-/// 6e-8 of the nearby samples' displacements, far below the MLS discretization's own error; the
-/// output stays an exact linear map of w (derivatives and exact targets exact). The rows kept for
-/// every point hold floats; operators assembled once for the k x k systems hold doubles.
+/// subspaceMatrix alike, so that every operator meets the same Phi). Phi is about 70-90 entries a
+/// row on a CFD mesh, the larger part of a set-up's memory. A float rounds a shape function's
+/// value by at most 2^-24 relative, which moves a point by at most 6e-8 of the nearby samples'
+/// displacements, far below the MLS discretization's own error; the output stays an exact linear
+/// map of w (derivatives and exact targets exact). The rows kept for every point hold floats;
+/// operators assembled once for the k x k systems hold doubles.
 using PhiValue = float;
-using PhiRowMatrix = Eigen::SparseMatrix<PhiValue, Eigen::RowMajor>;
+/// An entry's column as its place in its rows' table of columns (PhiRows).
+using PhiPlace = std::uint16_t;
 
-/// A sparse matrix kept as blocks of consecutive rows, each a row-major matrix of rowsPerBlock
-/// rows (the last may hold fewer): rows evaluated in parallel chunks stay where they were
+/// Rows of Phi at consecutive positions that share one table of the columns they use: an entry
+/// holds its column's place in the table (16 bits) and its value (a float), 6 bytes where a
+/// sparse matrix's entry takes 8 (a 4096-point block of a CFD mesh meets a few hundred of the k
+/// samples). With 32-bit columns the 1M-cell hull case's first variant peaked at 1,539 MiB, so
+/// at 1,375 MiB; the 400k-point one's heap at 617 MB, so at 550 MB.
+struct PhiRows
+{
+  std::vector<int> columns;    // the columns the rows use, in the order first met (at most 65536)
+  std::vector<PhiPlace> place; // per entry: its column's place in columns
+  std::vector<PhiValue> value; // per entry
+  std::vector<int> start;      // per row and one more: the row's first entry
+  long rows() const { return static_cast<long>(start.size()) - 1; }
+};
+
+/// A block of Phi's rows: PhiRows that follow each other, one unless the block's rows use more
+/// than 65536 columns.
+struct PhiBlock
+{
+  std::vector<PhiRows> parts;
+  long rows() const
+  {
+    long rows = 0;
+    for (const PhiRows& part : parts)
+    {
+      rows += part.rows();
+    }
+    return rows;
+  }
+};
+
+/// A sparse matrix kept as blocks of consecutive rows (row-major sparse matrices or PhiBlocks),
+/// each of rowsPerBlock rows (the last may hold fewer): rows evaluated in parallel chunks stay where they were
 /// assembled. Phi at a 1M-point mesh (80M entries) copied into one matrix doubled the peak memory.
-template <typename Matrix>
+template <typename Block>
 struct RowBlocksOf
 {
-  std::vector<Matrix> blocks;
+  std::vector<Block> blocks;
   long rowsPerBlock = 1;
   long columns = 0;
   long rows() const
   {
     long rows = 0;
-    for (const Matrix& block : blocks)
+    for (const Block& block : blocks)
     {
       rows += block.rows();
     }
     return rows;
   }
 };
-using RowBlocks = RowBlocksOf<PhiRowMatrix>;
+using RowBlocks = RowBlocksOf<PhiBlock>;
+
+/// Row i of Phi's row blocks: entry a is column columns[place[a]] = column(a), value value[a].
+struct PhiRowSpan
+{
+  const PhiPlace* place = nullptr;
+  const int* columns = nullptr;
+  const PhiValue* value = nullptr;
+  long size = 0;
+  int column(long a) const { return columns[place[a]]; }
+};
 
 /// Phi at the positions (one row each), as row blocks. Rows of positions outside every support
 /// are empty; their indices are appended to outside when given. Throws AbortedException when
@@ -70,18 +112,14 @@ SparseRowMatrix subspaceMatrix(
 class GatheredRows
 {
 public:
-  long rows() const { return static_cast<long>(Length.size()); }
+  long rows() const { return static_cast<long>(Rows.size()); }
   long cols() const { return Columns; }
-  const int* index(long i) const { return Index[i]; }
-  const PhiValue* value(long i) const { return Value[i]; }
-  long size(long i) const { return Length[i]; }
+  const PhiRowSpan& row(long i) const { return Rows[i]; }
 
 private:
   friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*);
-  std::unique_ptr<PhiRowMatrix> Own; // the rows evaluated here (on the heap: the views outlive a move)
-  std::vector<const int*> Index;
-  std::vector<const PhiValue*> Value;
-  std::vector<long> Length;
+  std::unique_ptr<RowBlocks> Own; // the rows evaluated here (on the heap: the views outlive a move)
+  std::vector<PhiRowSpan> Rows;
   long Columns = 0;
 };
 
@@ -89,14 +127,15 @@ private:
 /// outside every support appended to outside).
 GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside = nullptr);
 
-/// Row i of a row-major sparse matrix, of row blocks or of gathered rows: its column indices and
-/// values (the one way the products below read a row).
+/// Row i of a row-major sparse matrix: its column indices and values (column(a) and value[a],
+/// the one way the products below read a row, as they read PhiRowSpan's).
 template <typename Scalar>
 struct RowSpan
 {
   const int* index;
   const Scalar* value;
   long size;
+  int column(long a) const { return index[a]; }
 };
 template <typename Scalar>
 RowSpan<Scalar> rowOf(const Eigen::SparseMatrix<Scalar, Eigen::RowMajor>& A, long i)
@@ -104,13 +143,23 @@ RowSpan<Scalar> rowOf(const Eigen::SparseMatrix<Scalar, Eigen::RowMajor>& A, lon
   const long begin = A.outerIndexPtr()[i];
   return { A.innerIndexPtr() + begin, A.valuePtr() + begin, A.outerIndexPtr()[i + 1] - begin };
 }
-inline RowSpan<PhiValue> rowOf(const RowBlocks& A, long i)
+inline PhiRowSpan rowOf(const RowBlocks& A, long i)
 {
-  return rowOf(A.blocks[i / A.rowsPerBlock], i % A.rowsPerBlock);
+  long r = i % A.rowsPerBlock;
+  for (const PhiRows& part : A.blocks[i / A.rowsPerBlock].parts)
+  {
+    if (r < part.rows())
+    {
+      const int begin = part.start[r];
+      return { part.place.data() + begin, part.columns.data(), part.value.data() + begin, part.start[r + 1] - begin };
+    }
+    r -= part.rows();
+  }
+  return {}; // not reached for a row of A
 }
-inline RowSpan<PhiValue> rowOf(const GatheredRows& A, long i)
+inline const PhiRowSpan& rowOf(const GatheredRows& A, long i)
 {
-  return { A.index(i), A.value(i), A.size(i) };
+  return A.row(i);
 }
 
 /// Row i of A X (d(x_i) = sum_j Phi_ij w_j) written as an (x, y, z) triple to out, summed in the
@@ -123,7 +172,7 @@ void multiplyRow(const Rows& A, long i, const Eigen::MatrixBase<Dense>& X, doubl
   for (long a = 0; a < row.size; ++a)
   {
     const double v = row.value[a];
-    const auto j = row.index[a];
+    const auto j = row.column(a);
     x += v * X(j, 0);
     y += v * X(j, 1);
     z += v * X(j, 2);
@@ -144,6 +193,58 @@ void multiplyRows(const Rows& A, const Eigen::MatrixBase<Dense>& X, long begin, 
   for (long i = begin; i < end; ++i)
   {
     multiplyRow(A, i, X, out + 3 * (i - begin));
+  }
+}
+
+/// multiplyRows for Phi's row blocks, the same products summed in the same order: each part's
+/// rows read the rows of X at its columns, gathered once by place (a few hundred for 4096 rows),
+/// not through the table at every entry.
+template <typename Dense>
+void multiplyRows(const RowBlocks& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+{
+  if (begin >= end)
+  {
+    return;
+  }
+#pragma omp parallel
+  {
+    std::vector<double> gathered; // x, y, z of X's row at each place
+#pragma omp for schedule(static)
+    for (long b = begin / A.rowsPerBlock; b <= (end - 1) / A.rowsPerBlock; ++b)
+    {
+      long first = b * A.rowsPerBlock; // the part's first row
+      for (const PhiRows& part : A.blocks[b].parts)
+      {
+        const long from = std::max(first, begin), to = std::min(first + part.rows(), end);
+        if (from < to)
+        {
+          gathered.resize(3 * part.columns.size());
+          for (std::size_t p = 0; p < part.columns.size(); ++p)
+          {
+            for (int c = 0; c < 3; ++c)
+            {
+              gathered[3 * p + c] = X(part.columns[p], c);
+            }
+          }
+          for (long i = from; i < to; ++i)
+          {
+            double x = 0, y = 0, z = 0;
+            for (int a = part.start[i - first]; a < part.start[i - first + 1]; ++a)
+            {
+              const double v = part.value[a];
+              const double* g = gathered.data() + 3 * part.place[a];
+              x += v * g[0];
+              y += v * g[1];
+              z += v * g[2];
+            }
+            out[3 * (i - begin)] = x;
+            out[3 * (i - begin) + 1] = y;
+            out[3 * (i - begin) + 2] = z;
+          }
+        }
+        first += part.rows();
+      }
+    }
   }
 }
 
@@ -175,7 +276,7 @@ Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eige
       const auto row = rowOf(A, i);
       for (long a = 0; a < row.size; ++a)
       {
-        sum.row(row.index[a]) += static_cast<double>(row.value[a]) * X.row(i - begin);
+        sum.row(row.column(a)) += static_cast<double>(row.value[a]) * X.row(i - begin);
       }
     }
   }
