@@ -23,6 +23,7 @@ struct CaseMesh
   mlsdeform::PointList points;
   std::vector<int> orientation;     // faceOrientation on points
   mlsdeform::FaceMeasures measures; // the summary of points (no per-face values)
+  mlsdeform::FaceWorkspace work;    // its buffers, for the next measures (first touched ahead)
 };
 
 /// Starts reading the faces of the case folder casePath (its constant/polyMesh) in a background

@@ -124,6 +124,7 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::strin
       vtkLogF(TRACE, "mesh quality: the case's points are the grid's, their figures read with the faces");
       Orientation = std::move(own->orientation);
       Measures = std::move(own->measures);
+      Work = std::move(own->work);
     }
     else
     {

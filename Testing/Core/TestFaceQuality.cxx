@@ -192,12 +192,14 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
     CHECK(std::equal(shared.begin(), shared.end(), mesh.cells.face(f.face)));
     CHECK(faceGeometry(points, mesh.cells.face(f.face), 4).area.isApprox(Vec3(1, 0, 0)));
     const long copy = mesh.cells.firstFace(x + 1); // face 0 of cube x + 1 is the shared one (lowest number)
+    CHECK(f.neighbourFace == copy);
     CHECK(faceGeometry(points, mesh.cells.face(copy), 4).area.isApprox(Vec3(-1, 0, 0)));
   }
   // every cell's faces point out of it: no negative pyramid, orientation +1, as matched
   const CellFaceList matchedCells(cube);
   const InteriorFaces matched = interiorFaces(matchedCells);
   CHECK(matched.size() == 2 && matched[0].owner == 0 && matched[1].owner == 1);
+  CHECK(matched[0].face == 1 && matched[0].neighbourFace == 6 && matched[1].face == 7 && matched[1].neighbourFace == 12);
   // a sheared, non-dyadic point set: both forms sum the same face terms in another order, so
   // they agree to round-off (a few dozen operations of size <= 4: 1e-13 relative)
   PointList sheared = points;

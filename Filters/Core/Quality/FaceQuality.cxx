@@ -195,8 +195,10 @@ InteriorFaces interiorFaces(const CellFaceList& cells)
   std::vector<UninitializedVector<long>>().swap(next);
   UninitializedVector<int>().swap(smallest);
 
-  // neighbour[f]: the other cell of the owner's copy f; -2 marks a neighbour's copy
+  // neighbour[f]: the other cell of the owner's copy f, partner[f] that cell's copy; -2 marks a
+  // neighbour's copy
   UninitializedVector<int> neighbour(static_cast<std::size_t>(faceCount));
+  UninitializedVector<long> partner(static_cast<std::size_t>(faceCount));
 #pragma omp parallel for schedule(static)
   for (long f = 0; f < faceCount; ++f)
   {
@@ -243,6 +245,7 @@ InteriorFaces interiorFaces(const CellFaceList& cells)
             break;
           }
           neighbour[fa] = cellOf[fb];
+          partner[fa] = fb;
           neighbour[fb] = -2;
         }
       }
@@ -273,7 +276,7 @@ InteriorFaces interiorFaces(const CellFaceList& cells)
     {
       if (neighbour[f] >= 0)
       {
-        faces[next++] = InteriorFace{ cellOf[f], neighbour[f], f };
+        faces[next++] = InteriorFace{ cellOf[f], neighbour[f], f, partner[f] };
       }
     }
   }
@@ -282,10 +285,73 @@ InteriorFaces interiorFaces(const CellFaceList& cells)
 
 namespace
 {
-// Every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid), its faces'
-// geometry computed once per cell.
-void cellCentres(const PointList& points, const CellFaceList& cells, std::vector<unsigned char>& inverted, FaceWorkspace& work)
+// Whether face b lists the points of face a in reverse (from any point on), so that its geometry
+// is a's with the area negated: the neighbour's copy of a sound mesh. A copy listed the other way
+// (a cell whose face points inward, which the pyramids then show) or with a point repeated is
+// computed from its own list.
+bool reversedCopy(const CellFaceList& cells, long a, long b)
 {
+  const std::size_t n = cells.faceSize(a);
+  const int* p = cells.face(a);
+  const int* q = cells.face(b);
+  if (n < 3 || cells.faceSize(b) != n)
+  {
+    return false;
+  }
+  for (std::size_t x = 0; x < n; ++x)
+  {
+    if (std::find(p + x + 1, p + n, p[x]) != p + n)
+    {
+      return false; // a point repeated
+    }
+  }
+  const std::size_t j = static_cast<std::size_t>(std::find(q, q + n, p[0]) - q);
+  if (j == n)
+  {
+    return false;
+  }
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (q[(j + n - k) % n] != p[k])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Every interior face's geometry (work.faces, out of its owner as listed), then every cell's
+// centre (work.centres) and whether it is inverted (hasNegativePyramid): a cell takes an interior
+// face's geometry from work.faces (negated for the neighbour's reversed copy) and computes only
+// the others'.
+void cellCentres(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, std::vector<unsigned char>& inverted,
+  FaceWorkspace& work)
+{
+  const long interior = static_cast<long>(faces.size());
+  if (static_cast<long>(work.interiorOf.size()) != cells.faces())
+  {
+    work.interiorOf.resize(static_cast<std::size_t>(cells.faces()));
+#pragma omp parallel for schedule(static)
+    for (long f = 0; f < cells.faces(); ++f)
+    {
+      work.interiorOf[f] = -1;
+    }
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < interior; ++i)
+    {
+      work.interiorOf[faces[i].face] = static_cast<int>(i);
+      if (reversedCopy(cells, faces[i].face, faces[i].neighbourFace))
+      {
+        work.interiorOf[faces[i].neighbourFace] = static_cast<int>(-2 - i);
+      }
+    }
+  }
+  work.faces.resize(static_cast<std::size_t>(interior));
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < interior; ++i)
+  {
+    work.faces[i] = faceGeometry(points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
+  }
   work.centres.resize(cells.cells());
   inverted.resize(cells.cells());
 #pragma omp parallel
@@ -297,7 +363,19 @@ void cellCentres(const PointList& points, const CellFaceList& cells, std::vector
       g.clear();
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
-        g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+        const int i = work.interiorOf[f];
+        if (i >= 0)
+        {
+          g.push_back(work.faces[i]);
+        }
+        else if (i < -1)
+        {
+          g.push_back({ work.faces[-2 - i].centre, -work.faces[-2 - i].area });
+        }
+        else
+        {
+          g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+        }
       }
       work.centres[c] = cellGeometry(g).centre;
       inverted[c] = !g.empty() && hasNegativePyramid(g, work.centres[c]);
@@ -305,9 +383,8 @@ void cellCentres(const PointList& points, const CellFaceList& cells, std::vector
   }
 }
 
-// The face measures from the cells' centres in work (cellCentres on these points), each interior
-// face's geometry computed again from its owner's copy (cheaper than keeping it: a 1M-cell mesh's
-// 3M interior faces took 150 MB). Each face is oriented by `orientation`, or, without it, as
+// The face measures from the faces' geometry and the cells' centres in work (cellCentres on these
+// points). Each face is oriented by `orientation`, or, without it, as
 // faceOrientation decides on these points, written to `decided`.
 void measureFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
   const std::vector<int>* orientation, std::vector<int>* decided, const FaceWorkspace& work, FaceMeasures& m)
@@ -321,7 +398,7 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const Inte
   {
     const int* face = cells.face(faces[i].face);
     const std::size_t n = cells.faceSize(faces[i].face);
-    FaceGeometry g = faceGeometry(points, face, n);
+    FaceGeometry g = work.faces[i];
     const Vec3& P = work.centres[faces[i].owner];
     const Vec3& N = work.centres[faces[i].neighbour];
     const int sign = orientation ? (*orientation)[i] : ((*decided)[i] = g.area.dot(g.centre - P) < 0 ? -1 : 1);
@@ -381,11 +458,13 @@ MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<i
   std::vector<long> next(first.begin(), first.end() - 1);
   std::vector<int> faceOf(static_cast<std::size_t>(first.back()));
   std::vector<long> ownerSlot(static_cast<std::size_t>(internal)); // an interior face's place in its owner's list
+  std::vector<long> neighbourSlot(static_cast<std::size_t>(internal)); // and in its neighbour's
   for (long f = 0; f < faceCount; ++f)
   {
     if (f < internal)
     {
       ownerSlot[f] = next[owner[f]] - first[owner[f]];
+      neighbourSlot[f] = next[neighbour[f]] - first[neighbour[f]];
       faceOf[next[neighbour[f]]++] = static_cast<int>(f);
     }
     faceOf[next[owner[f]]++] = static_cast<int>(f);
@@ -421,7 +500,8 @@ MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<i
 #pragma omp parallel for schedule(static)
   for (long f = 0; f < internal; ++f)
   {
-    mesh.interior[f] = { owner[f], neighbour[f], mesh.cells.firstFace(owner[f]) + ownerSlot[f] };
+    mesh.interior[f] = { owner[f], neighbour[f], mesh.cells.firstFace(owner[f]) + ownerSlot[f],
+      mesh.cells.firstFace(neighbour[f]) + neighbourSlot[f] };
   }
   return mesh;
 }
@@ -429,7 +509,7 @@ MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<i
 std::vector<int> faceOrientation(
   const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, FaceWorkspace& work, FaceMeasures& out)
 {
-  cellCentres(points, cells, out.inverted, work);
+  cellCentres(points, cells, faces, out.inverted, work);
   std::vector<int> orientation(faces.size(), 1);
   measureFaces(points, cells, faces, nullptr, &orientation, work, out);
   return orientation;
@@ -445,7 +525,7 @@ std::vector<int> faceOrientation(const PointList& points, const CellFaceList& ce
 void faceMeasures(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
   const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
 {
-  cellCentres(points, cells, m.inverted, work);
+  cellCentres(points, cells, faces, m.inverted, work);
   measureFaces(points, cells, faces, &orientation, nullptr, work, m);
 }
 
