@@ -347,9 +347,14 @@ std::vector<int> farthestPointSelection(const PointList& candidates, int count, 
   else
   {
     const KdTree chosenTree(alreadyChosen);
-    for (std::size_t i = 0; i < candidates.size(); ++i)
+    const long n = static_cast<long>(candidates.size());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i)
     {
       minDistance[i] = (alreadyChosen[chosenTree.nearest(candidates[i])] - candidates[i]).norm();
+    }
+    for (long i = 0; i < n; ++i)
+    {
       heap.emplace(minDistance[i] / unit(i), static_cast<int>(i));
     }
     candidateTree.setRadii(minDistance);
