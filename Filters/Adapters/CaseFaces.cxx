@@ -1,5 +1,6 @@
 #include "Adapters/CaseFaces.h"
 
+#include "Common/HeapPages.h"
 #include "Foam/PolyMeshFiles.h"
 
 #include <vtkIdList.h>
@@ -114,7 +115,12 @@ void prefetchCaseFaces(const std::string& casePath)
   aheadCase = key;
   aheadFaces = std::async(std::launch::async, [key] {
     omp_set_num_threads(1); // this thread alone
-    return readCaseFaces(key);
+    CaseMesh mesh = readCaseFaces(key);
+    // VTK's reader still runs on the other core: this one faults in the heap's reserve that the
+    // reader and the set-up are about to use (the batch allocator's, mlsdeform/allocator.py)
+    vtkLogScopeF(TRACE, "the heap's reserve faulted in ahead");
+    mlsdeform::populateHeap();
+    return mesh;
   });
 }
 

@@ -32,7 +32,9 @@ TUNABLES = (
     ('glibc.malloc.mmap_threshold', str(32 << 20)),
     # the heap's freed top is kept, not given back and faulted in again at the next variant
     ('glibc.malloc.trim_threshold', str((1 << 32) - 1)),
-    # the heap grows by 256 MiB at a time (address space only; pages are faulted in when used)
+    # the heap grows by 256 MiB at a time (address space only; pages are faulted in when used, or
+    # ahead by the thread that reads an OpenFOAM case's faces while VTK's reader runs:
+    # Core/Common/HeapPages.h)
     ('glibc.malloc.top_pad', str(256 << 20)),
 )
 
