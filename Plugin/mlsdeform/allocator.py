@@ -4,8 +4,9 @@ A 1M-cell variant allocates and frees arrays of tens of MB at every step: the re
 set-up's arrays, each variant's points, quality figures and written file. glibc's defaults give
 such blocks their own fresh memory (mmap) and return them when freed, so every one of them is
 faulted in again page by page (4 KiB). On some virtual machines a page's first touch is dear: on a
-2-CPU AMD EPYC guest (its kernel reports PTI) it took 11-21 us per 4 KiB page, where an ordinary
-machine takes well under 1 us (run-doe-benchmark.sh prints it), and the 1M-cell hull case's
+2-CPU AMD EPYC guest whose virtio balloon reports free memory to the host (which takes it back
+about 2 s after the guest freed it) it took 11-21 us per 4 KiB page, where an ordinary machine
+takes well under 1 us (run-doe-benchmark.sh prints both), and the 1M-cell hull case's
 set-up took 11.0 s and a further variant 0.99 s with glibc's defaults, 7.5-8.0 s and 0.46 s with
 the tunables below. moveMesh, one process per variant, pays the first touch once per run, as the
 set-up does; a batch with glibc's defaults pays it again at every variant. The tunables keep freed
