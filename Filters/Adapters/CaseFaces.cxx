@@ -115,10 +115,12 @@ void prefetchCaseFaces(const std::string& casePath)
   aheadCase = key;
   aheadFaces = std::async(std::launch::async, [key] {
     omp_set_num_threads(1); // this thread alone
+    // VTK's reader runs on the other core and takes its memory from the heap's reserve (the batch
+    // allocator's, mlsdeform/allocator.py) from the low end: the lower half faulted in before the
+    // faces are read, so that the reader finds its next pages present, the rest (the set-up's) after
+    vtkLogScopeF(TRACE, "mesh quality: the case's faces read ahead, the heap's reserve faulted in");
+    mlsdeform::populateHeap(0.5);
     CaseMesh mesh = readCaseFaces(key);
-    // VTK's reader still runs on the other core: this one faults in the heap's reserve that the
-    // reader and the set-up are about to use (the batch allocator's, mlsdeform/allocator.py)
-    vtkLogScopeF(TRACE, "the heap's reserve faulted in ahead");
     mlsdeform::populateHeap();
     return mesh;
   });

@@ -134,10 +134,13 @@ TEST(PopulatedHeapKeepsWhatItHolds)
   {
     blocks[b] = std::vector<int>(); // freed chunks in between
   }
+  const std::size_t half = populateHeap(0.5);
   const std::size_t size = populateHeap();
 #if defined(__linux__)
   CHECK(size > 0); // Linux 5.14+ (Debian 12: 6.1) populates
+  CHECK(half % 4096 == 0 && half <= size / 2 && half + 4096 > size / 2); // whole pages, the lower half
 #endif
+  CHECK(populateHeap(0.0) == 0);
   for (int b = 0; b < 64; ++b)
   {
     for (std::size_t i = 0; i < blocks[b].size(); ++i)

@@ -1,5 +1,6 @@
 #include "Common/HeapPages.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -9,7 +10,7 @@
 
 namespace mlsdeform
 {
-std::size_t populateHeap()
+std::size_t populateHeap(double fraction)
 {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
   std::FILE* maps = std::fopen("/proc/self/maps", "r");
@@ -24,10 +25,12 @@ std::size_t populateHeap()
     unsigned long begin = 0, end = 0;
     if (std::strstr(line, "[heap]") && std::sscanf(line, "%lx-%lx", &begin, &end) == 2 && end > begin)
     {
-      // pages already present stay as they are; a page that is not gets a zero page, as malloc expects of fresh heap
-      if (madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE) == 0)
+      // the lower part, whole pages: malloc hands the reserve out from its low end
+      const unsigned long length = static_cast<unsigned long>(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(end - begin)) & ~4095ul;
+      // pages already present stay as they are; one that is not gets a zero page, as malloc expects of fresh heap
+      if (length == 0 || madvise(reinterpret_cast<void*>(begin), length, MADV_POPULATE_WRITE) == 0)
       {
-        size = end - begin;
+        size = length;
       }
       break;
     }
