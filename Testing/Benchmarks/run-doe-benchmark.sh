@@ -80,7 +80,7 @@ size = 256 << 20
 figures = []
 for huge, label in ((False, ''), (True, ' with huge pages'), (True, ' with huge pages, freed just before')):
     if 'freed' not in label:
-        time.sleep(3)  # what the blocks before freed has been reported by then, as between two processes
+        time.sleep(3)  # by then the host has taken back what the block before freed, as between two processes
     block = mmap.mmap(-1, size, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
     if huge:
         block.madvise(mmap.MADV_HUGEPAGE)

@@ -38,6 +38,7 @@ std::size_t populateHeap(double fraction)
   std::fclose(maps);
   return size;
 #else
+  (void)fraction;
   return 0;
 #endif
 }
