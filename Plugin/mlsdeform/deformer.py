@@ -40,6 +40,14 @@ def _load_wrapping(readers=False):
                        "the plugin before using mlsdeform in pvpython, or put the plugin's folder on sys.path")
 
 
+def read_faces_ahead(foam_file):
+    """Starts reading the case's faces, owner and neighbour for MLS Deform's mesh quality in a
+    background thread of this process (vtkSubspaceDeformFilter.PrefetchCaseFaces), to run on the
+    core VTK's reader leaves idle while it reads the same case: call it right before the reader's
+    update. The filter takes them when it measures that case; reading another case drops them."""
+    _load_wrapping().vtkSubspaceDeformFilter.PrefetchCaseFaces(os.path.dirname(os.path.abspath(foam_file)))
+
+
 def _checked(algorithm):
     if not hasattr(algorithm, "ComputeObjectiveSensitivity"):
         raise RuntimeError("the MLS Deform filter's VTK object was handed to Python before mlsdeform was imported, as a "

@@ -5,13 +5,19 @@ the plugin is loaded (paraview.simple.LoadPlugin(path, remote=False): its proxie
 paraview.simple)."""
 import paraview.simple as pvs
 
+from .deformer import read_faces_ahead
+
 
 def open_case(foam_file, patches, decompose_polyhedra=True):
-    """The case's internal mesh and the named patches, as ParaView's OpenFOAM reader reads them."""
+    """The case's internal mesh and the named patches, as ParaView's OpenFOAM reader reads them,
+    updated; in a builtin session (the reader in this process) a background thread meanwhile reads
+    the case's faces for MLS Deform's mesh quality (mlsdeform.deformer.read_faces_ahead)."""
     reader = pvs.OpenFOAMReader(FileName=foam_file)
     reader.MeshRegions = ['internalMesh'] + ['patch/' + p for p in patches]
     reader.Decomposepolyhedra = 1 if decompose_polyhedra else 0
     reader.Cachemesh = 0   # its own second copy of the mesh, kept for time steps a variant does not have (35 MB on 1M cells)
+    if reader.GetClientSideObject() is not None:
+        read_faces_ahead(foam_file)
     reader.UpdatePipeline()
     return reader
 

@@ -12,7 +12,7 @@ starts faster than paraview.simple (221 MB before a script's first line in pvpyt
 """
 import os
 
-from .deformer import _load_wrapping
+from .deformer import _load_wrapping, read_faces_ahead
 
 
 def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
@@ -46,10 +46,10 @@ def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
 def open_case(foam_file, patches, decompose_polyhedra=True):
     """The case's internal mesh and the named patches (no fields), read by VTK's OpenFOAM reader
     (configured_reader), updated; meanwhile a background thread reads the case's faces for MLS
-    Deform's mesh quality (vtkSubspaceDeformFilter.PrefetchCaseFaces). Raises ValueError naming a
+    Deform's mesh quality (read_faces_ahead). Raises ValueError naming a
     missing patch."""
     reader = configured_reader(foam_file, patches, decompose_polyhedra)
-    _load_wrapping().vtkSubspaceDeformFilter.PrefetchCaseFaces(os.path.dirname(os.path.abspath(foam_file)))
+    read_faces_ahead(foam_file)
     reader.Update()
     return reader
 

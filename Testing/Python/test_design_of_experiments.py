@@ -10,6 +10,7 @@ import sys
 
 import numpy as np
 from paraview.simple import LoadPlugin
+from vtkmodules.vtkCommonCore import vtkLogger
 
 plugin, examples, work, python3 = sys.argv[1:5]
 LoadPlugin(plugin, remote=False)
@@ -23,8 +24,15 @@ from checks import check, finish, raises  # noqa: E402
 case = os.path.join(work, 'case')
 subprocess.run(['bash', os.path.join(examples, 'make-case.sh'), case], check=True)
 handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']
+log = os.path.join(work, 'first-variant.log')
+vtkLogger.LogToFile(log, vtkLogger.TRUNCATE, vtkLogger.VERBOSITY_TRACE)
 reader = openfoam_variant.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose_polyhedra=False)
 deformed = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip)
+vtkLogger.EndLogToFile(log)
+with open(log) as f:
+    text = f.read()
+check("the case's faces read ahead" in text and "the case's cells against the grid's" in text,
+      "in a builtin session open_case reads the case's faces ahead, and MLS Deform's mesh quality takes them")
 body = deformed.Regions[0]
 dvs = mlsdeform.DesignVariables(deformed)
 dvs.addHandleDV('dx', body, translate=[1, 0, 0], lower=-0.05, upper=0.05)
