@@ -151,6 +151,10 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
   {
     SolutionFigures figures;
     const auto setupStart = Clock::now();
+    if (this->MeshQuality)
+    {
+      session.readQualityAhead(inSets, mlsvtk::casePathOf(input)); // while the set-up runs
+    }
     session.readInputs(inSets, inputVector[1], this->ExtrusionAxis, group);
     figures.resampled = session.updateSubspace(this->GetSubspaceDependencies(inputVector), inSets,
       [&] { return this->BuildSubspace(inSets, inputVector); }, group);

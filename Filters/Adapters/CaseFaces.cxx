@@ -73,6 +73,16 @@ CaseMesh readCaseFaces(const std::string& folder)
   return mesh;
 }
 
+// Whether grid may be the case's mesh as OpenFOAM numbers it, as known before the faces are read:
+// the case's cells are constant/polyMesh's at every time, and the grid has as many points and
+// cells (not a process's piece, nor VTK's decomposed polyhedra). Throws when a file is unreadable.
+bool sizedAsCase(const std::string& key, vtkUnstructuredGrid* grid)
+{
+  const mlsfoam::FoamMeshSize size = mlsfoam::readFoamMeshSize((fs::path(key) / "constant" / "polyMesh").string());
+  return !changesCells(key) && (size.points < 0 || size.points == grid->GetNumberOfPoints()) &&
+    (size.cells < 0 || size.cells == grid->GetNumberOfCells());
+}
+
 // The one read ahead: its case folder and its result.
 std::mutex ahead;
 std::string aheadCase;
@@ -112,6 +122,10 @@ void prefetchCaseFaces(const std::string& casePath)
 {
   const std::string key = caseKey(casePath);
   std::lock_guard<std::mutex> lock(ahead);
+  if (aheadCase == key && aheadFaces.valid())
+  {
+    return; // already under way
+  }
   aheadCase = key;
   aheadFaces = std::async(std::launch::async, [key] {
     omp_set_num_threads(1); // this thread alone
@@ -124,6 +138,21 @@ void prefetchCaseFaces(const std::string& casePath)
     mlsdeform::populateHeap();
     return mesh;
   });
+}
+
+void readCaseFacesAhead(const std::string& casePath, vtkUnstructuredGrid* grid)
+{
+  try
+  {
+    if (grid && !casePath.empty() && sizedAsCase(caseKey(casePath), grid))
+    {
+      prefetchCaseFaces(casePath);
+    }
+  }
+  catch (const std::exception&)
+  {
+    // not read ahead: caseFaces tells why when it measures
+  }
 }
 
 std::optional<CaseMesh> caseFaces(const std::string& casePath, vtkUnstructuredGrid* grid)
@@ -142,10 +171,7 @@ std::optional<CaseMesh> caseFaces(const std::string& casePath, vtkUnstructuredGr
       aheadFaces = std::future<CaseMesh>();
       aheadCase.clear();
     }
-    // not this case's mesh (a process's piece, VTK's decomposed polyhedra): known before the lists are read
-    const mlsfoam::FoamMeshSize size = mlsfoam::readFoamMeshSize((fs::path(key) / "constant" / "polyMesh").string());
-    if (changesCells(key) || (size.points >= 0 && size.points != grid->GetNumberOfPoints()) ||
-      (size.cells >= 0 && size.cells != grid->GetNumberOfCells()))
+    if (!sizedAsCase(key, grid))
     {
       return std::nullopt;
     }

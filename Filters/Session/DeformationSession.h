@@ -201,6 +201,11 @@ public:
   /// OpenFOAM case folder the input was read from, or "".
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
     const std::string& casePath, const mlsdeform::Collective& group);
+  /// Reads ahead the case's faces that the next reportQuality needs (MeshQualityReport::readAhead).
+  void readQualityAhead(const std::vector<vtkPointSet*>& inSets, const std::string& casePath) const
+  {
+    Quality.readAhead(inSets, casePath);
+  }
 
   /// Design sensitivities of the last solve (DesignSensitivities.h). The design variables of this
   /// update's Handle regions:

@@ -1,5 +1,6 @@
 #include "Session/MeshQualityReport.h"
 
+#include "Adapters/CaseFaces.h"
 #include "Session/SolutionReport.h"
 
 #include <vtkDataArray.h>
@@ -33,12 +34,29 @@ bool samePoints(vtkPointSet* a, vtkPointSet* b)
 }
 }
 
-void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-  const std::string& casePath, const Collective& group, vtkObject* owner)
+Stamp MeshQualityReport::stampOf(const std::vector<vtkPointSet*>& inSets)
 {
   Stamp stamp = cellsStamp(inSets);
   const Stamp points = pointsStamp(inSets);
   stamp.objects.insert(stamp.objects.end(), points.objects.begin(), points.objects.end());
+  return stamp;
+}
+
+void MeshQualityReport::readAhead(const std::vector<vtkPointSet*>& inSets, const std::string& casePath) const
+{
+  if (!casePath.empty() && stampOf(inSets) != Measured)
+  {
+    for (vtkPointSet* set : inSets)
+    {
+      readCaseFacesAhead(casePath, vtkUnstructuredGrid::SafeDownCast(set));
+    }
+  }
+}
+
+void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
+  const std::string& casePath, const Collective& group, vtkObject* owner)
+{
+  Stamp stamp = stampOf(inSets);
   if (group.any(stamp != Measured))
   {
     Quality.clear();

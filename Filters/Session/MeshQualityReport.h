@@ -30,7 +30,15 @@ public:
   void report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
     const std::string& casePath, const mlsdeform::Collective& group, vtkObject* owner);
 
+  /// Starts reading ahead the faces of the OpenFOAM case casePath (CaseFaces.h) for the next
+  /// report when that report will find the faces of new cells: they are read in a background
+  /// thread while the deformation is set up.
+  void readAhead(const std::vector<vtkPointSet*>& inSets, const std::string& casePath) const;
+
 private:
+  // The stamp of the cells and points of inSets, to compare with Measured.
+  static Stamp stampOf(const std::vector<vtkPointSet*>& inSets);
+
   Stamp Measured; // of the cells and points the faces and the original's measures come from
   std::vector<std::unique_ptr<VolumeMeshQuality>> Quality;
   QualitySummary Original;

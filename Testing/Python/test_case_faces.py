@@ -25,19 +25,22 @@ READ = "mesh quality: the case's faces, owner and neighbour"   # the case's face
 TAKEN = "mesh quality: the case's cells against the grid's"    # ... and found to be the grid's cells
 MATCHED = 'mesh quality: interior faces'                       # the grid's faces matched by their points
 FIGURES_AHEAD = "the case's points are the grid's"             # the undeformed figures read with the faces
+AHEAD = "{ mesh quality: the case's faces read ahead"           # a read ahead started
 handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']
 motion = (0.05, 0, 0.02)
 
 
 def deformed_figures(name, case, decompose_polyhedra=False, strip_case_path=False, ahead=None):
     """The quality figures MLS Deform reports for the sphere moved by motion, and VTK's trace log
-    of the run. ahead: the case whose faces are read ahead (default: this one, as open_case does)."""
+    of the run. ahead: the case whose faces are read ahead before the reader's update (default: this
+    one, as open_case does; '': none, MLS Deform then reads them while it sets up)."""
     log = os.path.join(work, name + '.log')
     vtkLogger.LogToFile(log, vtkLogger.TRUNCATE, vtkLogger.VERBOSITY_TRACE)
     if ahead is None:
         reader = vtkfoam.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose_polyhedra)
     else:
-        mlsdeform._load_wrapping().vtkSubspaceDeformFilter.PrefetchCaseFaces(ahead)
+        if ahead:
+            mlsdeform._load_wrapping().vtkSubspaceDeformFilter.PrefetchCaseFaces(ahead)
         reader = vtkfoam.configured_reader(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose_polyhedra)
         reader.Update()
     if strip_case_path:
@@ -72,10 +75,10 @@ check(TAKEN not in log and MATCHED in log, 'a mesh without CasePath has its face
 check(same(own, matched), 'both give the same figures: %s' % own)
 check(own['OriginalMaxNonOrthogonality'] > 10 and own['InvertedCells'] == 0, 'the figures are a real mesh\'s')
 
-# Decompose polyhedra on: VTK's cells are not OpenFOAM's (more points), so the read-ahead faces are
-# left and the grid's matched
+# Decompose polyhedra on: VTK's cells are not OpenFOAM's (more points), so the faces read ahead (the
+# run before left its read, which had no CasePath to take it) are left and the grid's matched
 _, log = deformed_figures('decomposed', case, decompose_polyhedra=True)
-check(READ in log and TAKEN not in log and MATCHED in log, "VTK's decomposed cells: the case's faces are not the grid's, matched instead")
+check(TAKEN not in log and MATCHED in log, "VTK's decomposed cells: the case's faces are not the grid's, matched instead")
 
 # A mesh whose cells change in time (a time folder with faces of its own): matched
 changing = os.path.join(work, 'changing')
@@ -99,7 +102,13 @@ check(same(from_moved, deformed_figures('moved-matched', moved, strip_case_path=
       from_moved['OriginalMaxNonOrthogonality'] != own['OriginalMaxNonOrthogonality'],
       'the same figures as matched faces give, those of the moved mesh: %s' % from_moved)
 
-# Faces read ahead for another case are not taken (but dropped): this case's are read when measured
-again, log = deformed_figures('other', case, ahead=changing)
-check(log.count('{ ' + READ) == 2 and TAKEN in log and same(again, own), "faces read ahead for another case: this case's read, the same figures")
+# Faces read ahead for another case are not taken (but dropped); with those, or with nothing read
+# ahead by the script (a pipeline without open_case, as the GUI's), MLS Deform reads this case's
+# faces ahead as its set-up starts and takes them: they are read once, and that read is ahead
+for name, ahead in (('other', changing), ('none', '')):
+    figures, log = deformed_figures(name, case, ahead=ahead)
+    reads = 2 if ahead else 1
+    check(log.count(AHEAD) == reads and log.count('{ ' + READ) == reads and TAKEN in log and same(figures, own),
+          "with %s read ahead by the script, MLS Deform reads this case's faces ahead and takes them, the same figures" %
+          ('another case' if ahead else 'nothing'))
 finish()
