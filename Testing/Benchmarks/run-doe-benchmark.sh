@@ -92,6 +92,59 @@ for huge, label in ((False, ''), (True, ' with huge pages'), (True, ' with huge 
     block.close()
 print('Fresh memory, first touch: ' + '; '.join(figures))
 PROBE
+# whether each CPU runs at full speed now, alone and with the other busy: a guest's virtual CPU may
+# be one hardware thread of a physical core whose other thread the host gives to other work, which
+# lscpu does not show and which is not counted as steal. A compute kernel (arithmetic on a 512 KiB
+# array, within the core's caches) and a memory kernel (copies of 128 MiB, past the caches), in a
+# process pinned to each CPU alone, then in two at once, the best of 3 each. An OpenMP loop split
+# evenly takes as long as its slowest thread: a CPU at half speed makes 2 threads no faster than 1.
+/usr/bin/python3 - << 'PROBE'
+import multiprocessing, os, time
+import numpy as np
+
+
+def compute():
+    x = np.ones(1 << 16)
+    began = time.perf_counter()
+    for _ in range(60000):
+        np.multiply(x, 0.999, out=x)
+        np.add(x, 0.001, out=x)
+    return time.perf_counter() - began
+
+
+def memory():
+    source, target = np.ones(16 << 20), np.zeros(16 << 20)   # first touched before the clock starts
+    began = time.perf_counter()
+    for _ in range(16):
+        np.copyto(target, source)
+    return time.perf_counter() - began
+
+
+def on(cpus, kernel):
+    """The kernel's seconds in one process pinned to each of cpus, started at once."""
+    fork = multiprocessing.get_context('fork')
+    results = fork.Queue()
+
+    def run(cpu):
+        os.sched_setaffinity(0, {cpu})
+        results.put((cpu, kernel()))
+
+    processes = [fork.Process(target=run, args=(cpu,)) for cpu in cpus]
+    for process in processes:
+        process.start()
+    seconds = dict(results.get() for _ in processes)
+    for process in processes:
+        process.join()
+    return [seconds[cpu] for cpu in cpus]
+
+
+cpus = sorted(os.sched_getaffinity(0))[:2]
+for kernel, name in ((compute, 'compute'), (memory, 'memory')):
+    alone = [min(on([cpu], kernel)[0] for _ in range(3)) for cpu in cpus]
+    both = [min(s) for s in zip(*(on(cpus, kernel) for _ in range(3)))]
+    print('CPU speed, %s kernel [s]: alone %s; both at once %s' % (
+        name, ', '.join('CPU %d %.2f' % c for c in zip(cpus, alone)), ', '.join('CPU %d %.2f' % c for c in zip(cpus, both))))
+PROBE
 echo "BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3), LAPACK: $(readlink -f /usr/lib/x86_64-linux-gnu/liblapack.so.3)"
 echo "Case: $(grep -E '^ *cells:' "$case/log.checkMesh" | tr -s ' ') $(grep -E '^ *points:' "$case/log.checkMesh" | tr -s ' '); $samples variants"
 # the machine's CPU time so far: all of it and the part the hypervisor gave to other guests
