@@ -120,7 +120,7 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
     const double* d = displacement->GetPointer(0);
     const bool written = withTypedPoints(moved->GetData(), [&](auto* out) {
       using Value = std::remove_pointer_t<decltype(out)>;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 16384) // as threads come free (multiplyRows)
       for (vtkIdType i = 0; i < n; ++i)
       {
         for (int c = 0; c < 3; ++c)

@@ -185,11 +185,12 @@ void multiplyRow(const Rows& A, long i, const Eigen::MatrixBase<Dense>& X, doubl
 /// Rows begin..end of A X for a dense X with three columns (either storage order), written as
 /// (x, y, z) triples to out: one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at
 /// many points). Each entry is summed by one thread in the order of its row, so the result does
-/// not depend on the number of threads.
+/// not depend on the number of threads. Rows are taken in chunks as threads come free (a virtual
+/// CPU at times runs at half speed: an even split would wait for it).
 template <typename Rows, typename Dense>
 void multiplyRows(const Rows& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1024)
   for (long i = begin; i < end; ++i)
   {
     multiplyRow(A, i, X, out + 3 * (i - begin));
@@ -209,7 +210,7 @@ void multiplyRows(const RowBlocks& A, const Eigen::MatrixBase<Dense>& X, long be
 #pragma omp parallel
   {
     std::vector<double> gathered; // x, y, z of X's row at each place
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
     for (long b = begin / A.rowsPerBlock; b <= (end - 1) / A.rowsPerBlock; ++b)
     {
       long first = b * A.rowsPerBlock; // the part's first row
