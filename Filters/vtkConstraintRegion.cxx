@@ -462,7 +462,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   {
     output->Initialize();
     this->SetErrorCode(vtkErrorCode::UserError);
-    return mlsvtk::reportFailure(this, outputVector, e.what(), "The output is empty.");
+    return mlsvtk::reportFailure(this, outputVector, e, "The output is empty.");
   }
   return 1;
 }

@@ -272,7 +272,7 @@ int vtkDeformationQuality::RequestData(
     faceOutput->Initialize();
     summary->Initialize();
     this->SetErrorCode(vtkErrorCode::UserError);
-    return mlsvtk::reportFailure(this, outputVector, e.what(), "The mesh output is the unchanged input, the faces and summary are empty.");
+    return mlsvtk::reportFailure(this, outputVector, e, "The mesh output is the unchanged input, the faces and summary are empty.");
   }
   return 1;
 }

@@ -72,7 +72,7 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
     centersOut->Initialize();
     integrationOut->Initialize();
     this->SetErrorCode(vtkErrorCode::UserError);
-    return mlsvtk::reportFailure(this, outputVector, std::string("cannot sample the input: ") + e.what(), "The outputs are empty.");
+    return mlsvtk::reportFailure(this, outputVector, e, "The outputs are empty.", "cannot sample the input: ");
   }
   return 1;
 }

@@ -273,7 +273,7 @@ int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** in
     output->Initialize();
     table->Initialize();
     this->SetErrorCode(vtkErrorCode::UserError);
-    return mlsvtk::reportFailure(this, outputVector, e.what(), "The outputs are empty.");
+    return mlsvtk::reportFailure(this, outputVector, e, "The outputs are empty.");
   }
   return 1;
 }

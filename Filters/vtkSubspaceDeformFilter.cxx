@@ -220,7 +220,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     const bool kept = this->OutputDeformed && session.restoreOutput(inSets, pointSets(output));
     this->OutputDeformed = kept;
     this->SetErrorCode(vtkErrorCode::UserError);
-    return reportFailure(this, outputVector, e.what(),
+    return reportFailure(this, outputVector, e,
       kept ? "The output is the previous update's deformed points; what finished is kept, and the next update goes on from there."
            : "The output is the unchanged input; what finished is kept, and the next update goes on from there.");
   }
@@ -229,7 +229,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     copyInput(input, output);
     this->OutputDeformed = false;
     this->SetErrorCode(vtkErrorCode::UserError);
-    return reportFailure(this, outputVector, e.what(), "The output is the unchanged input.");
+    return reportFailure(this, outputVector, e, "The output is the unchanged input.");
   }
   return 1;
 }

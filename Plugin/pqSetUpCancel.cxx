@@ -1,4 +1,5 @@
 #include "pqSetUpCancel.h"
+#include "pqHeldInput.h"
 
 #include "vtkDeformationQuality.h"
 #include "vtkMLSSampler.h"
@@ -18,7 +19,6 @@
 #include <vtkTimerLog.h>
 
 #include <QApplication>
-#include <QMouseEvent>
 #include <QThread>
 #include <QToolButton>
 
@@ -55,44 +55,11 @@ QToolButton* abortButton()
   }
   return nullptr;
 }
-
-bool userInput(QEvent::Type type)
-{
-  switch (type)
-  {
-    case QEvent::MouseButtonRelease:
-    case QEvent::MouseButtonDblClick:
-    case QEvent::MouseMove:
-    case QEvent::KeyPress:
-    case QEvent::KeyRelease:
-    case QEvent::ShortcutOverride:
-    case QEvent::Shortcut:
-    case QEvent::Wheel:
-    case QEvent::ContextMenu:
-    case QEvent::Enter:
-    case QEvent::Leave:
-    case QEvent::HoverEnter:
-    case QEvent::HoverLeave:
-    case QEvent::HoverMove:
-    case QEvent::TabletPress:
-    case QEvent::TabletRelease:
-    case QEvent::TabletMove:
-    case QEvent::TouchBegin:
-    case QEvent::TouchUpdate:
-    case QEvent::TouchEnd:
-    case QEvent::DragEnter:
-    case QEvent::DragMove:
-    case QEvent::Drop:
-    case QEvent::Close:
-      return true;
-    default:
-      return false;
-  }
-}
 }
 
 pqSetUpCancel::pqSetUpCancel(QObject* parent)
   : QObject(parent)
+  , Input(new pqHeldInput(this))
 {
 }
 
@@ -143,38 +110,20 @@ void pqSetUpCancel::started(vtkObject* algorithm)
 void pqSetUpCancel::progressed(vtkObject* algorithm)
 {
   const double now = vtkTimerLog::GetUniversalTime();
-  if (algorithm != this->Running || this->Processing || QThread::currentThread() != qApp->thread() ||
-    now - this->LastProcessed < ProcessingInterval)
+  if (algorithm != this->Running || QThread::currentThread() != qApp->thread() || now - this->LastProcessed < ProcessingInterval)
   {
     return;
   }
-  this->Processing = true;
-  qApp->installEventFilter(this); // called before the other filters (ParaView's progress manager's)
-  QCoreApplication::processEvents();
-  qApp->removeEventFilter(this);
-  this->LastProcessed = vtkTimerLog::GetUniversalTime();
-  this->Processing = false;
-}
-
-bool pqSetUpCancel::eventFilter(QObject* object, QEvent* event)
-{
-  if (event->type() == QEvent::Timer)
-  {
-    return true; // a timer fires again at its next interval, after the update
-  }
-  if (event->type() == QEvent::MouseButtonPress)
-  {
-    // a press on the abort button, whether the window or the button receives it: the abort
-    // itself (ParaView's progress manager would hold back the window's press)
+  // a press on the abort button, whether the window or the button receives it, is the abort
+  // (ParaView's progress manager holds back a press on the button itself)
+  this->Input->processEvents([](const QPoint& at) {
     QToolButton* button = abortButton();
-    const QPoint at = static_cast<QMouseEvent*>(event)->globalPos();
     if (button && button->isEnabled() && button->isVisible() && button->rect().contains(button->mapFromGlobal(at)))
     {
       pqApplicationCore::instance()->getProgressManager()->triggerAbort();
     }
-    return true;
-  }
-  return userInput(event->type()) || this->QObject::eventFilter(object, event);
+  });
+  this->LastProcessed = vtkTimerLog::GetUniversalTime();
 }
 
 void pqSetUpCancel::abort()
@@ -194,6 +143,7 @@ void pqSetUpCancel::ended(vtkObject* algorithm)
   }
   this->Running = nullptr;
   pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
+  this->Input->deliverLater(); // the input that came during the update
   if (!this->Cancelled)
   {
     return;
@@ -228,6 +178,9 @@ void pqSetUpCancel::reapplied(pqServerManagerModelItem* item)
   this->CancelledSource = nullptr;
   if (vtkAlgorithm* algorithm = algorithmOf(source))
   {
-    algorithm->Modified(); // runs again at the render that follows the Apply
+    // runs again at the render that follows the Apply: the algorithm is out of date, and so is
+    // what the views hold of it (no property changed, so the Apply alone marks nothing)
+    algorithm->Modified();
+    source->getProxy()->MarkModified(source->getProxy());
   }
 }

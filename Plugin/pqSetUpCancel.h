@@ -2,12 +2,13 @@
 // ParaView 5.11 keeps the bar's abort button disabled and processes no events while a filter
 // runs, so a click could neither be made nor reach the filter. For the plugin's algorithms on
 // the built-in server this enables the button while one runs and, at the algorithm's progress
-// reports (at most every 0.1 s), processes the pending events with every user input held back but
-// the progress bar's, and every timer (they fire again later), so that the bar repaints and a
-// click on its button goes through without anything else running inside the update. The click
+// reports (at most every 0.1 s), processes the pending events with the user's input held
+// (pqHeldInput: delivered in order after the update) and timers waiting, so that the bar repaints
+// and a press on its button is seen without anything else running inside the update. The press
 // sets the algorithm's AbortExecute, which its set-up checks within its stages
-// (Adapters/AlgorithmProgress.h); a deformation then keeps its previous output. The cancelled
-// filter's Apply button is lit again (without Auto Apply), and Apply starts the set-up anew.
+// (Adapters/AlgorithmProgress.h); a deformation then keeps its previous output and reports the
+// cancel as a warning. The cancelled filter's Apply button is lit again (without Auto Apply), and
+// Apply starts the set-up anew.
 #pragma once
 
 #include <QObject>
@@ -16,6 +17,7 @@
 #include <vtkNew.h>
 #include <vtkWeakPointer.h>
 
+class pqHeldInput;
 class pqPipelineSource;
 class pqServerManagerModelItem;
 class vtkAlgorithm;
@@ -32,11 +34,6 @@ public:
   void onStartup();
   void onShutdown() {}
 
-protected:
-  /// While events are processed inside an update: holds back timers and user input other than
-  /// to the progress bar.
-  bool eventFilter(QObject* object, QEvent* event) override;
-
 private Q_SLOTS:
   void sourceAdded(pqPipelineSource* source);
   void sourceRemoved(pqPipelineSource* source);
@@ -51,7 +48,7 @@ private:
   vtkNew<vtkEventQtSlotConnect> Connections;
   vtkWeakPointer<vtkAlgorithm> Running; // the plugin's algorithm in its update, if any
   bool Cancelled = false;               // the running one was asked to stop
-  bool Processing = false;              // inside processEvents (not re-entered)
+  pqHeldInput* Input;                   // the user's input during an update, delivered after it
   double LastProcessed = 0;             // when events were last processed (seconds)
   QPointer<pqPipelineSource> CancelledSource; // waits for its next Apply
 };

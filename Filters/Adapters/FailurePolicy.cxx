@@ -1,5 +1,6 @@
 #include "Adapters/FailurePolicy.h"
 
+#include "Common/CoreTypes.h"
 #include "Vocabulary/FieldNames.h"
 
 #include <vtkAlgorithm.h>
@@ -7,12 +8,15 @@
 #include <vtkFieldData.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkStringArray.h>
 
 namespace mlsvtk
 {
-int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const std::string& message, const char* outcome)
+int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const std::exception& failure, const char* outcome,
+  const std::string& context)
 {
+  const std::string message = context + failure.what();
   // a cancel (CheckAbort) asked the executive to empty the outputs: they keep this convention's
   // instead; the request stopped this update only, the next one runs
   algorithm->SetAbortOutput(false);
@@ -34,6 +38,13 @@ int reportFailure(vtkAlgorithm* algorithm, vtkInformationVector* outputs, const 
     output->GetFieldData()->AddArray(error);
   }
   const bool sentence = !message.empty() && message.back() == '.';
+  if (dynamic_cast<const mlsdeform::AbortedException*>(&failure))
+  {
+    // the user's cancel: an information line in the output window (no error pops it up)
+    const std::string line = std::string(algorithm->GetClassName()) + ": cancelled. " + outcome + "\n";
+    vtkOutputWindowDisplayText(line.c_str());
+    return 1;
+  }
   vtkErrorWithObjectMacro(algorithm, << algorithm->GetClassName() << " failed: " << message << (sentence ? " " : ". ") << outcome);
   return 1;
 }

@@ -1,0 +1,66 @@
+"""What the GUI tests (scripts run inside the paraview GUI) look up in ParaView's window: its
+actions, the render view's widget, the boxes shown in a view, a point's place on the screen."""
+from PyQt5.QtCore import QPoint
+from PyQt5.QtWidgets import QAction, QApplication, QWidget
+
+
+def main_window():
+    return [w for w in QApplication.instance().topLevelWidgets() if w.objectName() == 'pqClientMainWindow'][0]
+
+
+def action(name):
+    """A main window action by its object name ('actionEditUndo')."""
+    actions = [a for a in main_window().findChildren(QAction) if a.objectName() == name]
+    if not actions:
+        raise RuntimeError('no action %s in the main window' % name)
+    return actions[0]
+
+
+def widget(class_name, object_name=None):
+    """The main window's first widget of a Qt class (and object name)."""
+    found = [w for w in main_window().findChildren(QWidget) if w.metaObject().className() == class_name
+             and (object_name is None or w.objectName() == object_name)]
+    if not found:
+        raise RuntimeError('no %s%s in the main window' % (class_name, ' ' + object_name if object_name else ''))
+    return found[0]
+
+
+def shown_boxes(view):
+    """The box widgets shown in a render view: (the handle boxes, every box)."""
+    shown = [p.SMProxy for p in view.GetProperty('HiddenRepresentations')
+             if p.SMProxy.GetXMLName().endswith('BoxWidgetRepresentation') and p.SMProxy.GetProperty('Visibility').GetElement(0)]
+    return [b for b in shown if (b.GetLogName() or '').startswith('handle motion box of ')], shown
+
+
+def screen_point(view, world):
+    """The global screen position (pixels, as the pointer's) of a world point in a render view."""
+    renderer = view.GetRenderer()
+    renderer.SetWorldPoint(list(world) + [1.0])
+    renderer.WorldToDisplay()
+    x, y = renderer.GetDisplayPoint()[:2]
+    canvas = widget('pqQVTKWidget')
+    ratio = canvas.devicePixelRatioF()
+    top_left = canvas.mapToGlobal(QPoint(0, 0))
+    return top_left.x() + x / ratio, top_left.y() + canvas.height() - y / ratio
+
+
+def activate():
+    """The main window active (there is no window manager under Xvfb to do it on a click)."""
+    window = main_window()
+    window.activateWindow()
+    window.raise_()
+    return window
+
+
+def reveal(child):
+    """Scrolls the scroll area that holds a widget (the Properties panel) until it shows it, and
+    returns its centre's global position."""
+    from PyQt5.QtWidgets import QScrollArea
+    parent = child.parentWidget()
+    while parent is not None and not isinstance(parent, QScrollArea):
+        parent = parent.parentWidget()
+    if parent is not None:
+        parent.ensureWidgetVisible(child)
+    QApplication.instance().processEvents()
+    point = child.mapToGlobal(child.rect().center())
+    return point.x(), point.y()
