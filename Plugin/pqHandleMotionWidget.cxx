@@ -3,6 +3,7 @@
 
 #include "Adapters/HandleMotion.h"
 #include "Vocabulary/RegionRoles.h"
+#include "vtkHandleBoxRepresentation.h"
 
 #include <pqActiveObjects.h>
 #include <pqApplicationCore.h>
@@ -10,6 +11,7 @@
 #include <pqDataRepresentation.h>
 #include <pqDoubleLineEdit.h>
 #include <pqPipelineSource.h>
+#include <pqProxyWidget.h>
 #include <pqServerManagerModel.h>
 #include <pqUndoStack.h>
 #include <pqView.h>
@@ -28,9 +30,12 @@
 #include <vtkSMUncheckedPropertyHelper.h>
 #include <vtkTransform.h>
 
-#include <QCheckBox>
+#include <QButtonGroup>
 #include <QGridLayout>
+#include <QHBoxLayout>
 #include <QLabel>
+#include <QRadioButton>
+#include <QTimer>
 
 #include <algorithm>
 #include <array>
@@ -41,10 +46,18 @@ namespace
 // The group's properties by function (not the box widget's own property names, so that
 // ParaView does not link them to the widget unconverted).
 const char* const Functions[3] = { "HandleTranslation", "HandleRotation", "HandleScale" };
+
+// The centre sphere's colour: none of the roles' (RegionRoles.h), so that it is not taken for a
+// region's point; a hovered handle turns white.
+constexpr double CentreColour[3] = { 1.0, 0.85, 0.0 };
+constexpr double HoveredColour[3] = { 1.0, 1.0, 1.0 };
+// The box's least thickness, a fraction of its largest extent: the face handles stay a quarter of
+// the box's half-length or more away from the centre sphere, even around a planar region.
+constexpr double LeastAspect = 0.25;
 }
 
 pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup* group, QWidget* parent)
-  : Superclass("representations", "BoxWidgetRepresentation", proxy, group, parent)
+  : Superclass("representations", "HandleBoxWidgetRepresentation", proxy, group, parent)
 {
   this->setShowLabel(false);
   this->setChangeAvailableAsChangeFinished(true); // each step of a drag is applied by Auto Apply
@@ -72,28 +85,44 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     pqCoreUtilities::connect(property, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(motionEdited()));
     pqCoreUtilities::connect(property, vtkCommand::ModifiedEvent, this, SLOT(motionEdited()));
   }
-  auto* show = new QCheckBox("Show Handle Box", this); // the Region's box widget has its own Show Box
-  show->setObjectName("ShowBox");
-  show->setToolTip("Show the handle's box (red) in the render view: drag its centre to move the handle, "
-                   "its faces to rotate it about the pivot, its face handles to scale it. The Region's "
-                   "selection box (white) has its own Show Box.");
-  layout->addWidget(show, 4, 0, 1, 4);
-  this->connect(show, SIGNAL(toggled(bool)), SLOT(setWidgetVisible(bool)));
-  show->connect(this, SIGNAL(widgetVisibilityToggled(bool)), SLOT(setChecked(bool)));
-  show->setChecked(true);
-  this->setWidgetVisible(true);
+  // which box the view shows: one at a time, so that a click lands on the box the designer meant
+  auto* choices = new QHBoxLayout();
+  choices->addWidget(new QLabel("Box in the view:", this));
+  this->BoxChoice = new QButtonGroup(this);
+  const std::array<std::pair<Box, const char*>, 3> boxes = { { { Box::Handle, "Handle" }, { Box::Selection, "Selection" },
+    { Box::None, "None" } } };
+  for (const auto& [box, name] : boxes)
+  {
+    auto* button = new QRadioButton(name, this);
+    button->setObjectName(QString("Box%1").arg(name));
+    this->BoxChoice->addButton(button, static_cast<int>(box));
+    choices->addWidget(button);
+  }
+  choices->addStretch();
+  this->BoxChoice->button(static_cast<int>(Box::Handle))->setToolTip(
+    "The handle's box (red): drag its centre sphere (yellow) to move the handle, its faces to rotate it about the pivot, "
+    "its face spheres to scale it. Shown once the region has selected its positions (Apply).");
+  this->BoxChoice->button(static_cast<int>(Box::Selection))->setToolTip(
+    "The region's selection box (its Region function's own widget): edits which positions the region selects.");
+  this->BoxChoice->button(static_cast<int>(Box::None))->setToolTip("No box in the view.");
+  layout->addLayout(choices, 4, 0, 1, 4);
+  QObject::connect(this->BoxChoice, QOverload<int>::of(&QButtonGroup::buttonClicked), this, [this](int box) {
+    this->Shown = static_cast<Box>(box);
+    this->showChosenBox();
+  });
 
   // named so that a script finds it among the view's widgets (Testing/Python/test_gui_handle_widget.py)
   this->widgetProxy()->SetLogName((std::string("handle motion box of ") + proxy->GetLogNameOrDefault()).c_str());
-  // drawn in the Handle's colour, told apart from the Region's selection box (ParaView's white)
-  if (auto* box = vtkBoxRepresentation::SafeDownCast(this->widgetProxy()->GetRepresentationProxy()->GetClientSideObject()))
+  // drawn in the Handle's colour, its centre sphere in its own (vtkHandleBoxRepresentation)
+  if (auto* box = vtkHandleBoxRepresentation::SafeDownCast(this->widgetProxy()->GetRepresentationProxy()->GetClientSideObject()))
   {
     const std::array<double, 3>& colour = mlsvtk::regionRole(mlsvtk::roles::Handle).colour;
     box->GetOutlineProperty()->SetColor(colour[0], colour[1], colour[2]);
     box->GetHandleProperty()->SetColor(colour[0], colour[1], colour[2]);
-    // the handle box takes the clicks on it before the selection box (the default priority is
-    // 0.5), whatever of that box lies in front: it is picked on its own, not by the picking
-    // manager that gives a click to the nearest of the boxes (hide it to edit the selection)
+    box->GetCentreProperty()->SetColor(CentreColour[0], CentreColour[1], CentreColour[2]);
+    box->GetSelectedHandleProperty()->SetColor(HoveredColour[0], HoveredColour[1], HoveredColour[2]);
+    // picked on its own, not by the picking manager that gives a click to the nearest of the
+    // view's widgets (the selection box is hidden while this one shows)
     box->PickingManagedOff();
   }
   if (vtkAbstractWidget* widget = this->widgetProxy()->GetWidget())
@@ -114,6 +143,7 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   if (vtkSMProperty* role = proxy->GetProperty("Role"))
   {
     pqCoreUtilities::connect(role, vtkCommand::ModifiedEvent, this, SLOT(motionEdited())); // a Handle no longer
+    pqCoreUtilities::connect(role, vtkCommand::ModifiedEvent, this, SLOT(showChosenBox()));
   }
   // the region's points shown for the first time (its first Apply) are drawn moved too
   if (auto* source = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(proxy))
@@ -128,6 +158,10 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   {
     new pqSelectionBoxLabels(parent); // the Region's selection box beside it, in its own words
   }
+  // no box before the region has selected its positions; then the chosen one, once the panel's
+  // selection box exists
+  this->setWidgetVisible(false);
+  QTimer::singleShot(0, this, &pqHandleMotionWidget::showChosenBox);
 }
 
 pqHandleMotionWidget::~pqHandleMotionWidget()
@@ -155,7 +189,7 @@ void pqHandleMotionWidget::showOnTop(pqView* view)
   {
     return; // a view of another kind, or the box is not on this process
   }
-  // one layer above the view's; the box's visibility stays the view's Show Handle Box
+  // one layer above the view's; the box's visibility stays the widget's (the Box in the view choice)
   this->OnTop->SetLayer(window->GetNumberOfLayers());
   window->SetNumberOfLayers(window->GetNumberOfLayers() + 1);
   this->OnTop->SetActiveCamera(renderView->GetActiveCamera());
@@ -237,6 +271,68 @@ void pqHandleMotionWidget::hideEvent(QHideEvent* event)
   this->VisibleState = shown;
 }
 
+void pqHandleMotionWidget::showEvent(QShowEvent* event)
+{
+  this->Superclass::showEvent(event);
+  QTimer::singleShot(0, this, &pqHandleMotionWidget::showChosenBox); // after the selection box's own showEvent
+}
+
+QList<pqInteractivePropertyWidget*> pqHandleMotionWidget::selectionBoxes() const
+{
+  // the region's panel: the proxy widget of this region that holds this widget
+  QWidget* panel = this->parentWidget();
+  while (panel && !(qobject_cast<pqProxyWidget*>(panel) && qobject_cast<pqProxyWidget*>(panel)->proxy() == this->proxy()))
+  {
+    panel = panel->parentWidget();
+  }
+  QList<pqInteractivePropertyWidget*> boxes = panel ? panel->findChildren<pqInteractivePropertyWidget*>() : QList<pqInteractivePropertyWidget*>();
+  boxes.removeAll(const_cast<pqHandleMotionWidget*>(this));
+  return boxes;
+}
+
+void pqHandleMotionWidget::showChosenBox()
+{
+  const bool handle = vtkSMPropertyHelper(this->proxy(), "Role").GetAsInt() == mlsvtk::roles::Handle;
+  const bool selected = this->dataBounds().IsValid(); // the region's positions, after its first Apply
+  this->ShowingBoxes = true;
+  this->setWidgetVisible(handle && selected && this->Shown == Box::Handle);
+  for (pqInteractivePropertyWidget* box : this->selectionBoxes())
+  {
+    QObject::connect(box, &pqInteractivePropertyWidget::widgetVisibilityToggled, this, &pqHandleMotionWidget::selectionBoxToggled,
+      Qt::UniqueConnection);
+    if (!handle || !selected)
+    {
+      // the region's only box: shown, unless the designer chose none
+      box->setWidgetVisible(box->isWidgetVisible() || (!handle && this->Shown == Box::Handle));
+    }
+    else
+    {
+      box->setWidgetVisible(this->Shown == Box::Selection);
+    }
+  }
+  this->ShowingBoxes = false;
+  this->BoxChoice->button(static_cast<int>(this->Shown))->setChecked(true);
+}
+
+void pqHandleMotionWidget::selectionBoxToggled(bool shown)
+{
+  auto* box = qobject_cast<pqInteractivePropertyWidget*>(this->sender());
+  // not this widget's own doing, nor a panel shown or hidden: the box's Show Box check box
+  if (this->ShowingBoxes || !box || !box->isVisible() || !this->isVisible())
+  {
+    return;
+  }
+  if (shown)
+  {
+    this->Shown = Box::Selection;
+  }
+  else if (this->Shown == Box::Selection)
+  {
+    this->Shown = Box::None;
+  }
+  this->showChosenBox();
+}
+
 void pqHandleMotionWidget::placeWidget()
 {
   vtkSMProxy* region = this->proxy();
@@ -248,15 +344,21 @@ void pqHandleMotionWidget::placeWidget()
   const vtkBoundingBox selected = this->dataBounds();
   if (!selected.IsValid())
   {
+    this->showChosenBox(); // no positions (yet): no handle box
     return;
   }
-  // a box centred on the pivot that holds the selected positions, at least 1% of their extent
-  // thick (a plane's positions would give a flat box that the widget cannot rotate)
-  double bounds[6];
-  const double least = 0.01 * std::max(selected.GetDiagonalLength(), 1e-300);
+  // a box centred on the pivot that holds the selected positions, at least LeastAspect of its
+  // length thick (a plane's positions would give a flat box whose face handles sit on the centre
+  // sphere, and that the widget cannot rotate)
+  double halves[3], bounds[6];
   for (int i = 0; i < 3; ++i)
   {
-    const double half = std::max({ this->Pivot[i] - selected.GetMinPoint()[i], selected.GetMaxPoint()[i] - this->Pivot[i], least });
+    halves[i] = std::max(this->Pivot[i] - selected.GetMinPoint()[i], selected.GetMaxPoint()[i] - this->Pivot[i]);
+  }
+  const double least = LeastAspect * std::max({ halves[0], halves[1], halves[2], 1e-300 });
+  for (int i = 0; i < 3; ++i)
+  {
+    const double half = std::max(halves[i], least);
     bounds[2 * i] = this->Pivot[i] - half;
     bounds[2 * i + 1] = this->Pivot[i] + half;
   }
@@ -264,6 +366,7 @@ void pqHandleMotionWidget::placeWidget()
   vtkSMPropertyHelper(box, "PlaceWidget").Set(bounds, 6);
   box->UpdateVTKObjects();
   this->motionEdited();
+  this->showChosenBox(); // the first positions: the handle box may show
 }
 
 void pqHandleMotionWidget::motionEdited()

@@ -52,15 +52,20 @@ def activate():
     return window
 
 
-def reveal(child):
-    """Scrolls the scroll area that holds a widget (the Properties panel) until it shows it, and
-    returns its centre's global position."""
+def reveal(child, left=None):
+    """Scrolls the scroll area that holds a widget (the Properties panel) until it shows the
+    widget's centre, or the point `left` pixels from its left edge (a check box's box: a stretched
+    check box takes no click right of its text), and returns that point's global position."""
     from PyQt5.QtWidgets import QScrollArea
+    point = child.rect().center()
+    if left is not None:
+        point.setX(left)
     parent = child.parentWidget()
     while parent is not None and not isinstance(parent, QScrollArea):
         parent = parent.parentWidget()
-    if parent is not None:
-        parent.ensureWidgetVisible(child)
+    if parent is not None and parent.widget() is not None:
+        inside = child.mapTo(parent.widget(), point)
+        parent.ensureVisible(inside.x(), inside.y(), 20, 20)
     QApplication.instance().processEvents()
-    point = child.mapToGlobal(child.rect().center())
+    point = child.mapToGlobal(point)
     return point.x(), point.y()

@@ -9,8 +9,10 @@
         the part's height and 20 degrees about the view axis about the box centre (after a typed
         translation has moved the box and been typed back). The Translation and Rotation fields
         must take that motion before Apply, and with Auto Apply on it is applied before the drag
-        ends; the recorded events then press Apply (nothing is left to apply) and save the state,
-        and ParaView compares the view with the baseline image.
+        ends. Then the view must show it (issue 54, point 6: what the picture is about, the same
+        on any CPU): the box's outline at its edges and its centre sphere at the moved pivot, drawn
+        over the model, and the region's points drawn where the handle goes. The recorded events
+        then press Apply (nothing is left to apply) and save the state.
     pvpython test_gui_handle_widget.py PLUGIN DATA_DIR RESULT STATE
         checks the GUI's result file, that the saved state holds the applied motion, and that the
         state's deformation equals the deformation with that motion typed in pvpython.
@@ -116,6 +118,75 @@ def gui_run():
     view.CameraFocalPoint = pivot
     view.CameraViewUp = [0, 0, 1]
     view.ResetCamera()
+    return failures + view_failures(view, representation, handle, shown[handle], height)
+
+
+def view_failures(view, representation, handle, points_look, height):
+    """What the view shows of the moved handle, from its rendered pixels and its representations.
+    Shading differs between CPUs (the renderer's reciprocal square roots are approximations of
+    their own on each), so the pixels are tested for their hue, not their values; a line's pixels
+    lie within half a pixel of its projection, so an edge is looked for within one pixel."""
+    from paraview.vtk.vtkRenderingCore import vtkActor, vtkWindowToImageFilter
+    from paraview.vtk.vtkCommonDataModel import vtkPolyData
+    failures = []
+    pvs.Render(view)
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(view.GetRenderWindow())
+    grab.ReadFrontBufferOff()
+    grab.ShouldRerenderOn()
+    grab.Update()
+    image = grab.GetOutput()
+    size = image.GetDimensions()
+    renderer = view.GetRenderer()
+
+    def pixel_of(point):
+        renderer.SetWorldPoint(list(point) + [1.0])
+        renderer.WorldToDisplay()
+        return [int(round(c)) for c in renderer.GetDisplayPoint()[:2]]
+
+    def colours_near(x, y, reach):
+        return [[image.GetScalarComponentAsDouble(i, j, 0, c) / 255 for c in range(3)]
+                for i in range(max(0, x - reach), min(size[0], x + reach + 1))
+                for j in range(max(0, y - reach), min(size[1], y + reach + 1))]
+
+    def red(c):  # the Handle's red (0.9, 0.1, 0.1), shaded
+        return c[0] > 0.3 and c[0] > 2 * c[1] and c[0] > 2 * c[2]
+
+    def yellow(c):  # the centre sphere's (1, 0.85, 0), shaded
+        return c[0] > 0.3 and c[1] > 0.25 and c[0] > 2 * c[2] and c[1] > 2 * c[2]
+    box = vtkPolyData()
+    representation.GetPolyData(box)  # the moved box: its 8 corners first
+    corners = [box.GetPoint(i) for i in range(8)]
+    edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+    missed = []
+    for a, b in edges:
+        x, y = pixel_of([(p + q) / 2 for p, q in zip(corners[a], corners[b])])
+        if not any(red(c) for c in colours_near(x, y, 1)):
+            missed.append((a, b, x, y))
+    if missed:
+        failures.append('the view shows no red outline at these edges of the moved box (corners, pixel): %s' % missed)
+    handle.UpdatePropertyInformation()
+    centre = [box.GetPoint(14)[i] for i in range(3)]  # the box's centre: the moved pivot
+    x, y = pixel_of(centre)
+    colour = colours_near(x, y, 0)[0]
+    if not yellow(colour):
+        failures.append('the view shows no centre sphere at the moved pivot: pixel (%d, %d) is %s' % (x, y, colour))
+    # the region's points are drawn where the handle goes: the representation's transform takes
+    # each selected position to its target (position + PrescribedDisplacement)
+    drawn = vtkActor()
+    drawn.SetPosition(list(points_look.Position))
+    drawn.SetOrientation(list(points_look.Orientation))
+    drawn.SetScale(list(points_look.Scale))
+    matrix = drawn.GetMatrix()
+    output = handle.GetClientSideObject().GetOutputDataObject(0)
+    targets = output.GetPointData().GetArray('PrescribedDisplacement')
+    miss = 0.0
+    for i in range(output.GetNumberOfPoints()):
+        x = list(output.GetPoint(i)) + [1.0]
+        moved = [sum(matrix.GetElement(r, c) * x[c] for c in range(4)) for r in range(3)]
+        miss = max(miss, max(abs(moved[k] - x[k] - targets.GetComponent(i, k)) for k in range(3)))
+    if output.GetNumberOfPoints() == 0 or miss > TOLERANCE * height:
+        failures.append('the region\'s %d points are drawn %g from where the handle goes' % (output.GetNumberOfPoints(), miss))
     return failures
 
 

@@ -47,7 +47,7 @@ try:
     pvs.Render(view)
     settle(seconds=0.5)
     boxes = [p.SMProxy for p in view.GetProperty('HiddenRepresentations')
-             if p.SMProxy.GetXMLName() == 'BoxWidgetRepresentation' and p.SMProxy.GetProperty('Visibility').GetElement(0)
+             if p.SMProxy.GetXMLName().endswith('BoxWidgetRepresentation') and p.SMProxy.GetProperty('Visibility').GetElement(0)
              and (p.SMProxy.GetLogName() or '').startswith('handle motion box of ')]
     if len(boxes) != 1:
         raise RuntimeError('expected one handle box, found %d' % len(boxes))

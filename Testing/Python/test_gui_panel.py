@@ -236,7 +236,7 @@ def check_panel(app, name, proxy, shown_rows, what):
 
 try:
     from PyQt5.QtCore import QPoint
-    from PyQt5.QtWidgets import QApplication, QCheckBox, QComboBox, QLabel, QToolButton, QWidget
+    from PyQt5.QtWidgets import QApplication, QCheckBox, QComboBox, QLabel, QRadioButton, QToolButton, QWidget
     from paraview import servermanager as sm
     from paraview.simple import Delaunay3D, LoadPlugin, SetActiveSource, Sphere
     LoadPlugin(os.environ['MLSDEFORM_PLUGIN'], remote=False, ns=globals())  # defines MLSDeform() etc.
@@ -301,13 +301,14 @@ try:
         # issue 32, point 2: no label twice in the Handle's panel (the Region's box widget and the
         # handle motion each had a Translation, a Rotation and a Show Box; ParaView's box widget
         # itself a Rotation field and a Rotation check box), and the boxes' Show check boxes say which
-        labels = [w for w in panel.findChildren(QLabel) + panel.findChildren(QCheckBox)
+        labels = [w for w in panel.findChildren(QLabel) + panel.findChildren(QCheckBox) + panel.findChildren(QRadioButton)
                   if w.isVisibleTo(panel) and w.text() and not w.text().startswith('<html>')]
         texts = [w.text() for w in labels]
         twice = sorted({text for text in texts if texts.count(text) > 1})
         check(not twice, 'ConstraintRegion panel (Handle): labels shown twice: %s' % twice)
-        check({'Show Selection Box', 'Show Handle Box'} <= set(texts),
-              'ConstraintRegion panel (Handle): the Show check boxes name their boxes: %s' % [t for t in texts if 'Show' in t])
+        # issue 54, point 3: one visible choice of the box in the view
+        check({'Show Selection Box', 'Box in the view:', 'Handle', 'Selection', 'None'} <= set(texts),
+              'ConstraintRegion panel (Handle): the selection box\'s Show check box and the choice of box: %s' % texts)
         check(property_widget(panel, 'UseCentroid') is not None and property_widget(panel, 'UseCentroid').isVisibleTo(panel),
               'ConstraintRegion panel (Handle): UseCentroid hidden')
         choose(app, panel, 'Role', 'Rigid')
