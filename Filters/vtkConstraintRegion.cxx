@@ -11,6 +11,7 @@
 #include "Adapters/Stamp.h"
 #include "Common/PositionHash.h"
 #include "Adapters/ProcessCollective.h"
+#include "Adapters/ReportArrays.h"
 #include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 
@@ -432,6 +433,7 @@ struct vtkConstraintRegion::Inputs
 
 int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const mlsvtk::ReportArrays reports(inputVector[0], outputVector); // its field data: reports, not fields
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   // Split over processes, each selects from its own piece; what depends on the whole selection

@@ -4,6 +4,7 @@
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/VolumeMeshQuality.h"
+#include "Adapters/ReportArrays.h"
 #include "Sampling/Sampling.h"
 
 #include <vtkCell.h>
@@ -227,6 +228,7 @@ void addMeasureNames(vtkTable* summary)
 int vtkDeformationQuality::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const mlsvtk::ReportArrays reports(inputVector[0], outputVector); // its field data: reports, not fields
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* original = vtkUnstructuredGrid::GetData(inputVector[1]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);

@@ -6,6 +6,7 @@
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/ProcessCollective.h"
+#include "Adapters/ReportArrays.h"
 #include "Vocabulary/FieldNames.h"
 
 #include <vtkDataObject.h>
@@ -31,6 +32,7 @@ int vtkMLSSampler::FillInputPortInformation(int, vtkInformation* info)
 
 int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const mlsvtk::ReportArrays reports(inputVector[0], outputVector); // its field data: reports, not fields
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* centersOut = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* integrationOut = vtkPolyData::GetData(outputVector, 1);

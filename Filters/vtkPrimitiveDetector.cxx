@@ -4,6 +4,7 @@
 #include "Primitives/FaceSamples.h"
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/FailurePolicy.h"
+#include "Adapters/ReportArrays.h"
 #include "Common/BoundingBox.h"
 #include "Vocabulary/FieldNames.h"
 
@@ -242,6 +243,7 @@ mlsdeform::RansacParameters ransacParameters(vtkPrimitiveDetector* detector, dou
 
 int vtkPrimitiveDetector::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const mlsvtk::ReportArrays reports(inputVector[0], outputVector); // its field data: reports, not fields
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* table = vtkTable::GetData(outputVector, 1);

@@ -5,6 +5,7 @@
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
+#include "Adapters/ReportArrays.h"
 #include "Session/DeformationSession.h"
 #include "Session/SolutionReport.h"
 
@@ -131,6 +132,7 @@ int vtkSubspaceDeformFilter::FillInputPortInformation(int port, vtkInformation* 
 
 int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const mlsvtk::ReportArrays reports(inputVector[0], outputVector); // its field data: reports, not fields
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   copyInput(input, output);

@@ -5,11 +5,12 @@
 
 #include <pqApplicationCore.h>
 #include <pqDataRepresentation.h>
+#include <pqOutputPort.h>
+#include <pqPipelineFilter.h>
 #include <pqServerManagerModel.h>
+#include <vtkSMTransferFunctionManager.h>
 #include <vtkDataObject.h>
-#include <vtkPVArrayInformation.h>
 #include <vtkPVDataInformation.h>
-#include <vtkPVDataSetAttributesInformation.h>
 #include <vtkSMPVRepresentationProxy.h>
 #include <vtkSMTransferFunctionProxy.h>
 #include <vtkSMPropertyHelper.h>
@@ -18,6 +19,40 @@
 
 #include <cmath>
 #include <cstring>
+#include <set>
+
+namespace
+{
+bool isDeformation(vtkSMProxy* proxy)
+{
+  const char* name = proxy ? proxy->GetXMLName() : "";
+  return std::strcmp(name, "MLSDeform") == 0 || std::strcmp(name, "ShellDeform") == 0;
+}
+
+// Whether a deformation is this source or upstream of it.
+bool showsDeformation(pqPipelineSource* source, std::set<pqPipelineSource*>& seen)
+{
+  if (!source || !seen.insert(source).second)
+  {
+    return false;
+  }
+  if (isDeformation(source->getProxy()))
+  {
+    return true;
+  }
+  if (auto* filter = qobject_cast<pqPipelineFilter*>(source))
+  {
+    for (pqOutputPort* port : filter->getInputs())
+    {
+      if (showsDeformation(port->getSource(), seen))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+}
 
 pqOutputColoring::pqOutputColoring(QObject* parent)
   : QObject(parent)
@@ -33,22 +68,26 @@ void pqOutputColoring::onStartup()
 void pqOutputColoring::representationAdded(pqRepresentation* representation)
 {
   vtkSMProxy* proxy = representation ? representation->getProxy() : nullptr;
-  // not while a state file is loaded (it has its own colours), only geometry representations
-  if (!proxy || proxy->GetSessionProxyManager()->GetInLoadXMLState() || pqApplicationCore::instance()->isLoadingState() ||
-    !proxy->GetProperty("Input") || !proxy->GetProperty("DiffuseColor") || !proxy->GetProperty("PointSize"))
+  // geometry representations only
+  if (!proxy || !proxy->GetProperty("Input") || !proxy->GetProperty("DiffuseColor") || !proxy->GetProperty("PointSize"))
+  {
+    return;
+  }
+  if (auto* data = qobject_cast<pqDataRepresentation*>(representation))
+  {
+    QObject::connect(data, &pqDataRepresentation::dataUpdated, this, &pqOutputColoring::legendFollows, Qt::UniqueConnection);
+  }
+  // the default look: not while a state file is loaded (it has its own colours)
+  if (proxy->GetSessionProxyManager()->GetInLoadXMLState() || pqApplicationCore::instance()->isLoadingState())
   {
     return;
   }
   auto* producer = vtkSMSourceProxy::SafeDownCast(vtkSMPropertyHelper(proxy, "Input").GetAsProxy());
   const char* name = producer ? producer->GetXMLName() : "";
-  if (std::strcmp(name, "MLSDeform") == 0 || std::strcmp(name, "ShellDeform") == 0)
+  if (isDeformation(producer))
   {
     vtkSMPVRepresentationProxy::SetScalarColoring(proxy, "Displacement", vtkDataObject::POINT); // by magnitude
     proxy->UpdateVTKObjects();
-    if (auto* data = qobject_cast<pqDataRepresentation*>(representation))
-    {
-      QObject::connect(data, &pqDataRepresentation::dataUpdated, this, &pqOutputColoring::deformationUpdated);
-    }
     return;
   }
   if (std::strcmp(name, "ConstraintRegion") != 0)
@@ -74,40 +113,34 @@ void pqOutputColoring::representationAdded(pqRepresentation* representation)
   proxy->UpdateVTKObjects();
 }
 
-void pqOutputColoring::deformationUpdated()
+void pqOutputColoring::legendFollows()
 {
   auto* representation = qobject_cast<pqDataRepresentation*>(sender());
   vtkSMProxy* proxy = representation ? representation->getProxy() : nullptr;
   vtkSMProxy* lut = proxy ? vtkSMPropertyHelper(proxy, "LookupTable", /*quiet=*/true).GetAsProxy() : nullptr;
-  if (!lut || !vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy))
+  std::set<pqPipelineSource*> seen;
+  if (!lut || !vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy) || !showsDeformation(representation->getInput(), seen) ||
+    vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", /*quiet=*/true).GetAsInt() == vtkSMTransferFunctionManager::NEVER)
+  {
+    return; // not a deformation's data, or the user locked the range
+  }
+  // the range of every shown representation coloured with this legend, not the largest seen
+  double range[2];
+  if (!vtkSMTransferFunctionProxy::ComputeDataRange(lut, range))
   {
     return;
   }
-  // the current range, not the largest seen; force = false keeps a range the user locked
-  if (!vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(proxy, /*extend=*/false, /*force=*/false))
+  if (range[0] == 0 && range[1] == 0)
   {
-    return;
-  }
-  // a motion of zero: ParaView widens the empty range [0, 0] to [0, 1.2e-38], a legend that reads
-  // as round-off; it reads 0 to 1% of the model's size instead, every point at its lowest colour
-  vtkPVDataInformation* information = representation->getInputDataInformation();
-  vtkPVArrayInformation* displacement =
-    information ? information->GetPointDataInformation()->GetArrayInformation("Displacement") : nullptr;
-  const char* colouredBy = vtkSMPropertyHelper(proxy, "ColorArrayName").GetInputArrayNameToProcess();
-  if (!displacement || !colouredBy || std::strcmp(colouredBy, "Displacement") != 0)
-  {
-    return;
-  }
-  const double* range = displacement->GetComponentRange(-1);
-  if (range[1] == 0)
-  {
-    const double* bounds = information->GetBounds();
+    // a zero field (no motion): ParaView widens the empty range [0, 0] to [0, 1.2e-38], a legend
+    // that reads as round-off; it reads 0 to 1% of the model's size instead, all at its lowest colour
+    const double* bounds = representation->getInputDataInformation()->GetBounds();
     const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) + std::pow(bounds[5] - bounds[4], 2));
-    const double top = diagonal > 0 ? 0.01 * diagonal : 1.0;
-    vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, 0.0, top);
-    if (vtkSMProxy* opacity = vtkSMPropertyHelper(lut, "ScalarOpacityFunction", /*quiet=*/true).GetAsProxy())
-    {
-      vtkSMTransferFunctionProxy::RescaleTransferFunction(opacity, 0.0, top);
-    }
+    range[1] = diagonal > 0 && std::isfinite(diagonal) ? 0.01 * diagonal : 1.0;
+  }
+  vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, range[0], range[1]);
+  if (vtkSMProxy* opacity = vtkSMPropertyHelper(lut, "ScalarOpacityFunction", /*quiet=*/true).GetAsProxy())
+  {
+    vtkSMTransferFunctionProxy::RescaleTransferFunction(opacity, range[0], range[1]);
   }
 }

@@ -3,8 +3,9 @@
 // one colour per role (Handle red, Fixed blue, geometric constraints green, Slip orange), so that
 // the regions of a deformation can be told apart at a glance. Applied once, when an output is
 // first shown; a state file's or the designer's own colours are kept. After each update of a
-// deformed model the colour legend shows the current range (unless the user locked it), and a
-// zero motion shows as zero.
+// deformed model, or of anything downstream of it (an Extract Block of a deformed case), the
+// colour legend of what it is coloured by (Displacement, dX/d<variable>, ...) shows the range of
+// the data shown now (unless the user locked it), and a zero field shows as zero.
 #pragma once
 
 #include <QObject>
@@ -22,5 +23,6 @@ public:
 
 private Q_SLOTS:
   void representationAdded(pqRepresentation* representation);
-  void deformationUpdated();
+  /// A representation's data changed: the legend follows, if it shows a deformation's data.
+  void legendFollows();
 };

@@ -100,6 +100,42 @@ TEST(PlaneBendingStretchingAndMix)
   CHECK(roughness["mix"] < roughness["stretching"]); // adding bending smooths (Fig. 1)
 }
 
+// Issue 54, point 5: the field-data reports of MLS Deform and the Constraint Region are kept out
+// of ParaView's array lists (GUI_HIDE), a field array that came with the input is not touched, and
+// a failed update's DeformationError is marked too.
+TEST(ReportArraysHiddenFromArrayLists)
+{
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  vtkNew<vtkDoubleArray> mine;
+  mine->SetName("Mine");
+  mine->InsertNextValue(1);
+  plane->GetFieldData()->AddArray(mine);
+  PlaneScene scene(plane);
+  scene.deform->SetNumberOfSamples(300);
+  scene.deform->Update();
+  vtkFieldData* field = scene.deform->GetOutputDataObject(0)->GetFieldData();
+  const auto hidden = [](vtkAbstractArray* array) { return array && array->GetInformation()->Has(vtkAbstractArray::GUI_HIDE()); };
+  int reports = 0;
+  for (int i = 0; i < field->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = field->GetAbstractArray(i);
+    if (std::strcmp(array->GetName(), "Mine") != 0)
+    {
+      CHECK(hidden(array));
+      ++reports;
+    }
+  }
+  std::printf("%d report arrays\n", reports);
+  CHECK(reports > 5 && hidden(field->GetAbstractArray("HandleResidual")));
+  CHECK(field->GetAbstractArray("Mine") == mine.Get() && !hidden(mine)); // the input's, untouched
+  vtkFieldData* region = scene.handle->GetOutputDataObject(0)->GetFieldData();
+  CHECK(hidden(region->GetAbstractArray("Role")) && hidden(region->GetAbstractArray("Weight")));
+  // a failure's message
+  scene.handle->SetRole(vtkConstraintRegion::Fixed);
+  scene.deform->Update();
+  CHECK(hidden(scene.deform->GetOutputDataObject(0)->GetFieldData()->GetAbstractArray("DeformationError")));
+}
+
 TEST(BasisAndEnergyDiscretization)
 {
   // Every basis, with the energies at the vertices (eq. 11) and at integration points, reaches

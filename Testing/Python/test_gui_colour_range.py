@@ -1,9 +1,11 @@
-"""Run inside the paraview GUI (paraview --dr --script=test_gui_colour_range.py): issue 32, point 4.
-The deformed fandisk's Displacement legend shows the current range after each update: a zero
-motion as 0 to 1% of the part's diagonal (not ParaView's 0 to 1.2e-38 of an empty range), a
-large motion up to its largest displacement, a smaller one after it up to its own (the range
-shrinks, it does not keep the largest seen), and a range the user locked stays.
-Writes 'ok' or the failures to the file named by MLSDEFORM_GUI_RESULT."""
+"""Run inside the paraview GUI (paraview --dr --script=test_gui_colour_range.py): issue 32, point 4,
+and issue 54, point 5. The deformed fandisk's Displacement legend shows the current range after
+each update: a zero motion as 0 to 1% of the part's diagonal (not ParaView's 0 to 1.2e-38 of an
+empty range), a large motion up to its largest displacement, a smaller one after it up to its own
+(the range shrinks, it does not keep the largest seen), and a range the user locked stays. The
+same for a legend of dX/d<variable> when the variable's axis shrinks, and for an Extract Block
+downstream of a deformed multiblock, coloured by Displacement. The colouring menu lists no
+field-data report array. Writes 'ok' or the failures to the file named by MLSDEFORM_GUI_RESULT."""
 import math
 import os
 
@@ -60,6 +62,70 @@ try:
     handle.Translation = [-0.1 * height, 0.0, 0.0]
     Render()
     check(legend() == locked, 'locked legend %s changed to %s' % (locked, legend()))
+    lut.AutomaticRescaleRangeMode = 'Grow and update on \'Apply\''
+
+    # the colouring menu: the deformed model's arrays, none of its field-data reports
+    from paraview.simple import ColorBy, ExtractBlock, GetDisplayProperties, GroupDatasets, Hide, SetActiveSource
+    look = GetDisplayProperties(deformed)
+    domain = look.GetProperty('ColorArrayName').SMProperty.GetDomain('array_list')
+    listed = [domain.GetString(i) for i in range(domain.GetNumberOfStrings())]
+    reports = [deformed.GetDataInformation().GetFieldDataInformation().GetArrayInformation(i).GetName()
+               for i in range(deformed.GetDataInformation().GetFieldDataInformation().GetNumberOfArrays())]
+    check(len(reports) > 5 and not set(reports) & set(listed) and 'Displacement' in listed,
+          'the colouring menu lists %s, none of the %d report arrays %s' % (listed, len(reports), reports))
+
+    # dX/dlift: its legend follows when the variable's axis shrinks (|dX/dlift| is the axis's
+    # length on the handle: 1.7, then 1)
+    handle.DesignVariables = ['lift', '0', '0', '0', '1.7', '0', '-1', '1']
+    deformed.ComputeSensitivities = 1
+    Render()
+    ColorBy(look, ('POINTS', 'dX/dlift', 'Magnitude'))
+    Render()
+    sensitivity = GetColorTransferFunction('dX/dlift')
+    for axis in (1.7, 1.0):
+        handle.DesignVariables = ['lift', '0', '0', '0', str(axis), '0', '-1', '1']
+        Render()
+        top = deformed.GetDataInformation().GetPointDataInformation().GetArrayInformation('dX/dlift').GetComponentRange(-1)[1]
+        points = sensitivity.RGBPoints
+        check(abs(top - axis) <= 0.01 * axis and abs(points[-4] - top) <= 1e-6 * top,
+              'dX/dlift along %g z: legend up to %g, |dX/dlift| up to %g' % (axis, points[-4], top))
+    ColorBy(look, ('POINTS', 'Displacement', 'Magnitude'))
+
+    # downstream: an Extract Block of a deformed multiblock, coloured by Displacement
+    Hide(deformed)
+    group = GroupDatasets(Input=[part])
+    blocks = MLSDeform(Input=group, Regions=[fixed, handle], NumberOfSamples=500)  # noqa: F821
+    block = ExtractBlock(Input=blocks, Selectors=['/Root/*'])
+    shown = Show(block)
+    ColorBy(shown, ('POINTS', 'Displacement', 'Magnitude'))
+    SetActiveSource(block)
+    for motion in (0.0, 0.1, 0.02):
+        handle.Translation = [-motion * height, 0.0, 0.0]
+        Render()
+        low, high = legend()
+        moved = block.GetDataInformation().GetPointDataInformation().GetArrayInformation('Displacement').GetComponentRange(-1)[1]
+        expected = moved if motion else 0.01 * diagonal
+        check(low == 0 and abs(high - expected) <= 1e-6 * expected,
+              'Extract Block downstream, motion %g of the height: legend %g to %g, expected 0 to %g' % (motion, low, high, expected))
+
+    # after a state file: the loaded representations' legends follow too
+    import tempfile
+    from paraview.simple import FindSource, GetSources, LoadState, ResetSession, SaveState
+    state = os.path.join(tempfile.mkdtemp(), 'legends.pvsm')
+    names = {proxy: name for (name, _), proxy in GetSources().items()}
+    SaveState(state)
+    ResetSession()
+    LoadPlugin(os.environ['MLSDEFORM_PLUGIN'], remote=False, ns=globals())
+    LoadState(state, data_directory=os.environ['MLSDEFORM_DATA_DIR'])
+    block, handle = FindSource(names[block]), FindSource(names[handle])
+    lut = GetColorTransferFunction('Displacement')
+    for motion in (0.12, 0.04):
+        handle.Translation = [-motion * height, 0.0, 0.0]
+        Render()
+        low, high = legend()
+        moved = block.GetDataInformation().GetPointDataInformation().GetArrayInformation('Displacement').GetComponentRange(-1)[1]
+        check(low == 0 and abs(high - moved) <= 1e-6 * moved,
+              'after Load State, motion %g of the height: legend %g to %g, expected 0 to %g' % (motion, low, high, moved))
     write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception as error:  # reported through the result file, the GUI swallows exceptions
     write_result(os.environ['MLSDEFORM_GUI_RESULT'], error)
