@@ -1,6 +1,7 @@
 #include "vtkConstraintRegion.h"
 
 #include "Common/BoundingBox.h"
+#include "Adapters/BlockSelection.h"
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/DesignVariables.h"
 #include "Adapters/HandleMotion.h"
@@ -199,7 +200,8 @@ struct SelectedPositions
 // Cells are chosen by layers around the surface (mode CellLayers) or when all their points
 // follow the rule; with cell sets only cells of dimension 2 or 3 count.
 SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values,
-  const PointRule& rule, bool cellSets, const mlsdeform::PointList& surface, int layers, const mlsdeform::Collective& group)
+  const PointRule& rule, bool cellSets, const mlsdeform::PointList& surface, int layers, const mlsvtk::BlockSelection* blocks,
+  bool setPerBlock, const mlsdeform::Collective& group)
 {
   SelectedPositions out;
   const bool byLayers = rule.mode == vtkConstraintRegion::CellLayers;
@@ -233,7 +235,7 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
     {
       for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
       {
-        chosen[i] = rule.selects(set, values[s], i);
+        chosen[i] = blocks ? blocks->points[s][i] : rule.selects(set, values[s], i);
       }
       if (!cellSets)
       {
@@ -243,6 +245,12 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
           {
             out.positions.emplace_back();
             set->GetPoint(i, out.positions.back().data());
+            if (setPerBlock)
+            {
+              // each block its own set (a Slip region's planes), numbered alike on every process
+              // (negative: Common/GatheredPositions.h); the points of set arrays one more
+              out.sets.push_back(-1.0 - blocks->block[s]);
+            }
           }
         }
         continue;
@@ -305,11 +313,14 @@ struct SelectionInputs
   int primitive = -1;
   int layers = 0;
   bool cellSets = false;
+  std::vector<std::string> blocks; // mode Blocks
+  bool setPerBlock = false;        // mode Blocks, role Slip
   mlsvtk::Stamp stamp;
   bool operator==(const SelectionInputs& o) const
   {
     return mode == o.mode && insideOut == o.insideOut && range[0] == o.range[0] && range[1] == o.range[1] &&
-      primitive == o.primitive && layers == o.layers && cellSets == o.cellSets && stamp == o.stamp;
+      primitive == o.primitive && layers == o.layers && cellSets == o.cellSets && blocks == o.blocks &&
+      setPerBlock == o.setPerBlock && stamp == o.stamp;
   }
 };
 
@@ -382,6 +393,41 @@ void vtkConstraintRegion::RemoveAllDesignVariables()
   }
 }
 
+void vtkConstraintRegion::AddBlock(const char* entry)
+{
+  this->BlockNames.emplace_back(entry ? entry : "");
+  this->Modified();
+}
+
+void vtkConstraintRegion::RemoveAllBlocks()
+{
+  if (!this->BlockNames.empty())
+  {
+    this->BlockNames.clear();
+    this->Modified();
+  }
+}
+
+bool vtkConstraintRegion::NamesBlock(const char* entry, const char* name)
+{
+  return entry && name && mlsvtk::namesBlock(entry, name);
+}
+
+bool vtkConstraintRegion::NamesGroup(const char* entry, const char* group)
+{
+  return entry && group && mlsvtk::namesGroup(entry, group);
+}
+
+int vtkConstraintRegion::GetNumberOfBlocks()
+{
+  return static_cast<int>(this->BlockNames.size());
+}
+
+const char* vtkConstraintRegion::GetBlock(int i)
+{
+  return i >= 0 && i < this->GetNumberOfBlocks() ? this->BlockNames[i].c_str() : nullptr;
+}
+
 int vtkConstraintRegion::GetNumberOfDesignVariables()
 {
   return static_cast<int>(this->Designs->variables.size());
@@ -427,6 +473,7 @@ int vtkConstraintRegion::FillInputPortInformation(int port, vtkInformation* info
 // selection array of each set (modes ArrayRange and Primitive).
 struct vtkConstraintRegion::Inputs
 {
+  vtkDataObject* data = nullptr; // the input, a composite or one point set
   std::vector<vtkPointSet*> sets, surfaceSets;
   std::vector<vtkDataArray*> values;
 };
@@ -443,6 +490,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   try
   {
     Inputs in;
+    in.data = input;
     in.sets = mlsvtk::pointSets(input);
     vtkDataObject* surfaceInput = this->GetNumberOfInputConnections(1) > 0 ? vtkDataObject::GetData(inputVector[1], 0) : nullptr;
     in.surfaceSets = surfaceInput ? mlsvtk::pointSets(surfaceInput) : std::vector<vtkPointSet*>();
@@ -476,6 +524,11 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
     throw mlsdeform::InvalidInputException("SelectionMode is ImplicitFunction but no Region function is set");
   }
 
+  if (this->SelectionMode == Blocks && this->BlockNames.empty())
+  {
+    throw mlsdeform::InvalidInputException("SelectionMode Blocks needs the names of what it selects in Blocks (patches, "
+                                           "patch groups, sets, or blocks ticked in the panel's list)");
+  }
   if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
   {
     throw mlsdeform::InvalidInputException("Role FromPrimitive needs SelectionMode Primitive (a Primitive Detector's output as input)");
@@ -569,8 +622,10 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
   const bool byCells = this->CellSets || this->SelectionMode == CellLayers;
   inputs.layers = this->SelectionMode == CellLayers ? this->NumberOfLayers : 0;
   inputs.cellSets = this->CellSets;
+  inputs.blocks = this->SelectionMode == Blocks ? this->BlockNames : std::vector<std::string>();
+  inputs.setPerBlock = this->SelectionMode == Blocks && this->Role == Slip && !this->CellSets;
   inputs.stamp = mlsvtk::pointsStamp(in.sets);
-  if (byCells)
+  if (byCells || this->SelectionMode == Blocks) // (a cell set array selects its cells' points)
   {
     for (const mlsvtk::Stamp& more : { mlsvtk::cellsStamp(in.sets), mlsvtk::pointsStamp(in.surfaceSets) })
     {
@@ -591,11 +646,16 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
     const mlsdeform::PointList surface = this->SelectionMode == CellLayers
       ? mlsdeform::gatherPositions(mlsvtk::points(in.surfaceSets), {}, group).positions
       : mlsdeform::PointList();
-    SelectedPositions chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers, group);
+    const std::optional<mlsvtk::BlockSelection> blocks = this->SelectionMode == Blocks
+      ? std::optional<mlsvtk::BlockSelection>(mlsvtk::selectBlocks(in.data, in.sets, this->BlockNames, group))
+      : std::nullopt;
+    SelectedPositions chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers,
+      blocks ? &*blocks : nullptr, inputs.setPerBlock, group);
     selection.positions = std::move(chosen.positions);
     selection.sets = std::move(chosen.sets);
-    selection.cloud = this->CellSets ? mlsvtk::pointCloud(selection.positions, { { mlsvtk::fields::ConstraintSet, &selection.sets } })
-                                     : mlsvtk::pointCloud(selection.positions, {});
+    selection.cloud = !selection.sets.empty()
+      ? mlsvtk::pointCloud(selection.positions, { { mlsvtk::fields::ConstraintSet, &selection.sets } })
+      : mlsvtk::pointCloud(selection.positions, {});
     // the centroid of the selected positions of all processes, each position once
     const mlsdeform::PointList all = mlsdeform::gatherPositions(selection.positions, {}, group).positions;
     selection.selectedAnywhere = !all.empty();
@@ -734,6 +794,7 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "PrimitiveId: " << this->PrimitiveId << "\n"
      << indent << "NumberOfLayers: " << this->NumberOfLayers << "\n"
      << indent << "CellSets: " << this->CellSets << "\n"
+     << indent << "Blocks: " << this->BlockNames.size() << "\n"
      << indent << "Translation: " << this->Translation[0] << " " << this->Translation[1] << " " << this->Translation[2] << "\n"
      << indent << "Rotation: " << this->Rotation[0] << " " << this->Rotation[1] << " " << this->Rotation[2] << "\n"
      << indent << "Scale: " << this->Scale[0] << " " << this->Scale[1] << " " << this->Scale[2] << "\n"

@@ -25,6 +25,12 @@
  *    a cylinder, FeatureLine (similarity: a sphere stays a sphere, a cone keeps its angle) for a
  *    sphere or a cone.
  *
+ * By name: SelectionMode Blocks selects the points of the blocks, patches, patch groups and sets
+ * that Blocks names (Adapters/BlockSelection.h: "hull", "motorBike.*", "motorBikeGroup",
+ * "/Root/boundary/inlet", a set array "fixed"), so that a case's or a mesh file's own names make
+ * one region of many patches: one Handle moves them as one body, about one pivot. A Slip region
+ * keeps each of its blocks on its own plane (a ground and the side walls in one region).
+ *
  * Cells instead of points: SelectionMode CellLayers selects the cells within NumberOfLayers cell
  * layers of the points of the Surface input (port 1; e.g. the boundary-layer cells along a wall
  * patch of a CFD mesh: layer 1 holds the cells with a point on the surface, layer n + 1 the cells
@@ -43,7 +49,9 @@
  * Distance "ConstraintGroup" and "DistanceAxis"; for Offset "MinimumDistance" and
  * "ReferenceTriangles", the Surface input's polygons as triangles, 9 coordinates each).
  * With CellSets, each cell's points in turn (a point of several cells once per cell) and point
- * array "ConstraintSet" (the set a position belongs to). Plug it into MLSDeform's Regions input.
+ * array "ConstraintSet" (the set a position belongs to); a Slip region in mode Blocks, each
+ * block's points in turn and their block in ConstraintSet (negative: -1 - the block's composite
+ * id, the same set on every process). Plug it into MLSDeform's Regions input.
  */
 #ifndef vtkConstraintRegion_h
 #define vtkConstraintRegion_h
@@ -52,6 +60,8 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 class vtkImplicitFunction;
 namespace mlsdeform
@@ -92,7 +102,8 @@ public:
     ArrayRange,           // points whose SelectionArray value (component 0) is within Range
     AllPoints,            // every input point (for use after Extract Selection)
     Primitive,            // points whose PrimitiveIds (vtkPrimitiveDetector) contain PrimitiveId
-    CellLayers            // the points of the cells within NumberOfLayers layers of the Surface input's points
+    CellLayers,           // the points of the cells within NumberOfLayers layers of the Surface input's points
+    Blocks                // the points of the blocks, patches, patch groups and sets that Blocks names
   };
 
   ///@{
@@ -103,8 +114,23 @@ public:
 
   ///@{
   /// How the positions are selected (default ImplicitFunction).
-  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, CellLayers);
+  vtkSetClampMacro(SelectionMode, int, ImplicitFunction, Blocks);
   vtkGetMacro(SelectionMode, int);
+  ///@}
+
+  ///@{
+  /// Mode Blocks: the names of what is selected, each a hierarchy selector ("/Root/boundary/hull"),
+  /// a block's name or a pattern of whole names ("motorBike.*"), a patch group of the OpenFOAM case
+  /// ("motorBikeGroup"), or a set array (Adapters/BlockSelection.h). An entry that names nothing
+  /// is an error.
+  void AddBlock(const char* entry);
+  void RemoveAllBlocks();
+  int GetNumberOfBlocks();
+  const char* GetBlock(int i);
+  /// Whether a Blocks entry names a block (a patch) called name, or a patch group called group:
+  /// for scripts that choose which patches a reader reads (mlsdeform.vtkfoam, mlsdeform.foam).
+  static bool NamesBlock(const char* entry, const char* name);
+  static bool NamesGroup(const char* entry, const char* group);
   ///@}
 
   ///@{
@@ -305,6 +331,8 @@ private:
   std::unique_ptr<Selection> Selected;
   struct DesignVariableList;
   std::unique_ptr<DesignVariableList> Designs;
+  std::vector<std::string> BlockNames; // mode Blocks
+
 };
 
 #endif

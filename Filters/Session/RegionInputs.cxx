@@ -245,10 +245,12 @@ void addConstraintSets(const RegionInput& region, std::vector<ShapeConstraint>& 
   {
     sets[region.gathered.sets[i]].push_back(region.gathered.positions[i]);
   }
+  // a region's weight spread over its cells' sets by their size; a Slip region's sets are its
+  // blocks (patches selected by name), each weighing as a region of its own
   const double share = region.weight / static_cast<double>(region.gathered.positions.size());
   for (auto& [id, positions] : sets)
   {
-    shape.weight = share * static_cast<double>(positions.size());
+    shape.weight = shape.type == ConstraintType::Slip ? region.weight : share * static_cast<double>(positions.size());
     shape.positions = std::move(positions);
     shapes.push_back(shape);
   }

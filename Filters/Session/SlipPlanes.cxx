@@ -2,6 +2,7 @@
 
 #include "Vocabulary/RegionRoles.h"
 
+#include <map>
 #include <string>
 
 using namespace mlsdeform;
@@ -17,19 +18,32 @@ std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions)
     {
       continue;
     }
-    SlipPlane slip;
-    slip.bounds = boundingBox(regions[c].gathered.positions);
-    const double diagonal = slip.bounds.size().norm();
-    slip.plane = fitPlane(regions[c].gathered.positions);
-    if (regions[c].gathered.positions.size() < 3 || slip.plane.farthest > 1e-6 * diagonal)
+    // one plane per constraint set (a region of several patches selected by name: each its plane)
+    const PointList& positions = regions[c].gathered.positions;
+    const std::vector<int>& sets = regions[c].gathered.sets;
+    std::map<int, PointList> bySet;
+    for (std::size_t i = 0; i < positions.size(); ++i)
     {
-      throw InvalidInputException("Regions input #" + std::to_string(c) + " (Slip) is not a plane: its points lie up to " +
-        std::to_string(slip.plane.farthest / diagonal) + " of their diagonal from their least-squares plane (at most 1e-6)");
+      bySet[sets.empty() ? 0 : sets[i]].push_back(positions[i]);
     }
-    slip.tolerance = slip.plane.farthest + 1e-9 * diagonal;
-    slip.bounds.lower.array() -= slip.tolerance;
-    slip.bounds.upper.array() += slip.tolerance;
-    planes.push_back(slip);
+    for (const auto& [set, points] : bySet)
+    {
+      SlipPlane slip;
+      slip.bounds = boundingBox(points);
+      const double diagonal = slip.bounds.size().norm();
+      slip.plane = fitPlane(points);
+      if (points.size() < 3 || slip.plane.farthest > 1e-6 * diagonal)
+      {
+        throw InvalidInputException("Regions input #" + std::to_string(c) + " (Slip)" +
+          (bySet.size() > 1 ? ", its block " + std::to_string(set) + "," : std::string()) +
+          " is not a plane: its points lie up to " + std::to_string(slip.plane.farthest / diagonal) +
+          " of their diagonal from their least-squares plane (at most 1e-6)");
+      }
+      slip.tolerance = slip.plane.farthest + 1e-9 * diagonal;
+      slip.bounds.lower.array() -= slip.tolerance;
+      slip.bounds.upper.array() += slip.tolerance;
+      planes.push_back(slip);
+    }
   }
   return planes;
 }

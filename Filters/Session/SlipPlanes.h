@@ -1,7 +1,8 @@
 // The Slip regions' planes (ground, symmetry, inlet and outlet planes of a CFD domain): every
 // point of the input that lies on a plane within its region's bounds slides within the plane (a
 // space deformation knows positions only, so a patch and the volume mesh that share a point treat
-// it alike).
+// it alike). A region with constraint sets (the blocks of a region selected by name) has a plane
+// per set.
 #pragma once
 
 #include "Common/BoundingBox.h"

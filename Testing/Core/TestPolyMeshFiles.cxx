@@ -154,4 +154,44 @@ TEST(DamagedFacesAreErrorsNamingTheFile)
   fs::remove_all(fs::temp_directory_path() / ("mlsdeform-polymesh-" + std::to_string(::getpid())));
 }
 
+// The boundary's patches and their groups (inGroups), as OpenFOAM writes them and as users edit
+// them: a count or none, List<word> or a bare list, comments, a nested dictionary before the
+// groups; a truncated file or another class is an error naming the file.
+TEST(BoundaryPatchesAndTheirGroups)
+{
+  const std::string dir = folder("boundary");
+  const std::string head = "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class polyBoundaryMesh;\n    object boundary;\n}\n";
+  write(dir + "/boundary", head + R"(// a comment
+3
+(
+    inlet { type patch; nFaces 10; startFace 100; }
+    motorBike_frt-fairing:001%1
+    {
+        type            wall;
+        inGroups        List<word> 2(wall motorBikeGroup);   // as snappyHexMesh writes them
+        nFaces          20;
+    }
+    periodic
+    {
+        type cyclic;
+        transform { type rotational; axis (0 0 1); }   /* nested */
+        inGroups (cyclicGroup);
+        neighbourPatch other;
+    }
+)
+)");
+  const std::vector<FoamPatch> patches = readFoamBoundary(dir);
+  CHECK(patches.size() == 3);
+  CHECK(patches[0].name == "inlet" && patches[0].type == "patch" && patches[0].groups.empty());
+  CHECK(patches[1].name == "motorBike_frt-fairing:001%1" && patches[1].type == "wall");
+  CHECK((patches[1].groups == std::vector<std::string>{ "wall", "motorBikeGroup" }));
+  CHECK(patches[2].type == "cyclic" && (patches[2].groups == std::vector<std::string>{ "cyclicGroup" }));
+
+  write(dir + "/boundary", head + "2\n(\n    inlet\n    {\n        type patch;\n");
+  CHECK(failsWith([&] { readFoamBoundary(dir); }, { "boundary", "truncated" }));
+  write(dir + "/boundary", "FoamFile { class faceList; }\n0()\n");
+  CHECK(failsWith([&] { readFoamBoundary(dir); }, { "boundary", "polyBoundaryMesh" }));
+  CHECK(failsWith([&] { readFoamBoundary(dir + "/none"); }, { "boundary", "no such file" }));
+}
+
 TEST_MAIN

@@ -16,13 +16,15 @@ bool lexicographicLess(const Vec3& a, const Vec3& b)
 
 GatheredPositions gatherPositions(const PointList& local, const std::vector<int>& localSets, const Collective& group)
 {
-  // x, y, z and the set (numbered per process: the process's number in the high bits) per position
+  // x, y, z and the set (numbered per process: the process's number in the high bits; a negative
+  // one is the same set on every process) per position
   std::vector<double> mine;
   mine.reserve(4 * local.size());
   const double processSets = static_cast<double>(group.rank()) * 4294967296.0;
   for (std::size_t i = 0; i < local.size(); ++i)
   {
-    mine.insert(mine.end(), { local[i][0], local[i][1], local[i][2], localSets.empty() ? 0.0 : processSets + localSets[i] });
+    const double set = localSets.empty() ? 0.0 : localSets[i] < 0 ? localSets[i] : processSets + localSets[i];
+    mine.insert(mine.end(), { local[i][0], local[i][1], local[i][2], set });
   }
   const std::vector<double> all = group.gather(mine);
   const bool withSets = group.any(!localSets.empty());

@@ -17,7 +17,8 @@ struct GatheredPositions
 };
 
 /// Gathers the positions of all processes (with sets: the set of each local position, numbered
-/// per process; empty: one set) and orders them: sorted by coordinates, equal positions once;
+/// per process, or, when negative, a set of the same number on every process (a block of a
+/// region selected by name, split over processes); empty: one set) and orders them: sorted by coordinates, equal positions once;
 /// with sets, each set's positions sorted and once, the sets ordered by their position lists
 /// and equal sets once, numbered in that order.
 GatheredPositions gatherPositions(const PointList& local, const std::vector<int>& localSets, const Collective& group);

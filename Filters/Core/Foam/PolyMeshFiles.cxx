@@ -246,6 +246,133 @@ FoamList readList(
 
 } // namespace
 
+namespace
+{
+// The words and delimiters ({ } ( ) ;) of a dictionary's text from position i, without comments;
+// a quoted string is one word, without its quotes.
+std::vector<std::string> dictionaryTokens(const std::string& s, std::size_t i)
+{
+  std::vector<std::string> tokens;
+  const auto delimiter = [](char c) { return c == '{' || c == '}' || c == '(' || c == ')' || c == ';'; };
+  while ((i = skipBlank(s, i)) < s.size())
+  {
+    if (delimiter(s[i]))
+    {
+      tokens.emplace_back(1, s[i++]);
+    }
+    else if (s[i] == '"')
+    {
+      const std::size_t end = s.find('"', i + 1);
+      tokens.push_back(s.substr(i + 1, end == std::string::npos ? std::string::npos : end - i - 1));
+      i = end == std::string::npos ? s.size() : end + 1;
+    }
+    else
+    {
+      const std::size_t begin = i;
+      while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i])) && !delimiter(s[i]) && s.compare(i, 2, "//") != 0 &&
+        s.compare(i, 2, "/*") != 0)
+      {
+        ++i;
+      }
+      tokens.push_back(s.substr(begin, i - begin));
+    }
+  }
+  return tokens;
+}
+}
+
+std::vector<FoamPatch> readFoamBoundary(const std::string& polyMeshDirectory)
+{
+  const std::string path = foamFile(polyMeshDirectory, "boundary");
+  if (path.empty())
+  {
+    fail(polyMeshDirectory + "/boundary", "no such file");
+  }
+  const std::string s = readAll(path);
+  const auto [dictionary, afterHeader] = headerOf(s);
+  if (afterHeader == std::string::npos || entry(dictionary, "class") != "polyBoundaryMesh")
+  {
+    fail(path, "not a polyBoundaryMesh (no FoamFile header of that class)");
+  }
+  // [count] ( name { key value; ... } ... )
+  const std::vector<std::string> t = dictionaryTokens(s, afterHeader);
+  std::size_t k = 0;
+  if (k < t.size() && !t[k].empty() && std::isdigit(static_cast<unsigned char>(t[k][0])))
+  {
+    ++k;
+  }
+  if (k >= t.size() || t[k] != "(")
+  {
+    fail(path, "no list of patches");
+  }
+  std::vector<FoamPatch> patches;
+  for (++k; k < t.size() && t[k] != ")";)
+  {
+    FoamPatch patch;
+    patch.name = t[k++];
+    if (k >= t.size() || t[k] != "{")
+    {
+      fail(path, "patch " + patch.name + " has no dictionary");
+    }
+    // its entries: a key, then tokens up to ';' at this depth (nested dictionaries and lists skipped)
+    int depth = 1;
+    for (++k; k < t.size() && depth > 0;)
+    {
+      if (t[k] == "}")
+      {
+        --depth;
+        ++k;
+        continue;
+      }
+      const std::string key = t[k++];
+      std::vector<std::string> value;
+      int inner = 0;
+      const bool subDictionary = k < t.size() && t[k] == "{"; // ends at its '}', with no ';'
+      for (; k < t.size() && !(inner == 0 && (t[k] == ";" || t[k] == "}")); ++k)
+      {
+        inner += (t[k] == "{" || t[k] == "(") ? 1 : (t[k] == "}" || t[k] == ")") ? -1 : 0;
+        value.push_back(t[k]);
+        if (subDictionary && inner == 0)
+        {
+          ++k;
+          break;
+        }
+      }
+      k += (k < t.size() && t[k] == ";") ? 1 : 0;
+      if (key == "type" && value.size() == 1)
+      {
+        patch.type = value[0];
+      }
+      else if (key == "inGroups")
+      {
+        // List<word> 2(wall motorBikeGroup), 2(wall motorBikeGroup) or (wall)
+        bool inside = false;
+        for (const std::string& word : value)
+        {
+          if (word == "(" || word == ")")
+          {
+            inside = word == "(";
+          }
+          else if (inside)
+          {
+            patch.groups.push_back(word);
+          }
+        }
+      }
+    }
+    if (depth != 0)
+    {
+      fail(path, "patch " + patch.name + "'s dictionary is not closed (truncated)");
+    }
+    patches.push_back(std::move(patch));
+  }
+  if (k >= t.size())
+  {
+    fail(path, "the list of patches is not closed (truncated)");
+  }
+  return patches;
+}
+
 std::string foamFile(const std::string& directory, const std::string& name)
 {
   for (const std::string& path : { directory + "/" + name, directory + "/" + name + ".gz" })

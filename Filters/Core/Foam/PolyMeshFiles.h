@@ -2,7 +2,7 @@
 // points file (constant/polyMesh/points): a FoamFile header and a vectorField of double (or, with
 // arch "scalar=32", float) coordinates, read so that the same format can be written back with new
 // coordinates; labelList files (owner, neighbour, pointProcAddressing); the faces
-// (faceCompactList, or an ascii faceList).
+// (faceCompactList, or an ascii faceList); the boundary's patches with their groups.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +46,19 @@ struct FoamFaces
 /// Reads polyMesh/faces (or faces.gz) of the polyMesh directory. Throws std::runtime_error with
 /// the file and the reason.
 FoamFaces readFoamFaces(const std::string& polyMeshDirectory);
+
+/// A patch of a polyMesh's boundary: its name, type and groups (its inGroups list, which OpenFOAM
+/// utilities and dictionaries name patches by: wall, motorBikeGroup).
+struct FoamPatch
+{
+  std::string name;
+  std::string type;
+  std::vector<std::string> groups;
+};
+
+/// Reads polyMesh/boundary (or boundary.gz) of the polyMesh directory: its patches in order.
+/// Throws std::runtime_error with the file and the reason.
+std::vector<FoamPatch> readFoamBoundary(const std::string& polyMeshDirectory);
 
 /// The file directory/name, or directory/name.gz when only that exists; "" when neither does.
 std::string foamFile(const std::string& directory, const std::string& name);
