@@ -1,5 +1,6 @@
 """The command line of a design of experiments on an OpenFOAM case (mlsdeform-doe.py beside the
-plugin runs it in Debian's python3 or in pvpython):
+plugin runs it in Debian's python3 or in pvpython, and from any other python3 hands itself to one
+of those):
 
     python3 .../plugins/MLSDeform/mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV)
         [--write-failed] [--copy] [--max-non-orthogonality 70] [--max-skewness 4] [--max-inverted-cells 0]
@@ -12,22 +13,36 @@ DESIGN.json names the case, its patches by role and the design variables, e.g.
     {"case": "hull/case.foam", "handle": ["hull"], "fixed": ["inlet", "outlet"],
      "slip": ["sideYmin", "sideYmax", "bottom", "top"],
      "variables": [{"name": "dx", "translate": [1, 0, 0], "lower": -0.1, "upper": 0.1},
-                   {"name": "yaw", "rotate": [0, 0, 1], "lower": -5, "upper": 5, "patches": ["hull"]}],
+                   {"name": "yaw", "rotate": [0, 0, 1], "lower": -5, "upper": 5}],
      "settings": {"NumberOfSamples": 1000}}
 
-A variable acts on the handle patches it names (default: all of them), with one axis for all or
-one per patch; "settings" are MLS Deform properties (the VTK filter's Set<Name>): numbers, or an
-enumeration value by its name in the VTK class ("Basis": "Wendland"). A relative "case" is relative to the design
-file. Exit code 0 when every variant was made (whatever their verdicts), 1 on a failure, 2 on a
-bad design or command line, with the message on stderr. Running it again resumes.
+A role's patches are names, patterns of whole names ("motorBike.*") or patch groups
+("motorBikeGroup"), as OpenFOAM takes them. The handle's patches move as one body (one pivot for
+rotations and scales); several bodies are named in "handles" instead of "handle", e.g.
+{"bike": ["motorBikeGroup"], "rider": ["rider.*"]}, and a variable acts on the bodies it names in
+its own "handles" (default: all of them), with one axis for all or one per body. Slip patches each
+slide in their own plane. "settings" are MLS Deform properties (the VTK filter's Set<Name>):
+numbers, or an enumeration value by its name in the VTK class ("Basis": "Wendland"). A relative
+"case" is relative to the design file. Exit code 0 when every variant was made (whatever their
+verdicts), 1 on a failure, 2 on a bad design or command line, with the message on stderr. Running
+it again resumes.
 """
 import argparse
 import json
 import os
 import sys
 
-KEYS = {'case', 'handle', 'fixed', 'slip', 'variables', 'settings'}
-VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'lower', 'upper', 'value', 'patches'}
+KEYS = {'case', 'handle', 'handles', 'fixed', 'slip', 'variables', 'settings'}
+VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'lower', 'upper', 'value', 'handles'}
+
+
+def _names(value):
+    """A role's or a body's patches: a name or a non-empty list of names, else None."""
+    if isinstance(value, str) and value:
+        return [value]
+    if isinstance(value, list) and value and all(isinstance(v, str) and v for v in value):
+        return value
+    return None
 
 
 def setUp(design_path):
@@ -35,27 +50,39 @@ def setUp(design_path):
     from . import DesignVariables, vtkfoam
     with open(design_path) as f:
         design = json.load(f)
-    if not isinstance(design, dict) or not {'case', 'handle', 'variables'} <= set(design) or set(design) - KEYS:
-        raise ValueError(f"{design_path}: a design needs 'case', 'handle' and 'variables' (and may have "
-                         f"'fixed', 'slip', 'settings'), not {sorted(design) if isinstance(design, dict) else design!r}")
+    if not isinstance(design, dict) or not {'case', 'variables'} <= set(design) or set(design) - KEYS or \
+            ('handle' in design) == ('handles' in design):
+        raise ValueError(f"{design_path}: a design needs 'case', 'variables' and either 'handle' (the patches of one "
+                         f"body) or 'handles' (named bodies), and may have 'fixed', 'slip', 'settings'; not "
+                         f"{sorted(design) if isinstance(design, dict) else design!r}")
+    bodies = design['handles'] if 'handles' in design else {'handle': design['handle']}
+    if not isinstance(bodies, dict) or not bodies or any(_names(p) is None for p in bodies.values()):
+        raise ValueError(f"{design_path}: 'handles' maps each body's name to its patches (names, patterns, groups), "
+                         f"'handle' lists one body's; not {bodies!r}")
+    bodies = {name: _names(p) for name, p in bodies.items()}
+    roles = {role: _names(design.get(role, [])) or [] for role in ('fixed', 'slip')}
     case = os.path.join(os.path.dirname(os.path.abspath(design_path)), design['case'])
     if not os.path.exists(case):
         raise ValueError(f"{design_path}: the case {case} does not exist")
-    handle, fixed, slip = list(design['handle']), list(design.get('fixed', [])), list(design.get('slip', []))
-    reader = vtkfoam.open_case(case, handle + fixed + slip, decompose_polyhedra=False)  # checkMesh's own cells
-    deformer = vtkfoam.morph(reader, handle, (0, 0, 0), fixed, slip, **design.get('settings', {}))
+    names = [n for patches in bodies.values() for n in patches] + roles['fixed'] + roles['slip']
+    reader = vtkfoam.open_case(case, names, decompose_polyhedra=False)  # checkMesh's own cells
+    deformer = vtkfoam.morph(reader, bodies, (0, 0, 0), roles['fixed'], roles['slip'], **design.get('settings', {}))
+    regions = {name: deformer.GetInputAlgorithm(1, i) for i, name in enumerate(bodies)}  # morph() connects the bodies first
     dvs = DesignVariables(deformer)
     for variable in design['variables']:
+        if isinstance(variable, dict) and 'patches' in variable:
+            raise ValueError(f"{design_path}: variable {variable.get('name')!r} names 'patches': a handle's patches move as "
+                             f"one body now; name several bodies in 'handles' and the variable's bodies in its 'handles'")
         if not isinstance(variable, dict) or set(variable) - VARIABLE_KEYS or 'name' not in variable:
             raise ValueError(f"{design_path}: a variable has a name, one of translate/rotate/scale, lower, upper and "
-                             f"optionally value and patches, not {variable!r}")
-        patches = variable.get('patches', handle)
-        unknown = [p for p in patches if p not in handle]
-        if unknown:
-            raise ValueError(f"{design_path}: variable {variable['name']!r} names {unknown}, which are no handle patches {handle}")
-        regions = [deformer.GetInputAlgorithm(1, handle.index(p)) for p in patches]  # morph() connects the handles first
+                             f"optionally value and handles, not {variable!r}")
+        named = variable.get('handles', list(bodies))
+        unknown = [b for b in named if b not in bodies] if isinstance(named, list) else [named]
+        if unknown or not named:
+            raise ValueError(f"{design_path}: variable {variable['name']!r} names the bodies {named!r}; the design's are "
+                             f"{list(bodies)}")
         axes = {k: variable[k] for k in ('translate', 'rotate', 'scale') if k in variable}
-        dvs.addHandleDV(variable['name'], regions, lower=variable.get('lower'), upper=variable.get('upper'),
+        dvs.addHandleDV(variable['name'], [regions[b] for b in named], lower=variable.get('lower'), upper=variable.get('upper'),
                         value=variable.get('value', 0.0), **axes)
     return dvs
 

@@ -40,6 +40,41 @@ def _load_wrapping(readers=False):
                        "the plugin before using mlsdeform in pvpython, or put the plugin's folder on sys.path")
 
 
+def entries(names):
+    """A role's names as a list: one name (a str) or several."""
+    return [names] if isinstance(names, str) else list(names)
+
+
+def handle_bodies(handle):
+    """The handle's bodies, each moved as one: {name: patches} from one body's patches (a name or
+    a list, the body 'handle') or from a dict of named bodies."""
+    return dict(handle) if isinstance(handle, dict) else {'handle': entries(handle)}
+
+
+def mesh_regions(available, names):
+    """Of an OpenFOAM reader's mesh regions (available: its 'internalMesh', 'patch/NAME' and
+    'group/NAME'), the internal mesh and those that read what names name: patches, patterns of
+    whole patch names ('motorBike.*') and patch groups ('motorBikeGroup'), matched as a Constraint
+    Region's Blocks match them (vtkConstraintRegion.NamesBlock, NamesGroup). Raises ValueError
+    naming the names that name no patch or group, with those of the case."""
+    Region = _load_wrapping().vtkConstraintRegion
+    names = entries(names)
+    chosen, named = ['internalMesh'], set()
+    for region in available:
+        kind, _, name = region.partition('/')
+        hits = [n for n in names if (kind == 'patch' and Region.NamesBlock(n, name)) or (kind == 'group' and Region.NamesGroup(n, name))]
+        if hits:
+            chosen.append(region)
+            named.update(hits)
+    missing = [n for n in names if n not in named]
+    if missing:
+        patches = [r.partition('/')[2] for r in available if r.startswith('patch/')]
+        groups = [r.partition('/')[2] for r in available if r.startswith('group/')]
+        raise ValueError(f"the case has no patch or patch group {', '.join(missing)} (its patches: {', '.join(patches)}; "
+                         f"its groups: {', '.join(groups) or 'none'})")
+    return chosen
+
+
 def read_faces_ahead(foam_file):
     """Starts reading the case's faces, owner and neighbour for MLS Deform's mesh quality in a
     background thread of this process (vtkSubspaceDeformFilter.PrefetchCaseFaces), to run on the

@@ -1,19 +1,25 @@
 """Morphing an OpenFOAM case into a variant from pvpython: open the case with ParaView's OpenFOAM
-reader, make Constraint Regions of its patches, deform the internal mesh and the patches in one
-MLS Deform, and save the variant case (the plugin's OpenFOAM case writer): mlsdeform.foam, once
+reader, make one Constraint Region per role of its patches (by name, pattern or patch group),
+deform the internal mesh and the patches in one MLS Deform, and save the variant case (the plugin's OpenFOAM case writer): mlsdeform.foam, once
 the plugin is loaded (paraview.simple.LoadPlugin(path, remote=False): its proxies join
 paraview.simple)."""
 import paraview.simple as pvs
 
-from .deformer import read_faces_ahead
+from .deformer import entries, handle_bodies, mesh_regions, read_faces_ahead
 
 
 def open_case(foam_file, patches, decompose_polyhedra=True):
-    """The case's internal mesh and the named patches, as ParaView's OpenFOAM reader reads them,
-    updated; in a builtin session (the reader in this process) a background thread meanwhile reads
-    the case's faces for MLS Deform's mesh quality (mlsdeform.deformer.read_faces_ahead)."""
+    """The case's internal mesh and the named patches (names, patterns, patch groups:
+    mlsdeform.deformer.mesh_regions), as ParaView's OpenFOAM reader reads them, updated; in a
+    builtin session (the reader in this process) a background thread meanwhile reads the case's
+    faces for MLS Deform's mesh quality (mlsdeform.deformer.read_faces_ahead). Raises ValueError
+    naming a patch the case does not have."""
     reader = pvs.OpenFOAMReader(FileName=foam_file)
-    reader.MeshRegions = ['internalMesh'] + ['patch/' + p for p in patches]
+    reader.UpdatePipelineInformation()
+    try:
+        reader.MeshRegions = mesh_regions(reader.MeshRegions.Available, patches)
+    except ValueError as e:
+        raise ValueError(f"{foam_file}: {e}") from None
     reader.Decomposepolyhedra = 1 if decompose_polyhedra else 0
     reader.Cachemesh = 0   # its own second copy of the mesh, kept for time steps a variant does not have (35 MB on 1M cells)
     if reader.GetClientSideObject() is not None:
@@ -22,10 +28,11 @@ def open_case(foam_file, patches, decompose_polyhedra=True):
     return reader
 
 
-def patch_region(reader, patch, role, **properties):
-    """A Constraint Region of the given role holding every point of one patch."""
-    block = pvs.ExtractBlock(Input=reader, Selectors=['/Root/boundary/' + patch])
-    return pvs.ConstraintRegion(Input=block, Role=role, SelectionMode='AllPoints', **properties)
+def patch_region(reader, patches, role, **properties):
+    """A Constraint Region of the given role holding every point of the named patches (names,
+    patterns, patch groups: its Blocks); a Handle moves them as one body, a Slip region keeps each
+    on its plane."""
+    return pvs.ConstraintRegion(Input=reader, Role=role, SelectionMode='Blocks', Blocks=entries(patches), **properties)
 
 
 def layer_region(reader, patch, layers):
@@ -38,14 +45,17 @@ def layer_region(reader, patch, layers):
 
 
 def morph(reader, handle, translation, fixed=(), slip=(), rigid_layers=0, **settings):
-    """MLS Deform of the whole case: the handle patches move by translation, fixed patches stay,
-    slip patches (planes) slide within their plane; with rigid_layers > 0 the cells within that
-    many layers of the handle patches stay rigid. Raises RuntimeError if it failed."""
-    regions = [patch_region(reader, p, 'Handle', Translation=list(translation)) for p in handle]
-    regions += [patch_region(reader, p, 'Fixed') for p in fixed]
-    regions += [patch_region(reader, p, 'Slip') for p in slip]
+    """MLS Deform of the whole case: the handle's patches move as one body by translation (handle:
+    a patch, pattern or group name, a list of them, or a dict of named bodies {name: patches}, each
+    a region of its own), fixed patches stay, slip patches slide within their planes; with
+    rigid_layers > 0 the cells within that many layers of the handle patches stay rigid. Its
+    Regions hold one region per handle body first, then one Fixed and one Slip region. Raises
+    RuntimeError if it failed."""
+    bodies = handle_bodies(handle)
+    regions = [patch_region(reader, patches, 'Handle', Translation=list(translation)) for patches in bodies.values()]
+    regions += [patch_region(reader, patches, role) for patches, role in ((fixed, 'Fixed'), (slip, 'Slip')) if entries(patches)]
     if rigid_layers > 0:
-        regions += [layer_region(reader, p, rigid_layers) for p in handle]
+        regions += [layer_region(reader, p, rigid_layers) for patches in bodies.values() for p in entries(patches)]
     deformed = pvs.MLSDeform(Input=reader, Regions=regions, **settings)
     deformed.UpdatePipeline()
     error = deformed.GetDataInformation().GetFieldDataInformation().GetArrayInformation('DeformationError')

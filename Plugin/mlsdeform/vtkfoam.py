@@ -1,25 +1,27 @@
 """Morphing an OpenFOAM case into a variant on a plain VTK pipeline, the twin of mlsdeform.foam
-without ParaView's server manager: VTK's OpenFOAM reader, one vtkConstraintRegion per patch, one
-vtkMLSDeformFilter, the plugin's vtkOpenFOAMCaseWriter. It runs in Debian's python3 (ParaView's
+without ParaView's server manager: VTK's OpenFOAM reader, one vtkConstraintRegion per role (its
+patches, patterns and patch groups by name), one vtkMLSDeformFilter, the plugin's
+vtkOpenFOAMCaseWriter. It runs in Debian's python3 (ParaView's
 VTK modules) with the plugin's folder on sys.path, and in pvpython without LoadPlugin; it is what
 the design-of-experiments command line (mlsdeform-doe.py) builds, since it holds less memory and
 starts faster than paraview.simple (221 MB before a script's first line in pvpython, 312 MB after
 ``import paraview.simple``).
 
     reader = open_case('hull/case.foam', ['hull', 'inlet'])
-    deform = morph(reader, ['hull'], (0.1, 0, 0), fixed=['inlet'])
+    deform = morph(reader, 'hull', (0.1, 0, 0), fixed=['inlet'])
     save_variant(deform, 'variant/case.foam', link=True)
 """
 import os
 
-from .deformer import _load_wrapping, read_faces_ahead
+from .deformer import _load_wrapping, entries, handle_bodies, mesh_regions, read_faces_ahead
 
 
 def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
-    """VTK's OpenFOAM reader of the case's internal mesh, the named patches and the named fields
-    only (point fields as point data, face fields as the patches' cell data), with ParaView's
-    Skip Zero Time, no mesh cache (a variant has no time steps of its own) and no cell-to-point
-    interpolation, not yet updated. Raises ValueError naming a missing patch."""
+    """VTK's OpenFOAM reader of the case's internal mesh, the named patches (names, patterns,
+    patch groups: mesh_regions) and the named fields only (point fields as point data, face fields
+    as the patches' cell data), with ParaView's Skip Zero Time, no mesh cache (a variant has no
+    time steps of its own) and no cell-to-point interpolation, not yet updated. Raises ValueError
+    naming a patch the case does not have."""
     from vtkmodules.vtkIOGeometry import vtkOpenFOAMReader
     if not os.path.isfile(foam_file):
         raise ValueError(f"the case file {foam_file} does not exist")
@@ -31,11 +33,12 @@ def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
     reader.SetCreateCellToPoint(0)
     reader.UpdateInformation()
     available = [reader.GetPatchArrayName(i) for i in range(reader.GetNumberOfPatchArrays())]
-    missing = [p for p in patches if 'patch/' + p not in available]
-    if missing:
-        raise ValueError(f"the case {foam_file} has no patch {', '.join(missing)}")
+    try:
+        chosen = mesh_regions(available, patches)
+    except ValueError as e:
+        raise ValueError(f"{foam_file}: {e}") from None
     for name in available:
-        reader.SetPatchArrayStatus(name, 1 if name == 'internalMesh' or name[len('patch/'):] in patches else 0)
+        reader.SetPatchArrayStatus(name, 1 if name in chosen else 0)
     for count, get_name, set_status in ((reader.GetNumberOfPointArrays, reader.GetPointArrayName, reader.SetPointArrayStatus),
                                         (reader.GetNumberOfCellArrays, reader.GetCellArrayName, reader.SetCellArrayStatus)):
         for i in range(count()):
@@ -54,29 +57,31 @@ def open_case(foam_file, patches, decompose_polyhedra=True):
     return reader
 
 
-def patch_region(reader, patch, role, translation=(0, 0, 0)):
+def patch_region(reader, patches, role, translation=(0, 0, 0)):
     """A vtkConstraintRegion of the given role (vtkConstraintRegion.Handle, .Fixed, .Slip, ...)
-    holding every point of one patch; a Handle moves by translation."""
-    from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+    holding every point of the named patches (names, patterns, patch groups: a Constraint Region's
+    Blocks): a Handle moves them as one body by translation, a Slip region keeps each on its plane."""
     Region = _load_wrapping().vtkConstraintRegion
-    boundary = reader.GetOutput().GetBlock(1)
-    blocks = {boundary.GetMetaData(i).Get(vtkMultiBlockDataSet.NAME()): i for i in range(boundary.GetNumberOfBlocks())}
     region = Region()
-    region.SetInputData(boundary.GetBlock(blocks[patch]))
+    region.SetInputConnection(reader.GetOutputPort())
     region.SetRole(role)
-    region.SetSelectionMode(Region.AllPoints)
+    region.SetSelectionMode(Region.Blocks)
+    for name in entries(patches):
+        region.AddBlock(name)
     if role == Region.Handle:
         region.SetTranslation(*translation)
     return region
 
 
 def morph(reader, handle, translation, fixed=(), slip=(), **settings):
-    """vtkMLSDeformFilter of the whole case, updated: the handle patches move by translation,
-    fixed patches stay, slip patches (planes) slide within their plane; its Regions input (port 1)
-    lists the handles first, then the fixed and the slip patches. settings are MLS Deform
-    properties by name: numbers (NumberOfSamples=2000: SetNumberOfSamples(2000)), or an
-    enumeration value by its name in the VTK class (Basis='Wendland', ExtrusionAxis='ExtrudedZ').
-    Raises ValueError for an unknown setting or value and RuntimeError if the deformation failed."""
+    """vtkMLSDeformFilter of the whole case, updated: the handle's patches move as one body by
+    translation (handle: a patch, pattern or group name, a list of them, or a dict of named bodies
+    {name: patches}, each a region of its own), fixed patches stay, slip patches slide within their
+    planes; its Regions input (port 1) holds one region per handle body first, then one Fixed and
+    one Slip region. settings are MLS Deform properties by name: numbers
+    (NumberOfSamples=2000: SetNumberOfSamples(2000)), or an enumeration value by its name in the
+    VTK class (Basis='Wendland', ExtrusionAxis='ExtrudedZ'). Raises ValueError for an unknown
+    setting or value and RuntimeError if the deformation failed."""
     Region = _load_wrapping().vtkConstraintRegion
     deform = _load_wrapping().vtkMLSDeformFilter()
     for name, value in settings.items():
@@ -94,9 +99,10 @@ def morph(reader, handle, translation, fixed=(), slip=(), **settings):
         else:
             setter(value)
     deform.SetInputData(0, reader.GetOutput())
-    roles = [(p, Region.Handle) for p in handle] + [(p, Region.Fixed) for p in fixed] + [(p, Region.Slip) for p in slip]
-    for patch, role in roles:
-        region = patch_region(reader, patch, role, translation)  # held while connected: an output port does not hold its algorithm
+    roles = [(patches, Region.Handle) for patches in handle_bodies(handle).values()]
+    roles += [(patches, role) for patches, role in ((fixed, Region.Fixed), (slip, Region.Slip)) if entries(patches)]
+    for patches, role in roles:
+        region = patch_region(reader, patches, role, translation)  # held while connected: an output port does not hold its algorithm
         deform.AddInputConnection(1, region.GetOutputPort())
     deform.Update()
     error = deform.GetOutputDataObject(0).GetFieldData().GetAbstractArray('DeformationError')

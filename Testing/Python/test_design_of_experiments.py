@@ -138,7 +138,7 @@ raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), sam
 import json  # noqa: E402
 design = os.path.join(work, 'design.json')
 variables = [{'name': 'dx', 'translate': [1, 0, 0], 'lower': -0.05, 'upper': 0.05},
-             {'name': 'yaw', 'rotate': [0, 0, 1], 'lower': -10, 'upper': 10, 'patches': ['body']}]
+             {'name': 'yaw', 'rotate': [0, 0, 1], 'lower': -10, 'upper': 10}]
 with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip, 'variables': variables,
                'settings': {'NumberOfSamples': 500}}, f)
@@ -172,7 +172,31 @@ for interpreter, rows in reports.items():
 with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handle': ['hull'], 'variables': []}, f)
 run = subprocess.run([python3] + command, capture_output=True, text=True)
-check(run.returncode == 2 and 'has no patch hull' in run.stderr, 'a design naming a patch the case lacks exits with 2 (%s)' % run.stderr.strip()[-200:])
+check(run.returncode == 2 and 'has no patch or patch group hull' in run.stderr and 'its patches: inlet' in run.stderr,
+      'a design naming a patch the case lacks exits with 2, naming the case\'s patches (%s)' % run.stderr.strip()[-200:])
+
+# issue 54, point 4: the same design by patterns and a patch group, its handle named as a body
+# ("handles"), run from a python3 that lacks numpy and VTK (here Debian's without its site
+# packages, -S): it hands itself to Debian's python3 and writes the same variants
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handles': {'sphere': ['bod.*']}, 'fixed': ['in.*', 'outlet'],
+               'slip': ['ground', 'top', 'front', 'back'], 'variables': [dict(v, handles=['sphere']) for v in variables],
+               'settings': {'NumberOfSamples': 500}}, f)
+command[2] = os.path.join(work, 'cli-patterns')
+run = subprocess.run([python3, '-S'] + command, capture_output=True, text=True)
+with open(os.path.join(work, 'cli-patterns', 'report.csv')) as f:
+    patterns = list(csv.DictReader(f))
+check(run.returncode == 0 and [[r[c] for c in columns] for r in patterns] == [[r[c] for c in columns] for r in reports[python3]],
+      'patterns, a named body and a python3 without numpy give the same variants (exit %d: %s)'
+      % (run.returncode, run.stderr.strip()[-300:]))
+for bad, message in (({'handle': handle, 'handles': {'a': handle}}, "either 'handle'"),
+                     ({'handles': {'a': []}}, "maps each body's name"),
+                     ({'handle': handle, 'variables': [dict(variables[0], patches=['body'])]}, "move as one body now"),
+                     ({'handle': handle, 'variables': [dict(variables[0], handles=['wing'])]}, "names the bodies ['wing']")):
+    with open(design, 'w') as f:
+        json.dump(dict({'case': 'case/case.foam', 'variables': variables}, **bad), f)
+    run = subprocess.run([python3] + command, capture_output=True, text=True)
+    check(run.returncode == 2 and message in run.stderr, 'a design with %s exits with 2 (%s)' % (list(bad), run.stderr.strip()[-200:]))
 # settings: an enumeration value by its VTK name; an unknown name or property exits with 2
 with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip, 'variables': variables,

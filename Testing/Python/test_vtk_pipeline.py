@@ -49,7 +49,7 @@ try:
 except RuntimeError as e:
     check('was not written' in str(e) and not os.path.exists(os.path.join(work, 'no-such-folder')),
           'a variant in a folder that does not exist is refused (%s), and nothing is written' % e)
-raises(lambda: vtkfoam.open_case(os.path.join(case, 'case.foam'), ['hull']), 'has no patch hull', 'a patch the case lacks')
+raises(lambda: vtkfoam.open_case(os.path.join(case, 'case.foam'), ['hull']), 'has no patch or patch group hull', 'a patch the case lacks')
 
 # design variables on the VTK filter: written to the region, read back by a new DesignVariables,
 # exact derivatives against central differences (as test_design_variables.py: translation acts
