@@ -52,14 +52,16 @@ def activate():
     return window
 
 
-def reveal(child, left=None):
+def reveal(child, left=None, point=None):
     """Scrolls the scroll area that holds a widget (the Properties panel) until it shows the
-    widget's centre, or the point `left` pixels from its left edge (a check box's box: a stretched
-    check box takes no click right of its text), and returns that point's global position."""
+    widget's centre, the point `left` pixels from its left edge (a check box's box: a stretched
+    check box takes no click right of its text), or a QPoint of the widget (an item of a list), and
+    returns that point's global position."""
     from PyQt5.QtWidgets import QScrollArea
-    point = child.rect().center()
-    if left is not None:
-        point.setX(left)
+    if point is None:
+        point = child.rect().center()
+        if left is not None:
+            point.setX(left)
     parent = child.parentWidget()
     while parent is not None and not isinstance(parent, QScrollArea):
         parent = parent.parentWidget()
