@@ -19,47 +19,10 @@ namespace
 {
 const QEvent::Type DeliverEvent = static_cast<QEvent::Type>(QEvent::registerEventType());
 
-// The user's input as the window system gives it to a window (QGuiApplication sends it to the
-// QWindow before the window passes it on to its widgets).
-bool userInput(QEvent::Type type)
-{
-  switch (type)
-  {
-    case QEvent::MouseButtonPress:
-    case QEvent::MouseButtonRelease:
-    case QEvent::MouseButtonDblClick:
-    case QEvent::MouseMove:
-    case QEvent::NonClientAreaMouseButtonPress:
-    case QEvent::NonClientAreaMouseButtonRelease:
-    case QEvent::NonClientAreaMouseButtonDblClick:
-    case QEvent::NonClientAreaMouseMove:
-    case QEvent::KeyPress:
-    case QEvent::KeyRelease:
-    case QEvent::Wheel:
-    case QEvent::Enter:
-    case QEvent::Leave:
-    case QEvent::ContextMenu:
-    case QEvent::TabletPress:
-    case QEvent::TabletRelease:
-    case QEvent::TabletMove:
-    case QEvent::TouchBegin:
-    case QEvent::TouchUpdate:
-    case QEvent::TouchEnd:
-    case QEvent::TouchCancel:
-    case QEvent::Close:
-      return true;
-    default:
-      return false;
-  }
-}
-
-bool dragAndDrop(QEvent::Type type)
-{
-  return type == QEvent::DragEnter || type == QEvent::DragMove || type == QEvent::DragLeave || type == QEvent::Drop;
-}
-
-// A copy of a window's input event, of its own class.
-std::unique_ptr<QEvent> copyOf(const QEvent* event)
+// A copy of the user's input as the window system gives it to a window (QGuiApplication sends it
+// to the QWindow before the window passes it on to its widgets), of the event's own class; none
+// for any other event.
+std::unique_ptr<QEvent> copyOfInput(const QEvent* event)
 {
   switch (event->type())
   {
@@ -72,10 +35,15 @@ std::unique_ptr<QEvent> copyOf(const QEvent* event)
     case QEvent::NonClientAreaMouseButtonDblClick:
     case QEvent::NonClientAreaMouseMove:
       return std::make_unique<QMouseEvent>(*static_cast<const QMouseEvent*>(event));
+    case QEvent::KeyPress:
+    case QEvent::KeyRelease:
+      return std::make_unique<QKeyEvent>(*static_cast<const QKeyEvent*>(event));
     case QEvent::Wheel:
       return std::make_unique<QWheelEvent>(*static_cast<const QWheelEvent*>(event));
     case QEvent::Enter:
       return std::make_unique<QEnterEvent>(*static_cast<const QEnterEvent*>(event));
+    case QEvent::Leave:
+      return std::make_unique<QEvent>(*event);
     case QEvent::ContextMenu:
       return std::make_unique<QContextMenuEvent>(*static_cast<const QContextMenuEvent*>(event));
     case QEvent::TabletPress:
@@ -90,23 +58,21 @@ std::unique_ptr<QEvent> copyOf(const QEvent* event)
     case QEvent::Close:
       return std::make_unique<QCloseEvent>(*static_cast<const QCloseEvent*>(event));
     default:
-      return std::make_unique<QEvent>(*event); // Leave
+      return nullptr;
   }
+}
+
+bool dragAndDrop(QEvent::Type type)
+{
+  return type == QEvent::DragEnter || type == QEvent::DragMove || type == QEvent::DragLeave || type == QEvent::Drop;
 }
 }
 
-// One held event: a key as its fields (delivered through Qt's key entry, shortcuts included),
-// anything else as a copy sent to its window.
+// One held event, a copy, and the window it was given to.
 struct pqHeldInput::Held
 {
   QPointer<QWindow> window;
   std::unique_ptr<QEvent> event;
-  QEvent::Type keyType = QEvent::None;
-  int key = 0;
-  Qt::KeyboardModifiers modifiers;
-  QString text;
-  bool autorepeat = false;
-  ushort count = 1;
 };
 
 pqHeldInput::pqHeldInput(QObject* parent)
@@ -184,32 +150,19 @@ bool pqHeldInput::eventFilter(QObject* object, QEvent* event)
     event->accept();
     return true;
   }
-  if (!userInput(type))
+  std::unique_ptr<QEvent> copy = copyOfInput(event);
+  if (!copy)
   {
     return this->QObject::eventFilter(object, event);
   }
   auto held = std::make_unique<Held>();
   held->window = window;
-  if (type == QEvent::KeyPress || type == QEvent::KeyRelease)
-  {
-    const auto* key = static_cast<const QKeyEvent*>(event);
-    held->keyType = type;
-    held->key = key->key();
-    held->modifiers = key->modifiers();
-    held->text = key->text();
-    held->autorepeat = key->isAutoRepeat();
-    held->count = key->count();
-  }
-  else
-  {
-    held->event = copyOf(event);
-  }
+  held->event = std::move(copy);
   if (type == QEvent::MouseButtonPress && this->Processing && this->Pressed)
   {
     this->Pressed(static_cast<const QMouseEvent*>(event)->globalPos());
   }
   this->Queue.push_back(std::move(held));
-  ++this->HeldSoFar;
   return true;
 }
 
@@ -244,13 +197,16 @@ void pqHeldInput::deliverNext()
   ++this->Delivering;
   if (QWindow* window = held->window)
   {
-    if (held->event)
+    const QEvent::Type type = held->event->type();
+    if (type == QEvent::KeyPress || type == QEvent::KeyRelease)
     {
-      QCoreApplication::sendEvent(window, held->event.get());
+      // through Qt's key entry: the shortcut map and the focus widget see it as they would have
+      const auto* key = static_cast<const QKeyEvent*>(held->event.get());
+      qt_handleKeyEvent(window, type, key->key(), key->modifiers(), key->text(), key->isAutoRepeat(), key->count());
     }
     else
     {
-      qt_handleKeyEvent(window, held->keyType, held->key, held->modifiers, held->text, held->autorepeat, held->count);
+      QCoreApplication::sendEvent(window, held->event.get());
     }
   }
   --this->Delivering;

@@ -33,9 +33,6 @@ public:
   /// After the update: the held input is delivered, one event per pass of the event loop, and
   /// input that comes meanwhile waits behind it.
   void deliverLater();
-  /// How many events have been held since the application started (shown in the output window's
-  /// debug log; a test checks that its input was held).
-  int heldSoFar() const { return this->HeldSoFar; }
 
 protected:
   bool eventFilter(QObject* object, QEvent* event) override;
@@ -52,5 +49,4 @@ private:
   int Delivering = 0;       // inside the delivery of a held event (a dialog it opens gets its input)
   bool Filtering = false;   // installed on the application
   bool DeliveryPosted = false;
-  int HeldSoFar = 0;
 };

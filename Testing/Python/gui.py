@@ -71,3 +71,41 @@ def reveal(child, left=None, point=None):
     QApplication.instance().processEvents()
     point = child.mapToGlobal(point)
     return point.x(), point.y()
+
+
+class FandiskHandle:
+    """The fandisk of Examples/fandisk_scene.py (bottom 10% Fixed, top 25% the Handle, unmoved),
+    deformed with 300 samples and shown with its regions, the Handle active; its handle box alone
+    in the view (box, and its representation)."""
+
+    def __init__(self, scene):
+        import os
+        import paraview.simple as pvs
+        from checks import settle
+        self.part = pvs.OpenDataFile(os.path.join(os.environ['MLSDEFORM_DATA_DIR'], 'fandisk.off'))
+        self.part.UpdatePipeline()
+        self.bounds = self.part.GetDataInformation().GetBounds()
+        self.height = self.bounds[5] - self.bounds[4]
+        self.fixed, self.handle = scene.fixed_and_handle(self.part, self.bounds)
+        self.handle.Translation = [0, 0, 0]
+        self.deformed = scene.MLSDeform(Input=self.part, Regions=[self.fixed, self.handle], NumberOfSamples=300)
+        self.view = pvs.GetActiveViewOrCreate('RenderView')
+        for source in (self.deformed, self.fixed, self.handle):
+            pvs.Show(source, self.view)
+        pvs.SetActiveSource(self.handle)
+        pvs.Render(self.view)
+        settle(QApplication.instance(), seconds=0.5)
+        boxes, shown = shown_boxes(self.view)
+        if len(boxes) != 1 or len(shown) != 1:
+            raise RuntimeError('expected the handle box alone, found %d handle boxes of %d boxes' % (len(boxes), len(shown)))
+        self.box = boxes[0]
+        self.representation = self.box.GetRepresentationProxy().GetClientSideObject()
+
+    def oblique(self):
+        """The camera from the side and above: no face sphere in front of the box's centre."""
+        import paraview.simple as pvs
+        self.view.CameraPosition = [1.5 * self.height, -3 * self.height, 1.2 * self.height]
+        self.view.CameraFocalPoint = [0, 0, 0]
+        self.view.CameraViewUp = [0, 0, 1]
+        self.view.ResetCamera()
+        pvs.Render(self.view)

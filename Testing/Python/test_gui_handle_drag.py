@@ -43,24 +43,10 @@ try:
     def near(values, expected):
         return max(abs(a - b) for a, b in zip(values, expected)) <= TOLERANCE * max(1.0, height)
 
-    part = pvs.OpenDataFile(os.path.join(os.environ['MLSDEFORM_DATA_DIR'], 'fandisk.off'))
-    part.UpdatePipeline()
-    bounds = part.GetDataInformation().GetBounds()
-    height = bounds[5] - bounds[4]
-    fixed, handle = scene.fixed_and_handle(part, bounds)
-    handle.Translation = [0, 0, 0]
-    deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle], NumberOfSamples=300)
-    view = pvs.GetActiveViewOrCreate('RenderView')
-    for source in (deformed, fixed, handle):
-        pvs.Show(source, view)
-    pvs.SetActiveSource(handle)
-    pvs.Render(view)
-    settle(seconds=0.5)
-    boxes, shown_boxes = gui.shown_boxes(view)
-    if len(boxes) != 1 or len(shown_boxes) != 1:
-        raise RuntimeError('expected the handle box alone, found %d handle boxes of %d boxes' % (len(boxes), len(shown_boxes)))
-    widget = boxes[0]
-    representation = widget.GetRepresentationProxy().GetClientSideObject()
+    fandisk = gui.FandiskHandle(scene)
+    part, bounds, height, fixed, handle, deformed, view = (fandisk.part, fandisk.bounds, fandisk.height, fandisk.fixed,
+                                                           fandisk.handle, fandisk.deformed, fandisk.view)
+    widget, representation = fandisk.box, fandisk.representation
     red = [0.9, 0.1, 0.1]  # the Handle's colour (Filters/Vocabulary/RegionRoles.h)
     for part_name in ('Outline', 'Handle'):
         colour = list(getattr(representation, 'Get%sProperty' % part_name)().GetColor())

@@ -32,27 +32,12 @@ try:
     def settle(until=lambda: False, seconds=10.0):
         checks.settle(app, until, seconds)
 
-    part = pvs.OpenDataFile(os.path.join(os.environ['MLSDEFORM_DATA_DIR'], 'fandisk.off'))
-    part.UpdatePipeline()
-    bounds = part.GetDataInformation().GetBounds()
-    height = bounds[5] - bounds[4]
-    fixed, handle = scene.fixed_and_handle(part, bounds)
-    handle.Translation = [0, 0, 0]
-    deformed = scene.MLSDeform(Input=part, Regions=[fixed, handle], NumberOfSamples=300)
-    view = pvs.GetActiveViewOrCreate('RenderView')
-    for source in (deformed, fixed, handle):
-        pvs.Show(source, view)
-    view.CameraPosition = [1.5 * height, -3 * height, 1.2 * height]  # oblique: no face handle in front of the centre
-    view.CameraFocalPoint = [0, 0, 0]
-    view.CameraViewUp = [0, 0, 1]
-    view.ResetCamera()
-    pvs.SetActiveSource(handle)
-    pvs.Render(view)
+    fandisk = gui.FandiskHandle(scene)
+    fandisk.oblique()
     settle(seconds=0.5)
-    boxes, _ = gui.shown_boxes(view)
-    if len(boxes) != 1:
-        raise RuntimeError('expected one handle box, found %d' % len(boxes))
-    representation = boxes[0].GetRepresentationProxy().GetClientSideObject()
+    part, bounds, height, handle, deformed, view = (fandisk.part, fandisk.bounds, fandisk.height, fandisk.handle,
+                                                    fandisk.deformed, fandisk.view)
+    representation = fandisk.representation
     box_bounds = representation.GetBounds()
     x, y = gui.screen_point(view, [(box_bounds[2 * i] + box_bounds[2 * i + 1]) / 2 for i in range(3)])
 
