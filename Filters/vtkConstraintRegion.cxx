@@ -418,6 +418,16 @@ bool vtkConstraintRegion::NamesGroup(const char* entry, const char* group)
   return entry && group && mlsvtk::namesGroup(entry, group);
 }
 
+int vtkConstraintRegion::GetNumberOfSelectedBlocks()
+{
+  return static_cast<int>(this->SelectedBlocks.size());
+}
+
+const char* vtkConstraintRegion::GetSelectedBlockName(int i)
+{
+  return i >= 0 && i < this->GetNumberOfSelectedBlocks() ? this->SelectedBlocks[i].c_str() : nullptr;
+}
+
 int vtkConstraintRegion::GetNumberOfBlocks()
 {
   return static_cast<int>(this->BlockNames.size());
@@ -646,11 +656,13 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
     const mlsdeform::PointList surface = this->SelectionMode == CellLayers
       ? mlsdeform::gatherPositions(mlsvtk::points(in.surfaceSets), {}, group).positions
       : mlsdeform::PointList();
+    this->SelectedBlocks.clear();
     const std::optional<mlsvtk::BlockSelection> blocks = this->SelectionMode == Blocks
       ? std::optional<mlsvtk::BlockSelection>(mlsvtk::selectBlocks(in.data, in.sets, this->BlockNames, group))
       : std::nullopt;
     SelectedPositions chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers,
       blocks ? &*blocks : nullptr, inputs.setPerBlock, group);
+    this->SelectedBlocks = blocks ? blocks->names : std::vector<std::string>();
     selection.positions = std::move(chosen.positions);
     selection.sets = std::move(chosen.sets);
     selection.cloud = !selection.sets.empty()

@@ -127,6 +127,10 @@ public:
   void RemoveAllBlocks();
   int GetNumberOfBlocks();
   const char* GetBlock(int i);
+  /// After an update in mode Blocks: the names of the blocks it selected whole (this process's
+  /// piece), e.g. the patches a group named, in the input's order.
+  int GetNumberOfSelectedBlocks();
+  const char* GetSelectedBlockName(int i);
   /// Whether a Blocks entry names a block (a patch) called name, or a patch group called group:
   /// for scripts that choose which patches a reader reads (mlsdeform.vtkfoam, mlsdeform.foam).
   static bool NamesBlock(const char* entry, const char* name);
@@ -331,7 +335,8 @@ private:
   std::unique_ptr<Selection> Selected;
   struct DesignVariableList;
   std::unique_ptr<DesignVariableList> Designs;
-  std::vector<std::string> BlockNames; // mode Blocks
+  std::vector<std::string> BlockNames;    // mode Blocks
+  std::vector<std::string> SelectedBlocks; // the blocks the last selection took whole
 
 };
 

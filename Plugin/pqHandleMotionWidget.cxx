@@ -73,13 +73,13 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     // "Handle Translation": the Region's box widget has its own Translation and Rotation
     auto* label = new QLabel(QString("Handle %1").arg(property->GetXMLLabel()), this);
     label->setToolTip(pqPropertyWidget::getTooltip(property));
-    layout->addWidget(label, row, 0);
+    layout->addWidget(label, row + 1, 0); // below the choice of box
     for (int c = 0; c < 3; ++c)
     {
       auto* field = new pqDoubleLineEdit(this);
       field->setObjectName(QString("%1_%2").arg(property->GetXMLName()).arg(c));
       field->setToolTip(pqPropertyWidget::getTooltip(property));
-      layout->addWidget(field, row, c + 1);
+      layout->addWidget(field, row + 1, c + 1);
       this->addPropertyLink(field, "text2", SIGNAL(textChangedAndEditingFinished()), property, c);
     }
     pqCoreUtilities::connect(property, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(motionEdited()));
@@ -105,7 +105,7 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
   this->BoxChoice->button(static_cast<int>(Box::Selection))->setToolTip(
     "The region's selection box (its Region function's own widget): edits which positions the region selects.");
   this->BoxChoice->button(static_cast<int>(Box::None))->setToolTip("No box in the view.");
-  layout->addLayout(choices, 4, 0, 1, 4);
+  layout->addLayout(choices, 1, 0, 1, 4); // at the top of the group, seen first
   QObject::connect(this->BoxChoice, QOverload<int>::of(&QButtonGroup::buttonClicked), this, [this](int box) {
     this->Shown = static_cast<Box>(box);
     this->showChosenBox();
@@ -322,13 +322,14 @@ void pqHandleMotionWidget::selectionBoxToggled(bool shown)
   {
     return;
   }
+  // shown: it becomes the choice; hidden: the handle's box comes back (None is chosen in the row)
   if (shown)
   {
     this->Shown = Box::Selection;
   }
   else if (this->Shown == Box::Selection)
   {
-    this->Shown = Box::None;
+    this->Shown = Box::Handle;
   }
   this->showChosenBox();
 }

@@ -9,6 +9,8 @@
 #include <pqPipelineFilter.h>
 #include <pqServerManagerModel.h>
 #include <vtkSMTransferFunctionManager.h>
+#include <vtkCommand.h>
+#include <vtkEventQtSlotConnect.h>
 #include <vtkDataObject.h>
 #include <vtkPVDataInformation.h>
 #include <vtkSMPVRepresentationProxy.h>
@@ -17,6 +19,7 @@
 #include <vtkSMSessionProxyManager.h>
 #include <vtkSMSourceProxy.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -58,6 +61,8 @@ pqOutputColoring::pqOutputColoring(QObject* parent)
   : QObject(parent)
 {
 }
+
+pqOutputColoring::~pqOutputColoring() = default;
 
 void pqOutputColoring::onStartup()
 {
@@ -119,28 +124,76 @@ void pqOutputColoring::legendFollows()
   vtkSMProxy* proxy = representation ? representation->getProxy() : nullptr;
   vtkSMProxy* lut = proxy ? vtkSMPropertyHelper(proxy, "LookupTable", /*quiet=*/true).GetAsProxy() : nullptr;
   std::set<pqPipelineSource*> seen;
-  if (!lut || !vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy) || !showsDeformation(representation->getInput(), seen) ||
-    vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", /*quiet=*/true).GetAsInt() == vtkSMTransferFunctionManager::NEVER)
+  if (!lut || !vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy) || !showsDeformation(representation->getInput(), seen))
   {
-    return; // not a deformation's data, or the user locked the range
+    return; // not a deformation's data
   }
-  // the range of every shown representation coloured with this legend, not the largest seen
+  if (!this->Followed.contains(lut))
+  {
+    this->Followed.insert(lut);
+    this->Connections->Connect(lut, vtkCommand::PropertyModifiedEvent, this, SLOT(legendRescaled(vtkObject*, unsigned long, void*, void*)));
+    this->Connections->Connect(lut, vtkCommand::DeleteEvent, this, SLOT(legendDeleted(vtkObject*)));
+  }
+  this->rescale(lut);
+}
+
+void pqOutputColoring::legendDeleted(vtkObject* legend)
+{
+  this->Followed.remove(static_cast<vtkSMProxy*>(legend));
+}
+
+void pqOutputColoring::legendRescaled(vtkObject* legend, unsigned long, void*, void* property)
+{
+  auto* lut = vtkSMProxy::SafeDownCast(legend);
+  if (this->Rescaling || !lut || !property || std::strcmp(static_cast<const char*>(property), "RGBPoints") != 0)
+  {
+    return;
+  }
+  // ParaView widened an empty range (a zero field: [0, 1.2e-38]) after an action of its own
+  vtkSMPropertyHelper points(lut, "RGBPoints");
+  const unsigned int n = points.GetNumberOfElements();
+  if (n >= 4 && points.GetAsDouble(n - 4) - points.GetAsDouble(0) < 1e-30)
+  {
+    this->rescale(lut);
+  }
+}
+
+void pqOutputColoring::rescale(vtkSMProxy* lut)
+{
+  // the range of every shown representation coloured with this legend, not the largest seen;
+  // not a range the user locked
   double range[2];
-  if (!vtkSMTransferFunctionProxy::ComputeDataRange(lut, range))
+  if (vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", /*quiet=*/true).GetAsInt() == vtkSMTransferFunctionManager::NEVER ||
+    !vtkSMTransferFunctionProxy::ComputeDataRange(lut, range))
   {
     return;
   }
   if (range[0] == 0 && range[1] == 0)
   {
     // a zero field (no motion): ParaView widens the empty range [0, 0] to [0, 1.2e-38], a legend
-    // that reads as round-off; it reads 0 to 1% of the model's size instead, all at its lowest colour
-    const double* bounds = representation->getInputDataInformation()->GetBounds();
-    const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) + std::pow(bounds[5] - bounds[4], 2));
+    // that reads as round-off; it reads 0 to 1% of the shown models' size instead, all at its
+    // lowest colour
+    double diagonal = 0;
+    for (unsigned int c = 0; c < lut->GetNumberOfConsumers(); ++c)
+    {
+      vtkSMProxy* consumer = lut->GetConsumerProxy(c) ? lut->GetConsumerProxy(c)->GetTrueParentProxy() : nullptr;
+      auto* shown = pqApplicationCore::instance()->getServerManagerModel()->findItem<pqDataRepresentation*>(consumer);
+      if (shown && shown->isVisible() && shown->getInputDataInformation())
+      {
+        const double* b = shown->getInputDataInformation()->GetBounds();
+        if (b[0] <= b[1])
+        {
+          diagonal = std::max(diagonal, std::sqrt(std::pow(b[1] - b[0], 2) + std::pow(b[3] - b[2], 2) + std::pow(b[5] - b[4], 2)));
+        }
+      }
+    }
     range[1] = diagonal > 0 && std::isfinite(diagonal) ? 0.01 * diagonal : 1.0;
   }
+  this->Rescaling = true;
   vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, range[0], range[1]);
   if (vtkSMProxy* opacity = vtkSMPropertyHelper(lut, "ScalarOpacityFunction", /*quiet=*/true).GetAsProxy())
   {
     vtkSMTransferFunctionProxy::RescaleTransferFunction(opacity, range[0], range[1]);
   }
+  this->Rescaling = false;
 }

@@ -5,12 +5,19 @@
 // first shown; a state file's or the designer's own colours are kept. After each update of a
 // deformed model, or of anything downstream of it (an Extract Block of a deformed case), the
 // colour legend of what it is coloured by (Displacement, dX/d<variable>, ...) shows the range of
-// the data shown now (unless the user locked it), and a zero field shows as zero.
+// the data shown now (unless the user locked it), and a zero field shows as zero, also when
+// ParaView rescales the legend itself (another component, colouring anew, Reset Range).
 #pragma once
 
 #include <QObject>
+#include <QSet>
+
+#include <vtkNew.h>
 
 class pqRepresentation;
+class vtkEventQtSlotConnect;
+class vtkObject;
+class vtkSMProxy;
 
 class pqOutputColoring : public QObject
 {
@@ -18,6 +25,7 @@ class pqOutputColoring : public QObject
 
 public:
   explicit pqOutputColoring(QObject* parent = nullptr);
+  ~pqOutputColoring() override;
   void onStartup();
   void onShutdown() {}
 
@@ -25,4 +33,16 @@ private Q_SLOTS:
   void representationAdded(pqRepresentation* representation);
   /// A representation's data changed: the legend follows, if it shows a deformation's data.
   void legendFollows();
+  /// A followed legend's range changed (ParaView rescaled it): an empty range of a zero field
+  /// reads as zero.
+  void legendRescaled(vtkObject* legend, unsigned long, void*, void* property);
+  void legendDeleted(vtkObject* legend);
+
+private:
+  /// Rescales a legend to the range of the data it colours (zero: 0 to 1% of the model's size).
+  void rescale(vtkSMProxy* lut);
+
+  vtkNew<vtkEventQtSlotConnect> Connections;
+  QSet<vtkSMProxy*> Followed; // the legends of deformations' data
+  bool Rescaling = false;     // set while rescale() changes a legend
 };

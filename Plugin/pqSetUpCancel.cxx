@@ -7,6 +7,7 @@
 #include "vtkSubspaceDeformFilter.h"
 
 #include <pqApplicationCore.h>
+#include <pqCoreUtilities.h>
 #include <pqPipelineSource.h>
 #include <pqProgressManager.h>
 #include <pqProgressWidget.h>
@@ -19,6 +20,8 @@
 #include <vtkTimerLog.h>
 
 #include <QApplication>
+#include <QMainWindow>
+#include <QStatusBar>
 #include <QThread>
 #include <QToolButton>
 
@@ -41,6 +44,13 @@ vtkAlgorithm* algorithmOf(pqPipelineSource* source)
   vtkObjectBase* object = source && source->getProxy() ? source->getProxy()->GetClientSideObject() : nullptr;
   auto* algorithm = vtkAlgorithm::SafeDownCast(object);
   return algorithm && cancellable(algorithm) ? algorithm : nullptr;
+}
+
+// The main window's status bar.
+QStatusBar* statusBar()
+{
+  auto* window = qobject_cast<QMainWindow*>(pqCoreUtilities::mainWidget());
+  return window ? window->statusBar() : nullptr;
 }
 
 // The progress bar's abort button, if the main window has one.
@@ -146,6 +156,11 @@ void pqSetUpCancel::ended(vtkObject* algorithm)
   this->Input->deliverLater(); // the input that came during the update
   if (!this->Cancelled)
   {
+    if (QStatusBar* bar = this->Told ? statusBar() : nullptr)
+    {
+      bar->clearMessage(); // the set-up ran through: the cancel's note is done
+    }
+    this->Told = false;
     return;
   }
   this->Cancelled = false;
@@ -159,9 +174,17 @@ void pqSetUpCancel::ended(vtkObject* algorithm)
       // Apply lit again: applied, the set-up starts anew (with Auto Apply, a change starts it)
       this->CancelledSource = source;
       QObject::connect(source, &pqProxy::modifiedStateChanged, this, &pqSetUpCancel::reapplied, Qt::UniqueConnection);
-      if (!vtkPVGeneralSettings::GetInstance()->GetAutoApply())
+      const bool autoApply = vtkPVGeneralSettings::GetInstance()->GetAutoApply();
+      if (!autoApply)
       {
         source->setModifiedState(pqProxy::MODIFIED);
+      }
+      // where the user looks (the output window's line is out of sight): the view is not the panel's
+      if (QStatusBar* bar = statusBar())
+      {
+        bar->showMessage(QString("%1: set-up cancelled, the view shows the previous deformation; %2 runs it again.")
+                           .arg(source->getSMName(), autoApply ? "the next change" : "Apply"));
+        this->Told = true;
       }
     }
   }

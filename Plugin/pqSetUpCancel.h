@@ -51,4 +51,5 @@ private:
   pqHeldInput* Input;                   // the user's input during an update, delivered after it
   double LastProcessed = 0;             // when events were last processed (seconds)
   QPointer<pqPipelineSource> CancelledSource; // waits for its next Apply
+  bool Told = false;                          // the status bar says a set-up was cancelled
 };

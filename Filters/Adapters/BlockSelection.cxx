@@ -11,6 +11,7 @@
 #include <vtkDataAssembly.h>
 #include <vtkDataAssemblyUtilities.h>
 #include <vtkIdList.h>
+#include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
@@ -220,6 +221,8 @@ BlockSelection selectBlocks(vtkDataObject* input, const std::vector<vtkPointSet*
       {
         out.points[s].assign(out.points[s].size(), 1);
         out.block[s] = static_cast<int>(it->GetCurrentFlatIndex());
+        vtkInformation* meta = it->HasCurrentMetaData() ? it->GetCurrentMetaData() : nullptr;
+        out.names.push_back(meta && meta->Has(vtkCompositeDataSet::NAME()) ? meta->Get(vtkCompositeDataSet::NAME()) : "");
       }
       ++s;
     }

@@ -31,6 +31,8 @@ struct BlockSelection
   /// composite id (its flat index: the same on every process of a dataset split over processes);
   /// 0 when it was not (its points are selected by a set array, or none).
   std::vector<int> block;
+  /// The names of the blocks selected whole, in the input's order (a patch's name).
+  std::vector<std::string> names;
 };
 
 /// Whether an entry names a block (a patch) called name: the name itself or a pattern of whole

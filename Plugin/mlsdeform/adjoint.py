@@ -36,6 +36,7 @@ import re
 
 import numpy as np
 
+from .deformer import case_path
 from .ranks import all_reduce, rank
 
 SENSITIVITY_PREFIXES = ('pointSensVec', 'pointSensNormalVec', 'pointSensNormal',
@@ -337,12 +338,11 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
     error = output.GetFieldData().GetAbstractArray('DeformationError')
     if error is not None and error.GetNumberOfValues() > 0:
         raise RuntimeError(f"the deformation failed: {error.GetValue(0)}")
-    path = source_data.GetFieldData().GetAbstractArray('CasePath')
+    path = case_path(source_data)
     if source is not None:
         source = _case_folder(source)
-    elif path is not None:
-        characters = (path.GetValue(i) for i in range(path.GetNumberOfValues()))
-        source = os.path.abspath(''.join(c if isinstance(c, str) else chr(c) for c in characters).rstrip('\0'))
+    elif path:
+        source = os.path.abspath(path)
     else:
         raise ValueError("the deformation's input has no CasePath field data (it did not come from the OpenFOAM reader, "
                          "or RedistributeDataSet dropped it): give source=, the case it was read from")

@@ -40,6 +40,16 @@ def _load_wrapping(readers=False):
                        "the plugin before using mlsdeform in pvpython, or put the plugin's folder on sys.path")
 
 
+def case_path(data):
+    """The OpenFOAM case a dataset was read from: its field data CasePath (a char or string array,
+    as VTK's reader writes it), or '' when it has none."""
+    path = data.GetFieldData().GetAbstractArray('CasePath') if data is not None else None
+    if path is None:
+        return ''
+    characters = (path.GetValue(i) for i in range(path.GetNumberOfValues()))
+    return ''.join(c if isinstance(c, str) else chr(c) for c in characters).split('\0')[0]
+
+
 def entries(names):
     """A role's names as a list: one name (a str) or several."""
     return [names] if isinstance(names, str) else list(names)
@@ -49,6 +59,20 @@ def handle_bodies(handle):
     """The handle's bodies, each moved as one: {name: patches} from one body's patches (a name or
     a list, the body 'handle') or from a dict of named bodies."""
     return dict(handle) if isinstance(handle, dict) else {'handle': entries(handle)}
+
+
+def disjoint_roles(labelled):
+    """Raises ValueError naming the patches that more than one of the regions selected: labelled
+    is [(label, vtkConstraintRegion updated in mode Blocks)], e.g. a handle's patch group that takes
+    in a slip patch ('wall' holds the ground)."""
+    owners = {}
+    for label, region in labelled:
+        for i in range(region.GetNumberOfSelectedBlocks()):
+            owners.setdefault(region.GetSelectedBlockName(i), []).append(label)
+    shared = {patch: labels for patch, labels in owners.items() if len(labels) > 1}
+    if shared:
+        raise ValueError('a patch belongs to one role: ' + '; '.join(f"{patch} is in {' and in '.join(labels)}"
+                                                                     for patch, labels in shared.items()))
 
 
 def mesh_regions(available, names):

@@ -11,9 +11,10 @@ source's unchanged files unless copies are asked for; ``<folder>/report.csv`` ho
 per variant: the variables' values, InvertedCells, MaxNonOrthogonality, MaxSkewness (MLS Deform's
 mesh-quality figures, checkMesh's definitions), ok (the verdict against the thresholds), seconds
 and path (empty for a variant that failed and was not written). ``<folder>/design.json`` records
-the design, so that running the same call again resumes: rows already in the report are kept, a
-variant interrupted while it was written (its ``.writing-*`` folder) is written again, and a
-different design in the same folder is an error.
+the design (the values, and the case, regions and set-up it deforms with), so that running the
+same call again resumes: rows already in the report are kept, a variant interrupted while it was
+written (its ``.writing-*`` folder) is written again, and a different design in the same folder is
+an error that says what differs.
 """
 import csv
 import json
@@ -97,6 +98,32 @@ def readTable(path, names, bounds):
     return values
 
 
+def _deformation(dvs):
+    """What the variants are made of besides the variables' values, to tell one design from
+    another in a folder: the source case (CasePath), each region's role, point count and centroid
+    (which patches it holds), and the set-up's NumberOfSamples, NumberOfIntegrationPoints and
+    ReciprocalCondition (the samples, weights and basis). Sums over MPI processes; the centroids
+    and the condition to 9 and 6 digits, which round-off of another summation order keeps."""
+    from .ranks import all_reduce
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from .deformer import case_path
+    field = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
+    record = {'case': case_path(dvs._algorithm.GetInputDataObject(0, 0))}
+    for key, digits in (('NumberOfSamples', 12), ('NumberOfIntegrationPoints', 12), ('ReciprocalCondition', 6)):
+        array = field.GetArray(key)
+        record[key] = float('%.*g' % (digits, array.GetTuple1(0))) if array is not None else None
+    regions = []
+    for region in dvs._filter.regions():
+        points = dvs._filter.output(region).GetPoints()
+        xyz = vtk_to_numpy(points.GetData()).astype(np.float64) if points is not None else np.zeros((0, 3))
+        count = int(all_reduce(len(xyz), 'sum'))
+        total = all_reduce(xyz.sum(axis=0) if len(xyz) else np.zeros(3), 'sum')
+        regions.append({'role': int(dvs._filter.role(region)), 'points': count,
+                        'centroid': [float('%.9g' % (c / max(count, 1))) for c in total]})
+    record['regions'] = regions
+    return record
+
+
 def _write_atomically(path, text):
     partial = path + '.writing'
     with open(partial, 'w') as f:
@@ -157,13 +184,16 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     folder = os.path.abspath(folder)
     os.makedirs(folder, exist_ok=True)
     design = {'variables': names, 'bounds': [bounds[n] for n in names], 'values': [[v[n] for n in names] for v in values],
-              'thresholds': limits, 'writeFailed': bool(writeFailed), 'copy': bool(copy), **origin}
+              'thresholds': limits, 'writeFailed': bool(writeFailed), 'copy': bool(copy), **origin,
+              'deformation': _deformation(dvs)}
     record = os.path.join(folder, 'design.json')
     if os.path.exists(record):
         with open(record) as f:
             earlier = json.load(f)
-        if earlier != json.loads(json.dumps(design)):
-            raise ValueError(f"{folder} holds another design (design.json): choose another folder or remove it")
+        differs = sorted(key for key in set(earlier) | set(design) if earlier.get(key) != json.loads(json.dumps(design)).get(key))
+        if differs:
+            raise ValueError(f"{folder} holds another design (its design.json differs in {', '.join(differs)}): choose "
+                             f"another folder or remove it")
     else:
         _write_atomically(record, json.dumps(design, indent=1))
     # a variant's path is its case folder; variants interrupted while written leave .writing-* folders
@@ -199,8 +229,8 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
             timings.append(seconds)
             if verbose:
                 remaining = (len(values) - i - 1) * float(np.mean(timings))
-                print('variant %d of %d: %s, %.2f s (mean %.2f s), about %.0f s left' % (
-                    i + 1, len(values), 'ok' if ok else 'FAILS the thresholds' + ('' if writeFailed else ', not written'),
+                print('%s (%d of %d): %s, %.2f s (mean %.2f s), about %.0f s left' % (
+                    variant, i + 1, len(values), 'ok' if ok else 'FAILS the thresholds' + ('' if writeFailed else ', not written'),
                     seconds, float(np.mean(timings)), remaining), flush=True)
     finally:
         dvs.setDesignVars(start)

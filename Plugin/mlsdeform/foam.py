@@ -5,7 +5,7 @@ the plugin is loaded (paraview.simple.LoadPlugin(path, remote=False): its proxie
 paraview.simple)."""
 import paraview.simple as pvs
 
-from .deformer import entries, handle_bodies, mesh_regions, read_faces_ahead
+from .deformer import disjoint_roles, entries, handle_bodies, mesh_regions, read_faces_ahead
 
 
 def open_case(foam_file, patches, decompose_polyhedra=True):
@@ -50,10 +50,16 @@ def morph(reader, handle, translation, fixed=(), slip=(), rigid_layers=0, **sett
     a region of its own), fixed patches stay, slip patches slide within their planes; with
     rigid_layers > 0 the cells within that many layers of the handle patches stay rigid. Its
     Regions hold one region per handle body first, then one Fixed and one Slip region. Raises
-    RuntimeError if it failed."""
+    ValueError for a patch in two roles (or two bodies), RuntimeError if it failed."""
     bodies = handle_bodies(handle)
-    regions = [patch_region(reader, patches, 'Handle', Translation=list(translation)) for patches in bodies.values()]
-    regions += [patch_region(reader, patches, role) for patches, role in ((fixed, 'Fixed'), (slip, 'Slip')) if entries(patches)]
+    labelled = [(name, patch_region(reader, patches, 'Handle', Translation=list(translation))) for name, patches in bodies.items()]
+    labelled += [(name, patch_region(reader, patches, role)) for name, patches, role in (('fixed', fixed, 'Fixed'), ('slip', slip, 'Slip'))
+                 if entries(patches)]
+    for _, region in labelled:
+        region.UpdatePipeline()
+    if all(region.GetClientSideObject() is not None for _, region in labelled):  # (a builtin session)
+        disjoint_roles([(name, region.GetClientSideObject()) for name, region in labelled])
+    regions = [region for _, region in labelled]
     if rigid_layers > 0:
         regions += [layer_region(reader, p, rigid_layers) for patches in bodies.values() for p in entries(patches)]
     deformed = pvs.MLSDeform(Input=reader, Regions=regions, **settings)

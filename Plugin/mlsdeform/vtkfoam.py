@@ -13,7 +13,7 @@ starts faster than paraview.simple (221 MB before a script's first line in pvpyt
 """
 import os
 
-from .deformer import _load_wrapping, entries, handle_bodies, mesh_regions, read_faces_ahead
+from .deformer import _load_wrapping, disjoint_roles, entries, handle_bodies, mesh_regions, read_faces_ahead
 
 
 def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
@@ -81,7 +81,8 @@ def morph(reader, handle, translation, fixed=(), slip=(), **settings):
     one Slip region. settings are MLS Deform properties by name: numbers
     (NumberOfSamples=2000: SetNumberOfSamples(2000)), or an enumeration value by its name in the
     VTK class (Basis='Wendland', ExtrusionAxis='ExtrudedZ'). Raises ValueError for an unknown
-    setting or value and RuntimeError if the deformation failed."""
+    setting or value, or a patch in two roles (or two bodies), and RuntimeError if the deformation
+    failed."""
     Region = _load_wrapping().vtkConstraintRegion
     deform = _load_wrapping().vtkMLSDeformFilter()
     for name, value in settings.items():
@@ -99,11 +100,16 @@ def morph(reader, handle, translation, fixed=(), slip=(), **settings):
         else:
             setter(value)
     deform.SetInputData(0, reader.GetOutput())
-    roles = [(patches, Region.Handle) for patches in handle_bodies(handle).values()]
-    roles += [(patches, role) for patches, role in ((fixed, Region.Fixed), (slip, Region.Slip)) if entries(patches)]
-    for patches, role in roles:
+    roles = [(name, patches, Region.Handle) for name, patches in handle_bodies(handle).items()]
+    roles += [(name, patches, role) for name, patches, role in (('fixed', fixed, Region.Fixed), ('slip', slip, Region.Slip))
+              if entries(patches)]
+    labelled = []
+    for name, patches, role in roles:
         region = patch_region(reader, patches, role, translation)  # held while connected: an output port does not hold its algorithm
         deform.AddInputConnection(1, region.GetOutputPort())
+        region.Update()
+        labelled.append((name, region))
+    disjoint_roles(labelled)
     deform.Update()
     error = deform.GetOutputDataObject(0).GetFieldData().GetAbstractArray('DeformationError')
     if error is not None:

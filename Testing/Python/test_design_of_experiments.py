@@ -4,6 +4,7 @@ report, the thresholds, resuming after an interruption, and bad designs.
 Usage: pvpython test_design_of_experiments.py PLUGIN EXAMPLES_OPENFOAM_DIR WORK_DIR PYTHON3"""
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -148,7 +149,8 @@ for interpreter in (python3, 'pvpython'):
     folder = os.path.join(work, 'cli-' + os.path.basename(interpreter))
     command[2] = folder
     run = subprocess.run([interpreter] + command, capture_output=True, text=True)
-    check(run.returncode == 0 and run.stdout.count('variant ') >= 3 and '3 variants, 3 pass the thresholds' in run.stdout,
+    check(run.returncode == 0 and len(re.findall(r'^variant\d+ \(\d+ of 3\)', run.stdout, re.M)) == 3 and
+          '3 variants, 3 pass the thresholds' in run.stdout,
           'the command line in %s writes 3 variants with a progress line each (exit %d: %s)'
           % (interpreter, run.returncode, run.stdout[-300:] + run.stderr[-300:]))
     with open(os.path.join(folder, 'report.csv')) as f:
@@ -189,7 +191,20 @@ with open(os.path.join(work, 'cli-patterns', 'report.csv')) as f:
 check(run.returncode == 0 and [[r[c] for c in columns] for r in patterns] == [[r[c] for c in columns] for r in reports[python3]],
       'patterns, a named body and a python3 without numpy give the same variants (exit %d: %s)'
       % (run.returncode, run.stderr.strip()[-300:]))
-for bad, message in (({'handle': handle, 'handles': {'a': handle}}, "either 'handle'"),
+# another design in a folder that holds one: refused, saying what differs (here the handle's
+# patches, which change the regions), and nothing of the folder is touched
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handle': ['top'], 'fixed': fixed, 'slip': ['ground', 'front', 'back'],
+               'variables': variables, 'settings': {'NumberOfSamples': 500}}, f)
+command[2] = os.path.join(work, 'cli-patterns')
+before = open(os.path.join(work, 'cli-patterns', 'report.csv')).read()
+run = subprocess.run([python3] + command, capture_output=True, text=True)
+check(run.returncode == 2 and 'holds another design' in run.stderr and 'deformation' in run.stderr and
+      open(os.path.join(work, 'cli-patterns', 'report.csv')).read() == before,
+      'another design into the same folder is refused, naming what differs (%s)' % run.stderr.strip()[-200:])
+command[2] = os.path.join(work, 'cli-bad')
+for bad, message in (({'handle': ['wall'], 'slip': ['ground', 'top']}, 'ground is in handle and in slip'),
+                     ({'handle': handle, 'handles': {'a': handle}}, "either 'handle'"),
                      ({'handles': {'a': []}}, "maps each body's name"),
                      ({'handle': handle, 'variables': [dict(variables[0], patches=['body'])]}, "move as one body now"),
                      ({'handle': handle, 'variables': [dict(variables[0], handles=['wing'])]}, "names the bodies ['wing']")):

@@ -97,6 +97,8 @@ try:
     check(after == before, 'the previous output stays: displacement range %s, before %s' % (after, before))
     check(not output.isVisible(), 'the cancel pops up no output window (it is an information line, the user\'s own)')
     check(apply.isEnabled(), 'Apply is lit again after the cancel')
+    note = window.statusBar().currentMessage()
+    check('cancelled' in note and 'Apply runs it again' in note, 'the status bar says so: "%s"' % note)
 
     # a click on Apply runs the set-up through, with no other help
     count = len(executions)
@@ -110,6 +112,8 @@ try:
     # (the rest of the set-up outlasts the cancel's second: the stop came from the click, not the end)
     check(full > WITHIN, 'the uncancelled set-up takes longer than the cancel allows (%.1f s)' % full)
     check(not apply.isEnabled(), 'Apply is off once applied')
+    check('cancelled' not in window.statusBar().currentMessage(), 'and the status bar\'s note is gone: "%s"'
+          % window.statusBar().currentMessage())
     write_result(os.environ['MLSDEFORM_GUI_RESULT'])
 except Exception as error:  # reported through the result file, the GUI swallows exceptions
     write_result(os.environ['MLSDEFORM_GUI_RESULT'], error)

@@ -3,7 +3,8 @@ The sphereChannel case's set-up as a user makes it with the X server's mouse (xi
 case opened with its patches; for each role, Filters > MLS Deformation > Constraint Region on the
 case, whose panel shows the case's blocks to tick (SelectionMode Blocks from the start on a
 composite input), the patches ticked, Apply. One region per role: Handle body; Fixed inlet and
-outlet; Slip ground, top, front and back (each in its own plane). The pipeline browser names each
+outlet; Slip ground, top, front and back (each in its own plane). MLS Deform made as the README
+says: the case selected, Filters > MLS Deform, its input dialog given the regions. The pipeline browser names each
 region after its role and patches, a name the user gives stays, and MLS Deform over the three
 deforms the case with the sphere moved and the slip patches in their planes. The window's
 pictures go to MLSDEFORM_SCREENSHOT_DIR (the README's walk-through). Writes 'ok' or the failures
@@ -108,8 +109,59 @@ try:
     points = {r: r.GetDataInformation().GetNumberOfPoints() for r in (handle, fixed, slip)}
     check(all(points.values()), 'each region selects its patches\' points: %s' % list(points.values()))
 
-    # MLS Deform over the three: the sphere moved up, the slip patches in their planes
-    deformed = scene.MLSDeform(Input=reader, Regions=[handle, fixed, slip], NumberOfSamples=600)
+    # MLS Deform over the three, as the README says: the case selected, Filters > MLS Deform, and
+    # in the dialog that opens the three regions chosen for the Regions port (a click on Regions,
+    # then on the regions with Ctrl), OK, Apply
+    from PyQt5.QtCore import QPoint, QTimer
+    from PyQt5.QtWidgets import QRadioButton
+
+    def dialog():
+        return QApplication.activeModalWidget()
+
+    def choose_regions():
+        ports = [b for b in dialog().findChildren(QRadioButton) if b.text() == 'Regions']
+        check(len(ports) == 1, 'the input dialog offers the Regions port')
+        xinput.click(*xinput.centre(ports[0]), wait=ARRIVAL)
+
+    def pick_regions():
+        # the dialog's pipeline (ParaView's pqFlatTreeView, no Qt item view): the case, its three
+        # regions, one row each of max(font height, 18) + 4 pixels (pqFlatTreeView's layout)
+        from PyQt5.QtGui import QFontMetrics
+        from PyQt5.QtWidgets import QHeaderView
+        view = [w for w in dialog().findChildren(QWidget) if w.objectName() == 'pipelineView'][0]
+        row = max(QFontMetrics(view.font()).height(), 18) + 4
+        header = [h.height() for h in view.viewport().findChildren(QHeaderView) if h.isVisible()]
+        top = header[0] if header else 0
+        for k, line in enumerate((1, 2, 3)):
+            at = view.viewport().mapToGlobal(QPoint(100, top + line * row + 4 + (row - 4) // 2))
+            xinput.click(at.x(), at.y(), wait=ARRIVAL, modifiers=['Control_L'] if k else [])
+
+    def accept():
+        ok = [b for b in dialog().findChildren(QPushButton) if b.text().replace('&', '') == 'OK']
+        xinput.click(*xinput.centre(ok[0]), wait=ARRIVAL)
+
+    steps = [choose_regions, pick_regions, accept]
+
+    def run(i=0):  # each step on a later pass of the dialog's event loop, once the last one's clicks arrived
+        if i < len(steps) and dialog() is not None:
+            try:
+                steps[i]()
+            except Exception as error:  # an exception in a Qt slot ends ParaView: the dialog is closed instead
+                check(False, 'step %d in the input dialog: %r' % (i, error))
+                dialog().reject()
+                return
+            QTimer.singleShot(500, lambda: run(i + 1))
+    pvs.SetActiveSource(reader)
+    settle(seconds=0.5)
+    QTimer.singleShot(1000, run)
+    [a for a in window.findChildren(QAction) if a.text() == 'MLS Deform'][0].trigger()  # returns once the dialog closed
+    settle(seconds=0.5)
+    click(apply)
+    deformed = pvs.GetActiveSource()
+    settle(lambda: deformed.GetDataInformation().GetNumberOfPoints() > 0, seconds=30)
+    check(deformed.GetXMLName() == 'MLSDeform' and list(deformed.Input) == [reader] if hasattr(deformed.Input, '__len__')
+          else deformed.Input == reader, 'the dialog made MLS Deform on the case')
+    check(set(deformed.Regions) == {handle, fixed, slip}, 'with the three regions as its Regions (%d)' % len(deformed.Regions))
     pvs.Show(deformed, view)
     handle.Translation = [0.0, 0.0, 0.05]
     pvs.SetActiveSource(handle)

@@ -48,6 +48,17 @@ try:
     low, high = legend()
     check(low == 0 and abs(high - 0.01 * diagonal) <= 1e-12 * diagonal,
           'zero motion: legend %g to %g, not 0 to %g (1%% of the diagonal)' % (low, high, 0.01 * diagonal))
+    # and after ParaView's own rescales of that legend: another component, colouring anew, Reset Range
+    from paraview.simple import ColorBy, GetDisplayProperties
+    look = GetDisplayProperties(deformed)
+    for action, what in ((lambda: ColorBy(look, ('POINTS', 'Displacement', 'X')), 'the X component'),
+                         (lambda: (ColorBy(look, None), ColorBy(look, ('POINTS', 'Displacement', 'Magnitude'))), 'colouring anew'),
+                         (lambda: look.RescaleTransferFunctionToDataRange(False, True), 'Reset Range')):
+        action()
+        Render()
+        low, high = legend()
+        check(low == 0 and abs(high - 0.01 * diagonal) <= 1e-12 * diagonal,
+              'zero motion, after %s: legend %g to %g, not 0 to %g' % (what, low, high, 0.01 * diagonal))
     # a large motion, then a smaller one: the legend follows the current largest displacement
     # (bounds: the array information's range is exact; 1e-6 relative covers its float output)
     for motion in (0.15, 0.03):

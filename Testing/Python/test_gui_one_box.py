@@ -3,7 +3,8 @@ box at a time, with the X server's mouse (xinput: XTest). A new Handle region sh
 box and no handle box until its first Apply; then the handle box alone. The panel's one choice
 ("Box in the view": Handle, Selection, None) and the selection box's own Show check box switch
 between them, never showing both; a click where the hidden handle box is moves nothing and adds
-no undo step. Another role shows the selection box. The handle box's centre sphere is twice the
+no undo step; unticking the selection box's Show brings the handle box back. Another role shows
+the selection box. The handle box's centre sphere is twice the
 face spheres' size, of a colour no role has, and taken by a click even where a face sphere lies in
 front of it; the box is at least a quarter as thick as it is long. Writes 'ok' or the failures to
 MLSDEFORM_GUI_RESULT."""
@@ -111,8 +112,9 @@ try:
     click(show_selection, left=8)
     check(boxes() == (0, 1) and choice() == ['Selection'], 'Show Selection Box ticked: the selection box alone and the choice '
           'says so: %d handle, %d selection, choice %s' % (boxes() + (choice(),)))
-    click(radios['Handle'])
-    check(boxes() == (1, 0), 'Handle chosen again: %d handle, %d selection' % boxes())
+    click(show_selection, left=8)
+    check(boxes() == (1, 0) and choice() == ['Handle'], 'Show Selection Box unticked: the handle box is back: %d handle, '
+          '%d selection, choice %s' % (boxes() + (choice(),)))
     # another role: the selection box is the region's box
     region.Role = 'Fixed'
     region.UpdatePipeline()

@@ -59,10 +59,17 @@ def release(button=1, wait=0.0):
     _sync(wait)
 
 
-def click(x, y, button=1, wait=0.0):
+def click(x, y, button=1, wait=0.0, modifiers=()):
+    """A click at the global position (x, y), holding the modifier keys given by name ('Control_L')."""
+    held = [_keycode(m) for m in modifiers]
+    for code in held:
+        _xtst.XTestFakeKeyEvent(_display, code, 1, 0)
     move(x, y)
     press(button)
-    release(button, wait)
+    release(button)
+    for code in reversed(held):
+        _xtst.XTestFakeKeyEvent(_display, code, 0, 0)
+    _sync(wait)
 
 
 def _keycode(name):
