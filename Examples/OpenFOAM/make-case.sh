@@ -11,7 +11,7 @@ mkdir -p "$(dirname "$target")"
 cp -r "$here/sphereChannel" "$target"
 cd "$target"
 set +u
-source /usr/share/openfoam/etc/bashrc
+source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1 # (its foamEtcFile notes are noise)
 set -u
 blockMesh > log.blockMesh 2>&1 || { tail -20 log.blockMesh; exit 1; }
 snappyHexMesh -overwrite > log.snappyHexMesh 2>&1 || { tail -20 log.snappyHexMesh; exit 1; }
