@@ -125,11 +125,13 @@ try:
 
     def pick_regions():
         # the dialog's pipeline (ParaView's pqFlatTreeView, no Qt item view): the case, its three
-        # regions, one row each of max(font height, 18) + 4 pixels (pqFlatTreeView's layout)
+        # regions, one row each of max(font height, indent) + 4 pixels, the indent the small icons'
+        # size + 2, at least 18 (pqFlatTreeView's layout)
         from PyQt5.QtGui import QFontMetrics
-        from PyQt5.QtWidgets import QHeaderView
+        from PyQt5.QtWidgets import QHeaderView, QStyle
         view = [w for w in dialog().findChildren(QWidget) if w.objectName() == 'pipelineView'][0]
-        row = max(QFontMetrics(view.font()).height(), 18) + 4
+        indent = max(view.style().pixelMetric(QStyle.PM_SmallIconSize) + 2, 18)
+        row = max(QFontMetrics(view.font()).height(), indent) + 4
         header = [h.height() for h in view.viewport().findChildren(QHeaderView) if h.isVisible()]
         top = header[0] if header else 0
         for k, line in enumerate((1, 2, 3)):
