@@ -1,0 +1,147 @@
+#include "Common/TextFile.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace mlsformats
+{
+namespace
+{
+std::string where(const std::string& file, std::size_t line)
+{
+  return line > 0 ? file + ":" + std::to_string(line) : file;
+}
+}
+
+FileError::FileError(const std::string& file_, std::size_t line_, const std::string& reason)
+  : std::runtime_error(where(file_, line_) + ": " + reason)
+  , file(file_)
+  , line(line_)
+{
+}
+
+std::string readFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    throw FileError(path, 0, "cannot be read (no such file, or no permission)");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad())
+  {
+    throw FileError(path, 0, "a read failed");
+  }
+  return text.str();
+}
+
+AtomicWrite::AtomicWrite(bool overwrite)
+  : Overwrite(overwrite)
+{
+}
+
+AtomicWrite::~AtomicWrite()
+{
+  for (const auto& [aside, path] : this->Pending)
+  {
+    std::error_code ignored;
+    std::filesystem::remove(aside, ignored);
+  }
+}
+
+void AtomicWrite::add(const std::string& path, const std::string& text)
+{
+  if (!this->Overwrite && std::filesystem::exists(path))
+  {
+    throw FileError(path, 0, "exists already (overwrite it or choose another name)");
+  }
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code made;
+  if (!folder.empty())
+  {
+    std::filesystem::create_directories(folder, made);
+  }
+  const std::string aside = path + ".writing-" + std::to_string(::getpid());
+  this->Pending.emplace_back(aside, path);
+  std::ofstream out(aside, std::ios::binary | std::ios::trunc);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  if (!out)
+  {
+    throw FileError(path, 0, "cannot be written (" + (made ? made.message() : std::string("no space or no permission")) + ")");
+  }
+}
+
+void AtomicWrite::commit()
+{
+  for (const auto& [aside, path] : this->Pending)
+  {
+    std::error_code failed;
+    std::filesystem::rename(aside, path, failed);
+    if (failed)
+    {
+      throw FileError(path, 0, "cannot be renamed into place: " + failed.message());
+    }
+  }
+  this->Pending.clear();
+}
+
+bool parseInteger(const char* first, const char* last, std::int64_t& value)
+{
+  if (first < last && *first == '+')
+  {
+    ++first;
+  }
+  const auto [end, error] = std::from_chars(first, last, value);
+  return first < last && error == std::errc() && end == last;
+}
+
+bool parseReal(const char* first, const char* last, double& value)
+{
+  if (first < last && *first == '+')
+  {
+    ++first;
+  }
+  auto [end, error] = std::from_chars(first, last, value);
+  if (error == std::errc() && end < last && (*end == 'D' || *end == 'd') && last - first < 64)
+  {
+    char copy[64];
+    std::copy(first, last, copy);
+    copy[end - first] = 'E';
+    const auto parsed = std::from_chars(copy, copy + (last - first), value);
+    end = first + (parsed.ptr - copy);
+    error = parsed.ec;
+  }
+  return first < last && error == std::errc() && end == last && std::isfinite(value);
+}
+
+void appendShortest(std::string& out, double value)
+{
+  char text[32];
+  const auto written = std::to_chars(text, text + sizeof(text), value);
+  out.append(text, written.ptr);
+}
+
+std::vector<Line> lines(const std::string& text)
+{
+  std::vector<Line> out;
+  std::size_t begin = 0;
+  while (begin < text.size())
+  {
+    std::size_t end = text.find('\n', begin);
+    const std::size_t next = end == std::string::npos ? text.size() : end + 1;
+    end = end == std::string::npos ? text.size() : end;
+    const std::size_t content = end > begin && text[end - 1] == '\r' ? end - 1 : end;
+    out.push_back({ begin, content, next });
+    begin = next;
+  }
+  return out;
+}
+} // namespace mlsformats

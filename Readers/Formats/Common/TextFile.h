@@ -1,0 +1,59 @@
+// What every format's reading and writing shares: an error that names the file and the line,
+// a whole file read at once, a file written aside and renamed into place (never half-written),
+// and the shortest text of a double that reads back as the same double.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mlsformats
+{
+/// An error in a file, "file:line: reason" (line 0: the file as a whole).
+class FileError : public std::runtime_error
+{
+public:
+  FileError(const std::string& file, std::size_t line, const std::string& reason);
+  std::string file;
+  std::size_t line;
+};
+
+/// The whole file. Throws FileError when it cannot be read.
+std::string readFile(const std::string& path);
+
+/// The files written into place at once: each is written aside (path.writing-<process>), and only
+/// once all are written are they renamed into place; a failure removes what was written aside and
+/// throws FileError. Existing files are replaced only when overwrite is set (else FileError).
+class AtomicWrite
+{
+public:
+  explicit AtomicWrite(bool overwrite);
+  ~AtomicWrite(); // removes what was written aside and not committed
+  /// Writes text aside for path.
+  void add(const std::string& path, const std::string& text);
+  /// Renames every file written aside into place.
+  void commit();
+
+private:
+  bool Overwrite;
+  std::vector<std::pair<std::string, std::string>> Pending; // (aside, path)
+};
+
+/// Whether [first, last) is wholly an integer ("+" allowed), and its value.
+bool parseInteger(const char* first, const char* last, std::int64_t& value);
+
+/// Whether [first, last) is wholly a finite real ("+" allowed, and Fortran's "D" exponent), and its
+/// value; NaN, infinities and numbers out of a double's range are not.
+bool parseReal(const char* first, const char* last, double& value);
+
+/// Appends the shortest text that reads back as the same double.
+void appendShortest(std::string& out, double value);
+
+/// The lines of text: the offsets where each line starts and ends (without "\n" or "\r\n").
+struct Line
+{
+  std::size_t begin, end, next;
+};
+std::vector<Line> lines(const std::string& text);
+} // namespace mlsformats

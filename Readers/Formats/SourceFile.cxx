@@ -1,0 +1,63 @@
+#include "SourceFile.h"
+
+#include "Abaqus/AbaqusDeck.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace mlsformats
+{
+namespace
+{
+// A deck starts with a keyword or a comment ("*HEADING", "**"), after blank lines.
+bool isDeck(const std::string& text)
+{
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  return first != std::string::npos && text[first] == '*';
+}
+
+std::unique_ptr<SourceFile> readDeck(const std::string& path, bool layout)
+{
+  return std::make_unique<abaqus::Deck>(layout ? abaqus::readNodeLayout(path) : abaqus::readDeck(path));
+}
+
+std::string lowerCase(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+} // namespace
+
+const std::vector<Format>& formats()
+{
+  static const std::vector<Format> table = {
+    { "Abaqus/CalculiX deck", "inp", isDeck, readDeck },
+  };
+  return table;
+}
+
+const Format* formatOf(const std::string& path)
+{
+  const std::size_t dot = path.find_last_of('.');
+  const std::string extension = dot == std::string::npos ? std::string() : lowerCase(path.substr(dot + 1));
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  for (const Format& format : formats())
+  {
+    std::istringstream extensions(format.extensions);
+    std::string known;
+    while (extensions >> known)
+    {
+      if (known == extension && format.recognizes(head))
+      {
+        return &format;
+      }
+    }
+  }
+  return nullptr;
+}
+} // namespace mlsformats
