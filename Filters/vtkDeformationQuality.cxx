@@ -24,6 +24,7 @@
 #include <vtkTable.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -85,7 +86,10 @@ Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellF
   Measures m;
   m.scaledJacobian = mlsvtk::scaledJacobians(grid);
   m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
-  m.inverted = m.faces.invertedCells;
+  // the faces' inverted cells and the quadratic elements folded between their corners
+  std::vector<unsigned char> inverted = m.faces.inverted;
+  mlsvtk::Elements(grid).measure(points, inverted);
+  m.inverted = static_cast<long>(std::count(inverted.begin(), inverted.end(), 1));
   m.maxNonOrthogonality.assign(cells.cells(), 0);
   m.maxSkewness.assign(cells.cells(), 0);
   for (std::size_t i = 0; i < faces.size(); ++i)

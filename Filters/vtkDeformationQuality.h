@@ -3,9 +3,10 @@
  * @brief Volume-mesh quality of a deformed mesh, and of its original, side by side.
  *
  * The measures of paper section 7.3:
- * - per cell the scaled Jacobian (verdict's, through vtkMeshQuality) of tetrahedra, hexahedra,
- *   wedges and pyramids: 1 for the ideal element, negative for an inverted one; NaN for other
- *   cell types (polyhedra, 2D cells), which the statistics skip;
+ * - per cell the scaled Jacobian of tetrahedra, hexahedra and wedges, linear or quadratic
+ *   (ElementJacobian.h: at the corners and the integration points; verdict's on linear cells, with
+ *   VTK's wedge orientation) and of pyramids (verdict's): 1 for the ideal element, negative for an
+ *   inverted one; NaN for other cell types (polyhedra, 2D cells), which the statistics skip;
  * - per interior face (a face shared by two 3D cells, also of vtkPolyhedron cells) the
  *   non-orthogonality (degrees) and skewness exactly as OpenFOAM's checkMesh defines them. A
  *   face's orientation (out of its owner, the lower cell id) is taken from the original mesh and
@@ -14,6 +15,7 @@
  * - per cell whether it is inverted: a face pyramid (apex the cell centre, base a face as the
  *   cell lists it, VTK's outward order) of negative volume, OpenFOAM's face-pyramid check. The
  *   scaled Jacobian is not that test: some warped cells that checkMesh accepts have a negative one.
+ *   A quadratic element is also inverted where det J <= 0 at one of its points.
  *
  * Input port 0: the mesh to measure (the deformed one). Input port 1 (optional): the original mesh
  * with the same cells, whose measures are reported alongside.

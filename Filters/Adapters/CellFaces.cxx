@@ -38,6 +38,20 @@ const LocalFaces& cellTypeFaces(int type)
         {
           std::swap(polygon[2], polygon[3]); // a pixel's points in raster order, not around it
         }
+        else if (face->GetCellType() == VTK_QUADRATIC_TRIANGLE || face->GetCellType() == VTK_QUADRATIC_QUAD ||
+          face->GetCellType() == VTK_BIQUADRATIC_QUAD)
+        {
+          // the corners, then the midside nodes: around the face, each midside node between its
+          // corners (a biquadratic face's centre left out)
+          const std::size_t corners = face->GetCellType() == VTK_QUADRATIC_TRIANGLE ? 3 : 4;
+          std::vector<int> around;
+          for (std::size_t i = 0; i < corners; ++i)
+          {
+            around.push_back(polygon[i]);
+            around.push_back(polygon[corners + i]);
+          }
+          polygon = around;
+        }
         out[fixed].push_back(polygon);
       }
     }

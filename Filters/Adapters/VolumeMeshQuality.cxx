@@ -11,6 +11,7 @@
 #include <vtkIdList.h>
 #include <vtkLogger.h>
 #include <vtkMeshQuality.h>
+#include <vtkNew.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -52,33 +53,96 @@ mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
   });
 }
 
+std::optional<mlsdeform::ElementShape> elementShape(int vtkCellType)
+{
+  using mlsdeform::ElementShape;
+  switch (vtkCellType)
+  {
+    case VTK_TETRA:
+      return ElementShape::Tetra4;
+    case VTK_QUADRATIC_TETRA:
+      return ElementShape::Tetra10;
+    case VTK_HEXAHEDRON:
+      return ElementShape::Hexa8;
+    case VTK_QUADRATIC_HEXAHEDRON:
+      return ElementShape::Hexa20;
+    case VTK_WEDGE:
+      return ElementShape::Wedge6;
+    case VTK_QUADRATIC_WEDGE:
+      return ElementShape::Wedge15;
+    default:
+      return std::nullopt;
+  }
+}
+
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
 {
   std::vector<double> jacobians(grid->GetNumberOfCells(), std::numeric_limits<double>::quiet_NaN());
   CellsByType byType;
+  vtkNew<vtkIdList> ids;
+  mlsdeform::PointList nodes;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    double (*measure)(vtkCell*) = nullptr; // verdict's scaled Jacobian of the type, if it has one
-    switch (grid->GetCellType(c))
+    const int type = grid->GetCellType(c);
+    if (const std::optional<mlsdeform::ElementShape> shape = elementShape(type))
     {
-      case VTK_TETRA:
-        measure = &vtkMeshQuality::TetScaledJacobian;
-        break;
-      case VTK_HEXAHEDRON:
-        measure = &vtkMeshQuality::HexScaledJacobian;
-        break;
-      case VTK_WEDGE:
-        measure = &vtkMeshQuality::WedgeScaledJacobian;
-        break;
-      case VTK_PYRAMID:
-        measure = &vtkMeshQuality::PyramidScaledJacobian;
-        break;
-      default:
-        continue;
+      grid->GetCellPoints(c, ids);
+      nodes.resize(ids->GetNumberOfIds());
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        grid->GetPoint(ids->GetId(i), nodes[i].data());
+      }
+      jacobians[c] = mlsdeform::elementJacobian(*shape, nodes.data()).minScaled;
     }
-    jacobians[c] = measure(byType.get(grid, c)->GetRepresentativeCell());
+    else if (type == VTK_PYRAMID)
+    {
+      jacobians[c] = vtkMeshQuality::PyramidScaledJacobian(byType.get(grid, c)->GetRepresentativeCell());
+    }
   }
   return jacobians;
+}
+
+Elements::Elements(vtkUnstructuredGrid* grid)
+  : CellCount(static_cast<std::size_t>(grid->GetNumberOfCells()))
+{
+  vtkNew<vtkIdList> ids;
+  Start.push_back(0);
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    if (const std::optional<mlsdeform::ElementShape> shape = elementShape(grid->GetCellType(c)))
+    {
+      grid->GetCellPoints(c, ids);
+      Cells.push_back(static_cast<int>(c));
+      Shapes.push_back(*shape);
+      Points.insert(Points.end(), ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+      Start.push_back(Points.size());
+    }
+  }
+}
+
+double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const
+{
+  using mlsdeform::ElementShape;
+  const long count = static_cast<long>(Cells.size());
+  inverted.resize(std::max(inverted.size(), CellCount), 0);
+  double least = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : least)
+  for (long e = 0; e < count; ++e)
+  {
+    mlsdeform::Vec3 nodes[20];
+    for (std::size_t i = Start[e]; i < Start[e + 1]; ++i)
+    {
+      nodes[i - Start[e]] = points[Points[i]];
+    }
+    const mlsdeform::ElementJacobian j = mlsdeform::elementJacobian(Shapes[e], nodes);
+    least = std::min(least, j.minScaled);
+    const bool quadratic = Shapes[e] == ElementShape::Tetra10 || Shapes[e] == ElementShape::Hexa20 || Shapes[e] == ElementShape::Wedge15;
+    if (quadratic && j.inverted)
+    {
+      inverted[Cells[e]] = 1; // one element a cell: no two threads write the same byte
+    }
+  }
+  return least;
 }
 
 void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out)
@@ -96,6 +160,7 @@ mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
 }
 
 VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath)
+  : FemElements(rest)
 {
   std::optional<CaseMesh> own = casePath.empty() ? std::nullopt : caseFaces(casePath, rest);
   if (own)
@@ -141,8 +206,16 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
   return summarizeMeasures();
 }
 
-QualitySummary VolumeMeshQuality::summarizeMeasures() const
+QualitySummary VolumeMeshQuality::summarizeMeasures()
 {
-  return QualitySummary{ Measures.invertedCells, Measures.maxNonOrthogonality, Measures.maxSkewness };
+  QualitySummary summary{ Measures.invertedCells, Measures.maxNonOrthogonality, Measures.maxSkewness };
+  if (!FemElements.empty())
+  {
+    // the faces' inverted cells, and the quadratic elements folded between their corners
+    Inverted = Measures.inverted;
+    summary.minScaledJacobian = FemElements.measure(Points, Inverted);
+    summary.inverted = static_cast<long>(std::count(Inverted.begin(), Inverted.end(), 1));
+  }
+  return summary;
 }
 } // namespace mlsvtk

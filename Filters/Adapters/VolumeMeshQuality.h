@@ -1,11 +1,17 @@
-// The volume-mesh measures of paper section 7.3 on a VTK unstructured grid: verdict's scaled
-// Jacobian per cell, and as OpenFOAM's checkMesh defines them (FaceQuality.h) the inverted cells
-// (a face pyramid of negative volume) and the non-orthogonality and skewness per interior face. Shared by vtkDeformationQuality and by the deformation filters,
-// which report a summary in their output's field data.
+// The volume-mesh measures of paper section 7.3 on a VTK unstructured grid: the scaled Jacobian
+// per cell (ElementJacobian.h: linear and quadratic tetrahedra, hexahedra and wedges at their
+// corners and integration points; verdict's for pyramids), and as OpenFOAM's checkMesh defines
+// them (FaceQuality.h) the inverted cells (a face pyramid of negative volume; a quadratic element
+// also where det J <= 0 at one of its points) and the non-orthogonality and skewness per interior
+// face. Shared by vtkDeformationQuality and by the deformation filters, which report a summary in
+// their output's field data.
 #pragma once
 
+#include "Quality/ElementJacobian.h"
 #include "Quality/FaceQuality.h"
 
+#include <limits>
+#include <optional>
 #include <string>
 
 class vtkUnstructuredGrid;
@@ -15,8 +21,30 @@ namespace mlsvtk
 /// The faces of every 3D cell as point-id polygons (none for other cells).
 mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid);
 
-/// Verdict's scaled Jacobian of tetrahedra, hexahedra, wedges and pyramids; NaN for other cells.
+/// The element shape of a VTK cell type that ElementJacobian measures, if it is one.
+std::optional<mlsdeform::ElementShape> elementShape(int vtkCellType);
+
+/// The scaled Jacobian of (linear and quadratic) tetrahedra, hexahedra and wedges (ElementJacobian)
+/// and pyramids (verdict's); NaN for other cells.
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid);
+
+/// The cells ElementJacobian measures, with their point ids, measured on any points.
+class Elements
+{
+public:
+  explicit Elements(vtkUnstructuredGrid* grid);
+  bool empty() const { return Cells.empty(); }
+  /// The least scaled Jacobian over the elements (infinity when there are none), and for each
+  /// quadratic element with det J <= 0 at one of its points, inverted[its cell] set to 1.
+  double measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const;
+
+private:
+  std::size_t CellCount;
+  std::vector<int> Cells;
+  std::vector<mlsdeform::ElementShape> Shapes;
+  std::vector<std::size_t> Start; // Cells.size() + 1 offsets into Points
+  std::vector<int> Points;
+};
 
 /// The grid's points (throws InvalidInputException when one is not finite), into out or returned.
 void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out);
@@ -29,11 +57,13 @@ struct QualitySummary
   long inverted = 0;
   double maxNonOrthogonality = 0;
   double maxSkewness = 0;
+  double minScaledJacobian = std::numeric_limits<double>::infinity(); // over Elements (none: infinity)
 
-  /// Adds another mesh's: the counts add up, the largest values stay.
+  /// Adds another mesh's: the counts add up, the largest (least) values stay.
   void add(const QualitySummary& other)
   {
     inverted += other.inverted;
+    minScaledJacobian = minScaledJacobian < other.minScaledJacobian ? minScaledJacobian : other.minScaledJacobian;
     maxNonOrthogonality = maxNonOrthogonality > other.maxNonOrthogonality ? maxNonOrthogonality : other.maxNonOrthogonality;
     maxSkewness = maxSkewness > other.maxSkewness ? maxSkewness : other.maxSkewness;
   }
@@ -64,7 +94,7 @@ public:
   const std::vector<int>& orientation() const { return Orientation; }
 
 private:
-  QualitySummary summarizeMeasures() const;
+  QualitySummary summarizeMeasures();
 
   mlsdeform::CellFaceList Cells;
   mlsdeform::InteriorFaces Faces;
@@ -74,5 +104,7 @@ private:
   mlsdeform::FaceWorkspace Work;
   mlsdeform::FaceMeasures Measures;
   QualitySummary Original;
+  Elements FemElements;
+  std::vector<unsigned char> Inverted; // per cell: the faces' verdict, then the elements'
 };
 } // namespace mlsvtk

@@ -9,6 +9,7 @@
 #include <vtkPointSet.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -111,11 +112,15 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
   {
     std::vector<std::int64_t> inverted{ q.inverted };
     group.sum(inverted);
-    std::vector<double> largest{ q.maxNonOrthogonality, q.maxSkewness };
+    std::vector<double> largest{ q.maxNonOrthogonality, q.maxSkewness, -q.minScaledJacobian };
     group.maximum(largest);
     addField(field, (std::string(prefix) + "InvertedCells").c_str(), static_cast<double>(inverted[0]));
     addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), largest[0]);
     addField(field, (std::string(prefix) + "MaxSkewness").c_str(), largest[1]);
+    if (std::isfinite(largest[2])) // some process has elements ElementJacobian measures
+    {
+      addField(field, (std::string(prefix) + "MinScaledJacobian").c_str(), -largest[2]);
+    }
   }
 }
 } // namespace mlsvtk

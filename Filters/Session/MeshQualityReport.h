@@ -21,7 +21,8 @@ namespace mlsvtk
 class MeshQualityReport
 {
 public:
-  /// Adds InvertedCells, MaxNonOrthogonality, MaxSkewness and the same prefixed "Original" to
+  /// Adds InvertedCells, MaxNonOrthogonality, MaxSkewness, MinScaledJacobian (with tetrahedra,
+  /// hexahedra or wedges, linear or quadratic: ElementJacobian) and the same prefixed "Original" to
   /// field when some process has volume cells. Split over processes, each measures its own piece
   /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
   /// it cannot measure give a warning (from owner) once per input mesh; the deformation stands.

@@ -3,7 +3,10 @@
 #include "FilterTestUtilities.h"
 #include "vtkDeformationQuality.h"
 
+#include <vtkCell.h>
 #include <vtkCellData.h>
+#include <vtkMeshQuality.h>
+#include <vtkPolyData.h>
 #include <vtkPoints.h>
 #include <vtkStringArray.h>
 #include <vtkTable.h>
@@ -11,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 
 namespace
@@ -134,7 +138,8 @@ TEST(ScaledJacobianOfIdealAndInvertedElements)
   CHECK_NEAR(tet, 1.0, 1e-7);
   CHECK_NEAR(inverted, -1.0, 1e-7);
   // wedges and pyramids are measured (an undistorted prism and a square pyramid are valid)
-  const double wedge = scaledJacobian(singleCell(VTK_WEDGE, { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, s, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 0.5, s, 1 } }));
+  // VTK 9.2's wedge: (0, 1, 2) turns away from (3, 4, 5), as its faces and its OpenFOAM reader have it
+  const double wedge = scaledJacobian(singleCell(VTK_WEDGE, { { 0, 0, 0 }, { 0.5, s, 0 }, { 1, 0, 0 }, { 0, 0, 1 }, { 0.5, s, 1 }, { 1, 0, 1 } }));
   const double pyramid = scaledJacobian(singleCell(VTK_PYRAMID, { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0.5, 0.5, std::sqrt(0.5) } }));
   std::printf("prism %.15g, pyramid %.15g\n", wedge, pyramid);
   // both are ideal (right prism, equilateral faces): 1 up to verdict's rounded constants, as for
@@ -297,6 +302,109 @@ TEST(VoxelsAreMeasuredAsHexahedra)
   CHECK(summaryValue(voxels, "InvertedCells", "Max") == inverted);
   CHECK(summaryValue(voxels, "InvertedCells", "OriginalMax") == 0);
   CHECK(summaryValue(hexahedra, "InvertedCells", "OriginalMax") == 0);
+}
+
+TEST(LinearElementsHaveVerdictsScaledJacobian)
+{
+  // jittered tetrahedra, hexahedra and wedges: the corner Jacobians are verdict's (the wedge's on
+  // its mirror image: verdict's wedge turns (0, 1, 2) the other way). Bounds: verdict's rounded sqrt(2)
+  // and 2 / sqrt(3) constants (1e-7 relative, as above) on tetrahedra and wedges, round-off on
+  // hexahedra.
+  std::mt19937 random(7);
+  auto jitter = [&] { return 0.15 * (2.0 * random() / std::mt19937::max() - 1); };
+  const double s = std::sqrt(3.0) / 2, h = std::sqrt(2.0 / 3);
+  const std::vector<std::pair<int, std::vector<std::array<double, 3>>>> ideal = {
+    { VTK_TETRA, { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, s, 0 }, { 0.5, s / 3, h } } },
+    { VTK_HEXAHEDRON, { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } } },
+    { VTK_WEDGE, { { 0, 0, 0 }, { 0.5, s, 0 }, { 1, 0, 0 }, { 0, 0, 1 }, { 0.5, s, 1 }, { 1, 0, 1 } } },
+  };
+  for (int trial = 0; trial < 50; ++trial)
+  {
+    for (const auto& element : ideal)
+    {
+      std::vector<std::array<double, 3>> corners = element.second;
+      for (auto& c : corners)
+        for (double& x : c)
+          x += jitter();
+      vtkSmartPointer<vtkUnstructuredGrid> grid = singleCell(element.first, corners);
+      vtkCell* cell = grid->GetCell(0);
+      const double ours = scaledJacobian(grid);
+      switch (element.first)
+      {
+        case VTK_TETRA:
+          CHECK_NEAR(ours, vtkMeshQuality::TetScaledJacobian(cell), 1e-7);
+          break;
+        case VTK_HEXAHEDRON:
+          CHECK_NEAR(ours, vtkMeshQuality::HexScaledJacobian(cell), 1e-14);
+          break;
+        default:
+        {
+          vtkSmartPointer<vtkUnstructuredGrid> mirror =
+            singleCell(VTK_WEDGE, { corners[0], corners[2], corners[1], corners[3], corners[5], corners[4] });
+          CHECK_NEAR(ours, vtkMeshQuality::WedgeScaledJacobian(mirror->GetCell(0)), 1e-7);
+        }
+      }
+      CHECK(ours > 0);
+    }
+  }
+}
+
+TEST(QuadraticTetrahedraFoldedBetweenTheirCorners)
+{
+  // two quadratic tetrahedra sharing the face (0, 1, 2), midside nodes shared on its edges
+  const double s = std::sqrt(3.0) / 2, h = std::sqrt(2.0 / 3);
+  std::vector<std::array<double, 3>> points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, s, 0 }, { 0.5, s / 3, h }, { 0.5, s / 3, -h } };
+  std::map<std::pair<vtkIdType, vtkIdType>, vtkIdType> midsides;
+  auto midside = [&](vtkIdType a, vtkIdType b) {
+    const auto key = std::minmax(a, b);
+    if (!midsides.count(key))
+    {
+      midsides[key] = static_cast<vtkIdType>(points.size());
+      points.push_back({ (points[a][0] + points[b][0]) / 2, (points[a][1] + points[b][1]) / 2, (points[a][2] + points[b][2]) / 2 });
+    }
+    return midsides[key];
+  };
+  auto quadratic = [&](std::array<vtkIdType, 4> c) {
+    return std::array<vtkIdType, 10>{ c[0], c[1], c[2], c[3], midside(c[0], c[1]), midside(c[1], c[2]), midside(c[2], c[0]),
+      midside(c[0], c[3]), midside(c[1], c[3]), midside(c[2], c[3]) };
+  };
+  const std::array<vtkIdType, 10> above = quadratic({ 0, 1, 2, 3 }), below = quadratic({ 0, 2, 1, 4 });
+  auto grid = [&](double s03) { // node 7 of the first element at corner 0 + s03 (corner 3 - corner 0)
+    std::vector<std::array<double, 3>> moved = points;
+    for (int d = 0; d < 3; ++d)
+      moved[above[7]][d] = points[0][d] + s03 * (points[3][d] - points[0][d]);
+    auto out = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    vtkNew<vtkPoints> vtkpoints;
+    vtkpoints->SetDataTypeToDouble();
+    for (const auto& p : moved)
+      vtkpoints->InsertNextPoint(p.data());
+    out->SetPoints(vtkpoints);
+    out->InsertNextCell(VTK_QUADRATIC_TETRA, 10, above.data());
+    out->InsertNextCell(VTK_QUADRATIC_TETRA, 10, below.data());
+    return out;
+  };
+  vtkNew<vtkDeformationQuality> quality;
+  quality->SetInputData(grid(0.5));
+  quality->Update();
+  // straight-sided regular tetrahedra (to verdict's 1e-7, the corners' value): valid, one interior
+  // face, met at right angles by the line between the centres
+  CHECK_NEAR(cellValue(quality->GetOutput(), "ScaledJacobian", 0), 1.0, 1e-12);
+  CHECK_NEAR(cellValue(quality->GetOutput(), "ScaledJacobian", 1), 1.0, 1e-12);
+  CHECK(summaryValue(quality, "InvertedCells", "Min") == 0);
+  CHECK(quality->GetOutputDataObject(1) && vtkPolyData::SafeDownCast(quality->GetOutputDataObject(1))->GetNumberOfCells() == 1);
+  CHECK_NEAR(summaryValue(quality, "NonOrthogonality", "Max"), 0.0, 1e-6);
+  // node 7 (edge (0, 3), not shared) above a quarter of its edge keeps the element, below a quarter
+  // folds it at corner 0 (the Jacobian along the edge there is (4 s - 1)(x3 - x0)); the corners
+  // stay where they were
+  quality->SetInputData(grid(0.3));
+  quality->Update();
+  CHECK(cellValue(quality->GetOutput(), "ScaledJacobian", 0) > 0);
+  CHECK(summaryValue(quality, "InvertedCells", "Min") == 0);
+  quality->SetInputData(grid(0.2));
+  quality->Update();
+  CHECK(cellValue(quality->GetOutput(), "ScaledJacobian", 0) < 0);
+  CHECK_NEAR(cellValue(quality->GetOutput(), "ScaledJacobian", 1), 1.0, 1e-12);
+  CHECK(summaryValue(quality, "InvertedCells", "Min") == 1);
 }
 
 TEST_MAIN

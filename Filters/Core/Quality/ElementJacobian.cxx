@@ -1,0 +1,289 @@
+#include "Quality/ElementJacobian.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace mlsdeform
+{
+namespace
+{
+/// The scaled Jacobian of the columns a, b, c: det / (|a| |b| |c|), 0 when one is zero.
+double scaledDeterminant(const Vec3& a, const Vec3& b, const Vec3& c, double& det)
+{
+  det = a.dot(b.cross(c));
+  const double lengths = a.norm() * b.norm() * c.norm();
+  return lengths > 0 ? std::clamp(det / lengths, -1.0, 1.0) : 0.0;
+}
+
+/// The least scaled Jacobian and whether some det J <= 0, gathered point by point.
+struct Least
+{
+  double scale, sign; // the ideal element's 1, VTK's orientation's positive
+  ElementJacobian result{ std::numeric_limits<double>::infinity(), false };
+
+  void add(const Vec3& a, const Vec3& b, const Vec3& c)
+  {
+    double det;
+    const double scaled = sign * scale * scaledDeterminant(a, b, c, det);
+    result.minScaled = std::min(result.minScaled, std::clamp(scaled, -1.0, 1.0));
+    result.inverted = result.inverted || sign * det <= 0;
+  }
+};
+
+// ---- Tetrahedra: barycentric coordinates l0..l3, G_k = dx/dl_k as if they were independent, the
+// edges from corner k: G_j - G_k. The corners' edges in an order of positive volume for VTK's
+// tetrahedron (points 0, 1, 2 seen from 3 counter-clockwise): even permutations of 0 1 2 3.
+constexpr int TetFrames[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 3, 0, 1 }, { 2, 1, 0 } };
+constexpr int TetEdges[6][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 3 }, { 2, 3 } }; // nodes 4..9
+
+// G at barycentric l: linear N_i = l_i; quadratic N_i = l_i (2 l_i - 1), N_ij = 4 l_i l_j.
+std::array<Vec3, 4> tetGradients(const Vec3* x, bool quadratic, const std::array<double, 4>& l)
+{
+  std::array<Vec3, 4> g;
+  for (int k = 0; k < 4; ++k)
+  {
+    g[k] = quadratic ? Vec3((4 * l[k] - 1) * x[k]) : x[k];
+  }
+  if (quadratic)
+  {
+    for (int e = 0; e < 6; ++e)
+    {
+      const int i = TetEdges[e][0], j = TetEdges[e][1];
+      g[i] += 4 * l[j] * x[4 + e];
+      g[j] += 4 * l[i] * x[4 + e];
+    }
+  }
+  return g;
+}
+
+ElementJacobian tetrahedron(const Vec3* x, bool quadratic)
+{
+  Least least{ std::sqrt(2.0), 1.0 }; // a regular tetrahedron's corner: det / lengths = 1 / sqrt(2)
+  auto frame = [&](const std::array<Vec3, 4>& g, int k) {
+    const int* f = TetFrames[k];
+    least.add(g[f[0]] - g[k], g[f[1]] - g[k], g[f[2]] - g[k]);
+  };
+  for (int k = 0; k < 4; ++k)
+  {
+    std::array<double, 4> l{ 0, 0, 0, 0 };
+    l[k] = 1;
+    frame(tetGradients(x, quadratic, l), k);
+  }
+  if (quadratic)
+  {
+    // C3D10's four integration points (Zienkiewicz's 4-point rule)
+    const double a = 0.5854101966249685, b = 0.1381966011250105;
+    for (int p = 0; p < 4; ++p)
+    {
+      std::array<double, 4> l{ b, b, b, b };
+      l[p] = a;
+      const std::array<Vec3, 4> g = tetGradients(x, quadratic, l);
+      for (int k = 0; k < 4; ++k)
+      {
+        frame(g, k);
+      }
+    }
+  }
+  return least.result;
+}
+
+// ---- Hexahedra: natural coordinates in [-1, 1]^3, the corners' signs in VTK's order; a midside
+// node's coordinates are its edge's mean (0 along the edge).
+constexpr int HexCorners[8][3] = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1 },
+  { 1, -1, 1 }, { 1, 1, 1 }, { -1, 1, 1 } };
+constexpr int HexEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 }, { 6, 7 }, { 7, 4 },
+  { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } }; // nodes 8..19
+
+// dN/dxi_d of the node at natural coordinates a (serendipity: corner
+// (1/8) prod(1 + a_d xi_d) (sum a_d xi_d - 2), midside (1 - xi_m^2) prod_{d != m} (1 + a_d xi_d) / 2;
+// trilinear: (1/8) prod(1 + a_d xi_d)).
+Vec3 hexShapeGradient(const std::array<int, 3>& a, const Vec3& xi, bool quadratic)
+{
+  Vec3 f, df; // the factors of the product and their derivatives
+  int middle = -1;
+  for (int d = 0; d < 3; ++d)
+  {
+    if (a[d] == 0)
+    {
+      middle = d;
+      f[d] = 1 - xi[d] * xi[d];
+      df[d] = -2 * xi[d];
+    }
+    else
+    {
+      f[d] = (1 + a[d] * xi[d]) / 2;
+      df[d] = a[d] / 2.0;
+    }
+  }
+  Vec3 gradient(df[0] * f[1] * f[2], f[0] * df[1] * f[2], f[0] * f[1] * df[2]);
+  if (quadratic && middle < 0)
+  {
+    const double s = a[0] * xi[0] + a[1] * xi[1] + a[2] * xi[2] - 2;
+    const double product = f[0] * f[1] * f[2];
+    for (int d = 0; d < 3; ++d)
+    {
+      gradient[d] = gradient[d] * s + product * a[d];
+    }
+  }
+  return gradient;
+}
+
+ElementJacobian hexahedron(const Vec3* x, bool quadratic)
+{
+  static const std::array<std::array<int, 3>, 20> nodes = [] {
+    std::array<std::array<int, 3>, 20> out;
+    for (int n = 0; n < 8; ++n)
+    {
+      out[n] = { HexCorners[n][0], HexCorners[n][1], HexCorners[n][2] };
+    }
+    for (int e = 0; e < 12; ++e)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        out[8 + e][d] = (HexCorners[HexEdges[e][0]][d] + HexCorners[HexEdges[e][1]][d]) / 2;
+      }
+    }
+    return out;
+  }();
+  const int count = quadratic ? 20 : 8;
+  Least least{ 1.0, 1.0 };
+  auto at = [&](const Vec3& xi) {
+    Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero(); // columns dx/dxi_d
+    for (int n = 0; n < count; ++n)
+    {
+      jacobian += x[n] * hexShapeGradient(nodes[n], xi, quadratic).transpose();
+    }
+    least.add(jacobian.col(0), jacobian.col(1), jacobian.col(2));
+  };
+  for (const auto& corner : HexCorners)
+  {
+    at(Vec3(corner[0], corner[1], corner[2]));
+  }
+  at(Vec3::Zero());
+  if (quadratic)
+  {
+    // C3D20R's 2 x 2 x 2 and C3D20's 3 x 3 x 3 Gauss points
+    for (const std::vector<double>& rule : { std::vector<double>{ -1 / std::sqrt(3.0), 1 / std::sqrt(3.0) },
+           std::vector<double>{ -std::sqrt(0.6), 0.0, std::sqrt(0.6) } })
+    {
+      for (double u : rule)
+        for (double v : rule)
+          for (double w : rule)
+            at(Vec3(u, v, w));
+    }
+  }
+  return least.result;
+}
+
+// ---- Wedges: the triangle's barycentric l0..l2 (G_k = dx/dl_k) times zeta in [-1, 1] (Z =
+// dx/dzeta), points 0 1 2 at zeta = -1. VTK's wedge has (0, 1, 2) turning away from (3, 4, 5), so a
+// valid one has det(G1 - G0, G2 - G0, Z) < 0: the sign -1.
+constexpr int TriangleFrames[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
+constexpr int WedgeEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 }, { 1, 4 },
+  { 2, 5 } }; // nodes 6..14
+
+// G and Z at (l, zeta). Linear: N_i = l_i (1 -+ zeta) / 2. Quadratic: corners
+// l_i (2 l_i - 1)(1 -+ zeta) / 2 - l_i (1 - zeta^2) / 2, triangle edges 2 l_i l_j (1 -+ zeta),
+// vertical edges l_i (1 - zeta^2); - at the bottom (0 1 2), + at the top.
+void wedgeGradients(const Vec3* x, bool quadratic, const std::array<double, 3>& l, double zeta, std::array<Vec3, 3>& g,
+  Vec3& z)
+{
+  g.fill(Vec3::Zero());
+  z.setZero();
+  const double bubble = 1 - zeta * zeta;
+  for (int corner = 0; corner < 6; ++corner)
+  {
+    const int i = corner % 3;
+    const double side = corner < 3 ? -1 : 1;
+    const double level = (1 + side * zeta) / 2;
+    if (quadratic)
+    {
+      g[i] += ((4 * l[i] - 1) * level - bubble / 2) * x[corner];
+      z += (side * l[i] * (2 * l[i] - 1) / 2 + l[i] * zeta) * x[corner];
+    }
+    else
+    {
+      g[i] += level * x[corner];
+      z += side * l[i] / 2 * x[corner];
+    }
+  }
+  for (int e = 0; quadratic && e < 9; ++e)
+  {
+    const Vec3& node = x[6 + e];
+    const int i = WedgeEdges[e][0] % 3, j = WedgeEdges[e][1] % 3;
+    if (e < 6)
+    {
+      const double side = e < 3 ? -1 : 1;
+      g[i] += 2 * l[j] * (1 + side * zeta) * node;
+      g[j] += 2 * l[i] * (1 + side * zeta) * node;
+      z += side * 2 * l[i] * l[j] * node;
+    }
+    else
+    {
+      g[i] += bubble * node;
+      z += -2 * l[i] * zeta * node;
+    }
+  }
+}
+
+ElementJacobian wedge(const Vec3* x, bool quadratic)
+{
+  Least least{ 2 / std::sqrt(3.0), -1.0 }; // an equilateral triangle's corner: sin 60 degrees
+  std::array<Vec3, 3> g;
+  Vec3 z;
+  auto frame = [&](int k) {
+    least.add(g[TriangleFrames[k][0]] - g[k], g[TriangleFrames[k][1]] - g[k], z);
+  };
+  for (int corner = 0; corner < 6; ++corner)
+  {
+    std::array<double, 3> l{ 0, 0, 0 };
+    l[corner % 3] = 1;
+    wedgeGradients(x, quadratic, l, corner < 3 ? -1 : 1, g, z);
+    frame(corner % 3);
+  }
+  if (quadratic)
+  {
+    // C3D15's integration points: the triangle's 3-point rule times 3 Gauss points along zeta
+    const double triangle[3][3] = { { 2 / 3.0, 1 / 6.0, 1 / 6.0 }, { 1 / 6.0, 2 / 3.0, 1 / 6.0 },
+      { 1 / 6.0, 1 / 6.0, 2 / 3.0 } };
+    for (const auto& l : triangle)
+    {
+      for (double zeta : { -std::sqrt(0.6), 0.0, std::sqrt(0.6) })
+      {
+        wedgeGradients(x, quadratic, { l[0], l[1], l[2] }, zeta, g, z);
+        for (int k = 0; k < 3; ++k)
+        {
+          frame(k);
+        }
+      }
+    }
+  }
+  return least.result;
+}
+} // namespace
+
+ElementJacobian elementJacobian(ElementShape shape, const Vec3* nodes)
+{
+  switch (shape)
+  {
+    case ElementShape::Tetra4:
+      return tetrahedron(nodes, false);
+    case ElementShape::Tetra10:
+      return tetrahedron(nodes, true);
+    case ElementShape::Hexa8:
+      return hexahedron(nodes, false);
+    case ElementShape::Hexa20:
+      return hexahedron(nodes, true);
+    case ElementShape::Wedge6:
+      return wedge(nodes, false);
+    case ElementShape::Wedge15:
+      return wedge(nodes, true);
+  }
+  return { 0, true };
+}
+} // namespace mlsdeform
