@@ -5,6 +5,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkErrorCode.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
@@ -125,6 +126,8 @@ int vtkMeshFileReader::CanReadFile(const char* filename)
 int vtkMeshFileReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
+  this->LastError.clear();
+  this->SetErrorCode(vtkErrorCode::NoError);
   const mlsformats::Format* format = mlsformats::formatOf(this->FileName);
   if (!format)
   {
@@ -133,7 +136,9 @@ int vtkMeshFileReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
     {
       known += std::string(known.empty() ? "" : ", ") + f.name + " (." + f.extensions + ")";
     }
-    vtkErrorMacro(<< "'" << this->FileName << "' cannot be read (no such file) or is of none of the formats read: " << known << ".");
+    this->LastError = "'" + this->FileName + "' cannot be read (no such file) or is of none of the formats read: " + known + ".";
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    vtkErrorMacro(<< this->LastError);
     return 0;
   }
   try
@@ -149,7 +154,9 @@ int vtkMeshFileReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
   catch (const std::exception& e)
   {
     output->Initialize();
-    vtkErrorMacro(<< e.what());
+    this->LastError = e.what();
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    vtkErrorMacro(<< this->LastError);
     return 0;
   }
   return 1;

@@ -38,6 +38,10 @@ public:
   /// 1 if the file is of a format this reader reads (by its extension and first bytes), else 0.
   static int CanReadFile(const char* filename);
 
+  /// Why the last read failed ("file:line: reason"), or "" when it succeeded; the error code
+  /// (GetErrorCode) is then nonzero. For scripts, which cannot read the output window.
+  vtkGetCharFromStdStringMacro(LastError);
+
 protected:
   vtkMeshFileReader();
   ~vtkMeshFileReader() override = default;
@@ -45,6 +49,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;
+  std::string LastError;
 
 private:
   vtkMeshFileReader(const vtkMeshFileReader&) = delete;

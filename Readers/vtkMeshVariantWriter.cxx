@@ -67,6 +67,8 @@ int vtkMeshVariantWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkMeshVariantWriter::WriteData()
 {
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
+  this->LastError.clear();
+  this->SetErrorCode(0);
   try
   {
     if (!input || input->GetNumberOfPoints() == 0)
@@ -111,7 +113,8 @@ void vtkMeshVariantWriter::WriteData()
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< "No variant written to '" << this->FileName << "': " << e.what());
+    this->LastError = "No variant written to '" + this->FileName + "': " + e.what();
+    vtkErrorMacro(<< this->LastError);
     this->SetErrorCode(1);
   }
 }

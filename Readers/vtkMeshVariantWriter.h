@@ -49,6 +49,9 @@ public:
   vtkBooleanMacro(Overwrite, vtkTypeBool);
   ///@}
 
+  /// Why the last write wrote nothing, or "" when it wrote the variant (the error code is then 0).
+  vtkGetCharFromStdStringMacro(LastError);
+
 protected:
   vtkMeshVariantWriter() = default;
   ~vtkMeshVariantWriter() override = default;
@@ -59,6 +62,7 @@ protected:
   std::string FileName;
   std::string SourceFile;
   vtkTypeBool Overwrite = 0;
+  std::string LastError;
 
 private:
   vtkMeshVariantWriter(const vtkMeshVariantWriter&) = delete;

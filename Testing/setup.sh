@@ -3,7 +3,7 @@
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
 # Qt's OpenGL module for the plugin's GUI part, Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb and PyQt5 for the GUI tests, and for the paper comparisons gmsh
 # and matplotlib, scipy for the optimization example, OpenFOAM for the CFD round-trip tests and examples, and OpenFOAM's tutorials from
-# openfoam-examples, unpacked into the build, for the adjoint tests), then configures and builds into build/ (or
+# openfoam-examples, unpacked into the build, for the adjoint tests, CalculiX for the structural loop's tests and example and meshio for its benchmark), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -21,7 +21,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libblas-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
   gmsh python3-matplotlib python3-pyqt5 python3-scipy time
-  openfoam
+  openfoam calculix-ccx python3-meshio
 )
 missing=()
 for package in "${packages[@]}"; do

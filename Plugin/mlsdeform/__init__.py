@@ -7,18 +7,18 @@ VTK pipeline (``mlsdeform.vtkfoam``).
 gives the deformed points and their exact derivatives, with the interface of pyGeo's DVGeometry
 (``addHandleDV``, ``setDesignVars``, ``update``, ``totalSensitivity``,
 ``totalSensitivityProd``, ``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO; ``designOfExperiments``
-turns a Latin hypercube or a table of values into OpenFOAM variant cases with a mesh-quality
-verdict each; ``readFoamSensitivity`` turns an OpenFOAM adjoint sensitivity field into dJ/dX on
+turns a Latin hypercube or a table of values into variants (OpenFOAM cases, or FEM decks read by
+the Mesh File reader) with a mesh-quality verdict each (checkMesh's, or an FEM solver's); ``readFoamSensitivity`` turns an OpenFOAM adjoint sensitivity field into dJ/dX on
 the deformation's points (for ``totalSensitivity``) and ``readFoamObjective`` reads J.
 """
 from .deformer import _load_wrapping
 from .design import DesignVariables, KINDS
 from .adjoint import readFoamDictionary, readFoamObjective, readFoamSensitivity
-from .experiments import THRESHOLDS, designOfExperiments, latinHypercube, meshQuality, passes, readTable
+from .experiments import FEM_THRESHOLDS, THRESHOLDS, designOfExperiments, latinHypercube, meshQuality, passes, readTable
 
 # The filters' Python wrapping, now: a VTK object handed to Python before it is loaded keeps its
 # plain base class (and lacks the sensitivity methods).
 _load_wrapping()
 
-__all__ = ["DesignVariables", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "meshQuality", "passes",
+__all__ = ["DesignVariables", "FEM_THRESHOLDS", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "meshQuality", "passes",
            "readFoamDictionary", "readFoamObjective", "readFoamSensitivity", "readTable"]

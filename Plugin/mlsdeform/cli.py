@@ -1,14 +1,15 @@
-"""The command line of a design of experiments on an OpenFOAM case (mlsdeform-doe.py beside the
-plugin runs it in Debian's python3 or in pvpython, and from any other python3 hands itself to one
-of those):
+"""The command line of a design of experiments on an OpenFOAM case or an FEM deck (mlsdeform-doe.py
+beside the plugin runs it in Debian's python3 or in pvpython, and from any other python3 hands
+itself to one of those):
 
     python3 .../plugins/MLSDeform/mlsdeform-doe.py DESIGN.json FOLDER (--samples N [--seed S] | --table CSV)
         [--write-failed] [--copy] [--max-non-orthogonality 70] [--max-skewness 4] [--max-inverted-cells 0]
+        [--min-scaled-jacobian 0.1]
 
-It builds a plain VTK pipeline (mlsdeform.vtkfoam), without ParaView's server manager: less
-memory and a faster start than paraview.simple, and the same variants.
+It builds a plain VTK pipeline (mlsdeform.vtkfoam, mlsdeform.meshfile), without ParaView's server
+manager: less memory and a faster start than paraview.simple, and the same variants.
 
-DESIGN.json names the case, its patches by role and the design variables, e.g.
+DESIGN.json names the case (or the deck), its patches (or sets) by role and the design variables, e.g.
 
     {"case": "hull/case.foam", "handle": ["hull"], "fixed": ["inlet", "outlet"],
      "slip": ["sideYmin", "sideYmax", "bottom", "top"],
@@ -16,23 +17,28 @@ DESIGN.json names the case, its patches by role and the design variables, e.g.
                    {"name": "yaw", "rotate": [0, 0, 1], "lower": -5, "upper": 5}],
      "settings": {"NumberOfSamples": 1000}}
 
+    {"deck": "plate/plate.inp", "handle": ["hole1"], "fixed": ["fixed", "load"],
+     "variables": [{"name": "x1", "translate": [1, 0, 0], "lower": -0.5, "upper": 0.5}]}
+
 A role's patches are names, patterns of whole names ("motorBike.*") or patch groups
-("motorBikeGroup"), as OpenFOAM takes them. The handle's patches move as one body (one pivot for
+("motorBikeGroup"), as OpenFOAM takes them; a deck's are its node and element sets (*NSET, *ELSET,
+*SURFACE) by name. The handle's patches move as one body (one pivot for
 rotations and scales); several bodies are named in "handles" instead of "handle", e.g.
 {"bike": ["motorBikeGroup"], "rider": ["rider.*"]}, and a variable acts on the bodies it names in
 its own "handles" (default: all of them), with one axis for all or one per body. Slip patches each
 slide in their own plane. "settings" are MLS Deform properties (the VTK filter's Set<Name>):
 numbers, or an enumeration value by its name in the VTK class ("Basis": "Wendland"). A relative
-"case" is relative to the design file. Exit code 0 when every variant was made (whatever their
-verdicts), 1 on a failure, 2 on a bad design or command line, with the message on stderr. Running
-it again resumes.
+"case" or "deck" is relative to the design file. A case's variants get checkMesh's verdict
+(--max-...), a deck's an FEM solver's (--max-inverted-cells, --min-scaled-jacobian). Exit code 0
+when every variant was made (whatever their verdicts), 1 on a failure, 2 on a bad design or
+command line, with the message on stderr. Running it again resumes.
 """
 import argparse
 import json
 import os
 import sys
 
-KEYS = {'case', 'handle', 'handles', 'fixed', 'slip', 'variables', 'settings'}
+KEYS = {'case', 'deck', 'handle', 'handles', 'fixed', 'slip', 'variables', 'settings'}
 VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'lower', 'upper', 'value', 'handles'}
 
 
@@ -47,25 +53,28 @@ def _names(value):
 
 def setUp(design_path):
     """The MLS Deform of the design file's case with its design variables (mlsdeform.DesignVariables)."""
-    from . import DesignVariables, vtkfoam
+    from . import DesignVariables, meshfile, vtkfoam
     with open(design_path) as f:
         design = json.load(f)
-    if not isinstance(design, dict) or not {'case', 'variables'} <= set(design) or set(design) - KEYS or \
-            ('handle' in design) == ('handles' in design):
-        raise ValueError(f"{design_path}: a design needs 'case', 'variables' and either 'handle' (the patches of one "
-                         f"body) or 'handles' (named bodies), and may have 'fixed', 'slip', 'settings'; not "
-                         f"{sorted(design) if isinstance(design, dict) else design!r}")
+    if not isinstance(design, dict) or 'variables' not in design or ('case' in design) == ('deck' in design) or \
+            set(design) - KEYS or ('handle' in design) == ('handles' in design):
+        raise ValueError(f"{design_path}: a design needs 'variables', either 'case' (an OpenFOAM case) or 'deck' (an "
+                         f"FEM deck) and either 'handle' (the patches or sets of one body) or 'handles' (named bodies), "
+                         f"and may have 'fixed', 'slip', 'settings'; not {sorted(design) if isinstance(design, dict) else design!r}")
     bodies = design['handles'] if 'handles' in design else {'handle': design['handle']}
     if not isinstance(bodies, dict) or not bodies or any(_names(p) is None for p in bodies.values()):
         raise ValueError(f"{design_path}: 'handles' maps each body's name to its patches (names, patterns, groups), "
                          f"'handle' lists one body's; not {bodies!r}")
     bodies = {name: _names(p) for name, p in bodies.items()}
     roles = {role: _names(design.get(role, [])) or [] for role in ('fixed', 'slip')}
-    case = os.path.join(os.path.dirname(os.path.abspath(design_path)), design['case'])
-    if not os.path.exists(case):
-        raise ValueError(f"{design_path}: the case {case} does not exist")
+    source = os.path.join(os.path.dirname(os.path.abspath(design_path)), design.get('case', design.get('deck')))
+    if not os.path.exists(source):
+        raise ValueError(f"{design_path}: the {'case' if 'case' in design else 'deck'} {source} does not exist")
     names = [n for patches in bodies.values() for n in patches] + roles['fixed'] + roles['slip']
-    reader = vtkfoam.open_case(case, names, decompose_polyhedra=False)  # checkMesh's own cells
+    if 'deck' in design:
+        reader = meshfile.open_mesh(source)
+    else:
+        reader = vtkfoam.open_case(source, names, decompose_polyhedra=False)  # checkMesh's own cells
     deformer = vtkfoam.morph(reader, bodies, (0, 0, 0), roles['fixed'], roles['slip'], **design.get('settings', {}))
     regions = {name: deformer.GetInputAlgorithm(1, i) for i, name in enumerate(bodies)}  # morph() connects the bodies first
     dvs = DesignVariables(deformer)
@@ -89,8 +98,9 @@ def setUp(design_path):
 
 def main(argv):
     from . import designOfExperiments
-    parser = argparse.ArgumentParser(prog='mlsdeform-doe.py', description='Design of experiments on an OpenFOAM case.')
-    parser.add_argument('design', help='the design file (JSON): case, patches by role, variables')
+    from .experiments import _is_deck
+    parser = argparse.ArgumentParser(prog='mlsdeform-doe.py', description='Design of experiments on an OpenFOAM case or an FEM deck.')
+    parser.add_argument('design', help='the design file (JSON): case or deck, patches or sets by role, variables')
     parser.add_argument('folder', help='where the variants and report.csv go')
     choice = parser.add_mutually_exclusive_group(required=True)
     choice.add_argument('--samples', type=int, help='a Latin hypercube of this many variants in the bounds')
@@ -101,14 +111,15 @@ def main(argv):
     parser.add_argument('--max-non-orthogonality', type=float, default=70.0, help='degrees (default 70)')
     parser.add_argument('--max-skewness', type=float, default=4.0, help='default 4')
     parser.add_argument('--max-inverted-cells', type=int, default=0, help='default 0')
+    parser.add_argument('--min-scaled-jacobian', type=float, default=0.1, help="a deck's elements' (default 0.1)")
     arguments = parser.parse_args(argv)
     try:
         dvs = setUp(arguments.design)
+        thresholds = {'InvertedCells': arguments.max_inverted_cells}
+        thresholds.update({'MinScaledJacobian': arguments.min_scaled_jacobian} if _is_deck(dvs) else
+                          {'MaxNonOrthogonality': arguments.max_non_orthogonality, 'MaxSkewness': arguments.max_skewness})
         rows = designOfExperiments(dvs, arguments.folder, samples=arguments.samples, seed=arguments.seed, table=arguments.table,
-                                   thresholds={'MaxNonOrthogonality': arguments.max_non_orthogonality,
-                                               'MaxSkewness': arguments.max_skewness,
-                                               'InvertedCells': arguments.max_inverted_cells},
-                                   writeFailed=arguments.write_failed, copy=arguments.copy)
+                                   thresholds=thresholds, writeFailed=arguments.write_failed, copy=arguments.copy)
     except (ValueError, OSError, json.JSONDecodeError) as e:
         print(f"mlsdeform-doe: {e}", file=sys.stderr)
         return 2

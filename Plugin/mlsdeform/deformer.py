@@ -2,7 +2,7 @@
 GUI's Python shell) or the VTK object itself (a plain VTK pipeline in python3, mlsdeform.vtkfoam).
 ``deformer(d)`` gives one interface to both: the VTK algorithm (for the sensitivity methods), its
 Constraint Regions with their role, output and design-variable rows, the update, and the variant
-case written (mlsdeform.foam's or mlsdeform.vtkfoam's save_variant).
+written: a deck's (mlsdeform.meshfile) or a case's (mlsdeform.foam's or mlsdeform.vtkfoam's save_variant).
 A design-variable row is (name, [kind, axis x, y, z, value, lower, upper]), vtkConstraintRegion's
 AddDesignVariable arguments (the proxies' DesignVariables property, 8 entries per row).
 """
@@ -107,6 +107,16 @@ def read_faces_ahead(foam_file):
     _load_wrapping().vtkSubspaceDeformFilter.PrefetchCaseFaces(os.path.dirname(os.path.abspath(foam_file)))
 
 
+def _saved_as_mesh_file(algorithm, path, overwrite):
+    """Whether the deformation's input came from a mesh file (a deck), whose variant was then
+    written to path (a case's variant is written by the caller)."""
+    from .meshfile import save_variant, source_file
+    if not source_file(algorithm.GetInputDataObject(0, 0)):
+        return False
+    save_variant(algorithm, path, overwrite)
+    return True
+
+
 def _checked(algorithm):
     if not hasattr(algorithm, "ComputeObjectiveSensitivity"):
         raise RuntimeError("the MLS Deform filter's VTK object was handed to Python before mlsdeform was imported, as a "
@@ -153,9 +163,10 @@ class ProxyDeformer:
     def update(self):
         self.proxy.UpdatePipeline()
 
-    def save(self, foam_file, overwrite=False, link=False):
-        from .foam import save_variant
-        save_variant(self.proxy, foam_file, overwrite, link)
+    def save(self, path, overwrite=False, link=False):
+        if not _saved_as_mesh_file(self.algorithm, path, overwrite):
+            from .foam import save_variant
+            save_variant(self.proxy, path, overwrite, link)
 
 
 class VTKDeformer:
@@ -198,9 +209,10 @@ class VTKDeformer:
     def update(self):
         self.algorithm.Update()
 
-    def save(self, foam_file, overwrite=False, link=False):
-        from .vtkfoam import save_variant
-        save_variant(self.algorithm, foam_file, overwrite, link)
+    def save(self, path, overwrite=False, link=False):
+        if not _saved_as_mesh_file(self.algorithm, path, overwrite):
+            from .vtkfoam import save_variant
+            save_variant(self.algorithm, path, overwrite, link)
 
 
 def deformer(d):

@@ -1,20 +1,25 @@
-"""Design of experiments on an OpenFOAM case: a Latin hypercube in the design variables' bounds,
-or a table of values, turned into variant cases with a mesh-quality verdict each.
+"""Design of experiments on an OpenFOAM case or an FEM deck: a Latin hypercube in the design
+variables' bounds, or a table of values, turned into variants with a mesh-quality verdict each.
 
     report = mlsdeform.designOfExperiments(dvs, 'variants', samples=50, seed=0)
     report = mlsdeform.designOfExperiments(dvs, 'variants', table='doe.csv')
 
-Every variant is ``<folder>/variant<i>/case.foam``, written by the plugin's OpenFOAM case writer
-(mlsdeform.foam's for a paraview.simple proxy, mlsdeform.vtkfoam's for a VTK filter) from the
-deformation's source case (the reader's CasePath): its own points, and links to the
-source's unchanged files unless copies are asked for; ``<folder>/report.csv`` holds a row
-per variant: the variables' values, InvertedCells, MaxNonOrthogonality, MaxSkewness (MLS Deform's
-mesh-quality figures, checkMesh's definitions), ok (the verdict against the thresholds), seconds
-and path (empty for a variant that failed and was not written). ``<folder>/design.json`` records
-the design (the values, and the case, regions and set-up it deforms with), so that running the
-same call again resumes: rows already in the report are kept, a variant interrupted while it was
-written (its ``.writing-*`` folder) is written again, and a different design in the same folder is
-an error that says what differs.
+On an OpenFOAM case every variant is ``<folder>/variant<i>/case.foam``, written by the plugin's
+OpenFOAM case writer (mlsdeform.foam's for a paraview.simple proxy, mlsdeform.vtkfoam's for a VTK
+filter) from the deformation's source case (the reader's CasePath): its own points, and links to
+the source's unchanged files unless copies are asked for; the verdict is checkMesh's
+(THRESHOLDS: InvertedCells, MaxNonOrthogonality, MaxSkewness at most their thresholds). On a deck
+read by the Mesh File reader (an Abaqus/CalculiX .inp) every variant is
+``<folder>/variant<i>/<the deck's name>`` with its included files beside it, only the node
+coordinates changed (mlsdeform.meshfile); the verdict is an FEM solver's (FEM_THRESHOLDS: no
+inverted element, and the least scaled Jacobian over every element's corners and integration
+points at least MinScaledJacobian). ``<folder>/report.csv`` holds a row per variant: the
+variables' values, the verdict's figures (MLS Deform's mesh-quality figures), ok (the verdict),
+seconds and path (empty for a variant that failed and was not written). ``<folder>/design.json``
+records the design (the values, and the source, regions and set-up it deforms with), so that
+running the same call again resumes: rows already in the report are kept, a variant interrupted
+while it was written (its ``.writing-*`` files) is written again, and a different design in the
+same folder is an error that says what differs.
 """
 import csv
 import json
@@ -25,17 +30,29 @@ import time
 
 import numpy as np
 
-# DAFoam's checkMeshThreshold defaults: a variant passes with at most these figures.
+# DAFoam's checkMeshThreshold defaults: a variant of a case passes with at most these figures.
 THRESHOLDS = {'MaxNonOrthogonality': 70.0, 'MaxSkewness': 4.0, 'InvertedCells': 0}
+# A variant of an FEM deck passes with no inverted element and every element's scaled Jacobian
+# (at its corners and integration points) at least MinScaledJacobian: 0.1 by default, below which
+# a quadratic tetrahedron's stiffness is poorly conditioned.
+FEM_THRESHOLDS = {'InvertedCells': 0, 'MinScaledJacobian': 0.1}
+AT_LEAST = {'MinScaledJacobian'}   # figures that pass at or above their threshold (the others at or below)
 QUALITY = ('InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness')
+FEM_QUALITY = ('InvertedCells', 'MinScaledJacobian')
+
+
+def _is_deck(dvs):
+    from .meshfile import source_file
+    return bool(source_file(dvs._algorithm.GetInputDataObject(0, 0)))
 
 
 def meshQuality(dvs):
-    """The last update's volume-mesh figures (checkMesh's definitions) as a dict: InvertedCells,
-    MaxNonOrthogonality, MaxSkewness. Raises RuntimeError when MLS Deform reports none."""
+    """The last update's volume-mesh figures as a dict: InvertedCells, MaxNonOrthogonality,
+    MaxSkewness (checkMesh's definitions) for a case, InvertedCells and MinScaledJacobian for a
+    deck. Raises RuntimeError when MLS Deform reports none."""
     output = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
     figures = {}
-    for key in QUALITY:
+    for key in FEM_QUALITY if _is_deck(dvs) else QUALITY:
         array = output.GetArray(key)
         if array is None:
             raise RuntimeError(f"MLS Deform reports no {key}: turn its MeshQuality on and give it a volume mesh")
@@ -45,9 +62,11 @@ def meshQuality(dvs):
 
 
 def passes(figures, thresholds=None):
-    """The verdict: every figure at most its threshold (THRESHOLDS, with thresholds' entries)."""
-    limits = dict(THRESHOLDS, **(thresholds or {}))
-    return all(figures[key] <= limits[key] for key in QUALITY)
+    """The verdict: every figure within its threshold (THRESHOLDS, or FEM_THRESHOLDS for a deck's
+    figures, with thresholds' entries): at least it for MinScaledJacobian, at most it for the others."""
+    defaults = FEM_THRESHOLDS if 'MinScaledJacobian' in figures else THRESHOLDS
+    limits = dict(defaults, **(thresholds or {}))
+    return all(figures[key] >= limits[key] if key in AT_LEAST else figures[key] <= limits[key] for key in defaults)
 
 
 def latinHypercube(bounds, samples, seed=0):
@@ -107,8 +126,10 @@ def _deformation(dvs):
     from .ranks import all_reduce
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from .deformer import case_path
+    from .meshfile import source_file
     field = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
-    record = {'case': case_path(dvs._algorithm.GetInputDataObject(0, 0))}
+    data = dvs._algorithm.GetInputDataObject(0, 0)
+    record = {'deck': source_file(data)} if source_file(data) else {'case': case_path(data)}
     for key, digits in (('NumberOfSamples', 12), ('NumberOfIntegrationPoints', 12), ('ReciprocalCondition', 6)):
         array = field.GetArray(key)
         record[key] = float('%.*g' % (digits, array.GetTuple1(0))) if array is not None else None
@@ -124,6 +145,11 @@ def _deformation(dvs):
     return record
 
 
+def _deformation_source(dvs):
+    from .meshfile import source_file
+    return source_file(dvs._algorithm.GetInputDataObject(0, 0))
+
+
 def _write_atomically(path, text):
     partial = path + '.writing'
     with open(partial, 'w') as f:
@@ -131,23 +157,23 @@ def _write_atomically(path, text):
     os.replace(partial, path)
 
 
-def _report_text(names, rows):
-    columns = ['variant'] + list(names) + list(QUALITY) + ['ok', 'seconds', 'path']
+def _report_text(names, quality, rows):
+    columns = ['variant'] + list(names) + list(quality) + ['ok', 'seconds', 'path']
     lines = [','.join(columns)]
     for row in rows:
         lines.append(','.join(repr(row[c]) if isinstance(row[c], float) else str(row[c]) for c in columns))
     return '\n'.join(lines) + '\n'
 
 
-def _read_report(path, names):
+def _read_report(path, names, quality):
     if not os.path.exists(path):
         return {}
     kept = {}
     with open(path, newline='') as f:
         for row in csv.DictReader(f):
             entry = {n: float(row[n]) for n in names}
+            entry.update({key: float(row[key]) for key in quality})
             entry.update(variant=row['variant'], InvertedCells=int(float(row['InvertedCells'])),
-                         MaxNonOrthogonality=float(row['MaxNonOrthogonality']), MaxSkewness=float(row['MaxSkewness']),
                          ok=row['ok'] == 'True', seconds=float(row['seconds']), path=row['path'])
             kept[entry['variant']] = entry
     return kept
@@ -157,10 +183,11 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
                         verbose=True):
     """Writes the variants of a design (a Latin hypercube of ``samples`` points with ``seed``, or
     the rows of the CSV ``table``) into ``folder`` and returns the report: one dict per variant.
-    ``thresholds`` overrides THRESHOLDS' entries; a variant over them is reported (ok False) and
-    not written unless ``writeFailed``. A variant holds its own points and links the source's
-    unchanged files (OpenFOAM reads through symbolic links; ``copy=True``: self-contained copies).
-    Prints a progress line per variant (verbose). The design
+    ``thresholds`` overrides THRESHOLDS' entries (FEM_THRESHOLDS' on a deck); a variant that
+    fails them is reported (ok False) and not written unless ``writeFailed``. A case's variant holds
+    its own points and links the source's unchanged files (OpenFOAM reads through symbolic links;
+    ``copy=True``: self-contained copies); a deck's is always a whole deck (its files copied, the
+    nodes' coordinates changed). Prints a progress line per variant (verbose). The design
     variables' values are restored at the end. Raises ValueError for a bad design or table and
     RuntimeError when a deformation or a write fails (what was written stays)."""
     names = dvs.getVarNames()
@@ -169,10 +196,12 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     bounds = dvs.getBounds()
     if (samples is None) == (table is None):
         raise ValueError("give either samples= (a Latin hypercube) or table= (a CSV file), not both or neither")
-    limits = dict(THRESHOLDS)
+    deck = _is_deck(dvs)
+    defaults, quality = (FEM_THRESHOLDS, FEM_QUALITY) if deck else (THRESHOLDS, QUALITY)
+    limits = dict(defaults)
     for key, value in (thresholds or {}).items():
-        if key not in THRESHOLDS:
-            raise ValueError(f"unknown threshold {key!r} (known: {', '.join(THRESHOLDS)})")
+        if key not in defaults:
+            raise ValueError(f"unknown threshold {key!r} for a {'deck' if deck else 'case'} (known: {', '.join(defaults)})")
         limits[key] = float(value)
     if samples is not None:
         points = latinHypercube([bounds[n] for n in names], samples, seed)
@@ -196,19 +225,24 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
                              f"another folder or remove it")
     else:
         _write_atomically(record, json.dumps(design, indent=1))
-    # a variant's path is its case folder; variants interrupted while written leave .writing-* folders
+    # variants interrupted while written leave .writing-* folders (a case's) or files (a deck's)
     for entry in os.listdir(folder):
+        path = os.path.join(folder, entry)
         if '.writing-' in entry:
-            shutil.rmtree(os.path.join(folder, entry), ignore_errors=True)
+            shutil.rmtree(path, ignore_errors=True)
+        elif deck and os.path.isdir(path):
+            for name in os.listdir(path):
+                if '.writing-' in name:
+                    os.remove(os.path.join(path, name))
     report_path = os.path.join(folder, 'report.csv')
     width = len(str(len(values) - 1))
     variant_names = ['variant%0*d' % (width, i) for i in range(len(values))]
-    kept = _read_report(report_path, names)
+    kept = _read_report(report_path, names, quality)
     start = dvs.getValues()
     rows, timings = [], []
     try:
         for i, (variant, point) in enumerate(zip(variant_names, values)):
-            case = os.path.join(folder, variant, 'case.foam')
+            case = os.path.join(folder, variant, os.path.basename(_deformation_source(dvs)) if deck else 'case.foam')
             done = kept.get(variant)
             if done is not None and (not done['path'] or os.path.exists(done['path'])):
                 rows.append(done)  # complete: written, or reported and not written (it failed the thresholds)
@@ -225,7 +259,7 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
             seconds = time.perf_counter() - began
             row = dict(point, **figures, variant=variant, ok=ok, seconds=seconds, path=path)
             rows.append(row)
-            _write_atomically(report_path, _report_text(names, rows))
+            _write_atomically(report_path, _report_text(names, quality, rows))
             timings.append(seconds)
             if verbose:
                 remaining = (len(values) - i - 1) * float(np.mean(timings))
@@ -234,5 +268,5 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
                     seconds, float(np.mean(timings)), remaining), flush=True)
     finally:
         dvs.setDesignVars(start)
-    _write_atomically(report_path, _report_text(names, rows))
+    _write_atomically(report_path, _report_text(names, quality, rows))
     return rows

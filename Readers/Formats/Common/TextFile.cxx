@@ -81,8 +81,10 @@ void AtomicWrite::add(const std::string& path, const std::string& text)
 
 void AtomicWrite::commit()
 {
-  for (const auto& [aside, path] : this->Pending)
+  // the last added first: the first (a deck, which names the others) appears when all are in place
+  for (auto pending = this->Pending.rbegin(); pending != this->Pending.rend(); ++pending)
   {
+    const auto& [aside, path] = *pending;
     std::error_code failed;
     std::filesystem::rename(aside, path, failed);
     if (failed)

@@ -32,7 +32,8 @@ public:
   ~AtomicWrite(); // removes what was written aside and not committed
   /// Writes text aside for path.
   void add(const std::string& path, const std::string& text);
-  /// Renames every file written aside into place.
+  /// Renames every file written aside into place, the first added last: once it is in place,
+  /// so are the others (a variant interrupted before has no main file, and is written again).
   void commit();
 
 private:

@@ -1,0 +1,136 @@
+"""A plate with holes for the structural design loop: meshed by Gmsh into quadratic tetrahedra
+(C3D10), written as a CalculiX deck whose mesh is an included file, and run with ccx.
+
+mesh_plate(folder, ...) writes folder/mesh.inp: the nodes, the C3D10 elements and the sets a user
+names regions by (node sets fixed, load, hole1, hole2, ... and the element set part), without the
+boundary triangles Gmsh adds for the surface groups (ccx would take them for plane-stress
+elements). write_analysis(folder) writes folder/plate.inp: steel, the fixed end clamped, a load on
+the far end, a static step, and includes mesh.inp. run_ccx(deck) runs ccx on a deck in its folder
+and returns what it printed for the load nodes (the displacements, from the .dat file).
+"""
+import os
+import re
+import subprocess
+
+GEO = '''SetFactory("OpenCASCADE");
+Box(1) = {{0, 0, 0, {length}, {width}, {thickness}}};
+{cylinders}
+BooleanDifference(100) = {{ Volume{{1}}; Delete; }}{{ {tools} }};
+e = 1e-6 * {length};
+Physical Volume("part") = {{100}};
+Physical Surface("fixed") = Surface In BoundingBox{{-e, -e, -e, e, {width} + e, {thickness} + e}};
+Physical Surface("load") = Surface In BoundingBox{{{length} - e, -e, -e, {length} + e, {width} + e, {thickness} + e}};
+{hole_groups}
+Mesh.ElementOrder = 2;
+Mesh.CharacteristicLengthMax = {size};
+Mesh.SaveGroupsOfNodes = 1;
+'''
+
+# Steel in mm, N, MPa (t/mm^3 for the density).
+ANALYSIS = '''*HEADING
+Plate with holes: clamped at x = 0, pulled down at x = {length}
+*INCLUDE, INPUT=mesh.inp
+*MATERIAL, NAME=STEEL
+*ELASTIC
+210000., 0.3
+*DENSITY
+7.85E-9
+*SOLID SECTION, ELSET=part, MATERIAL=STEEL
+*STEP
+*STATIC
+*BOUNDARY
+fixed, 1, 3
+*CLOAD
+{loads}
+*NODE FILE
+U
+*NODE PRINT, NSET=load
+U
+*END STEP
+'''
+
+
+def mesh_plate(folder, holes=((5.0, 2.0, 1.0),), length=10.0, width=4.0, thickness=1.0, size=0.6, gmsh='gmsh'):
+    """Meshes the plate minus the holes (x, y, radius), into folder/mesh.inp; returns its path."""
+    os.makedirs(folder, exist_ok=True)
+    cylinders = '\n'.join(f'Cylinder({2 + i}) = {{{x}, {y}, -1, 0, 0, {thickness + 2}, {r}}};'
+                          for i, (x, y, r) in enumerate(holes))
+    tools = 'Volume{%s}; Delete;' % ', '.join(str(2 + i) for i in range(len(holes)))
+    groups = '\n'.join(f'Physical Surface("hole{i + 1}") = Surface In BoundingBox{{{x - r} - e, {y - r} - e, -e, '
+                       f'{x + r} + e, {y + r} + e, {thickness} + e}};' for i, (x, y, r) in enumerate(holes))
+    geo = os.path.join(folder, 'plate.geo')
+    with open(geo, 'w') as f:
+        f.write(GEO.format(length=length, width=width, thickness=thickness, cylinders=cylinders, tools=tools,
+                           hole_groups=groups, size=size))
+    raw = os.path.join(folder, 'gmsh.inp')
+    subprocess.run([gmsh, '-3', geo, '-o', raw, '-format', 'inp'], check=True, stdout=subprocess.DEVNULL)
+    mesh = os.path.join(folder, 'mesh.inp')
+    with open(raw) as f, open(mesh, 'w') as out:
+        out.write(volume_elements_only(f.read()))
+    os.remove(raw)
+    return mesh
+
+
+def volume_elements_only(deck):
+    """The deck without its heading (the analysis deck has its own: ccx allows one), its 2D
+    elements (Gmsh's CPS/S/T boundary elements) and the element sets that held only those."""
+    blocks = re.split(r'(?m)^(?=\*)', deck)
+    dropped = set()
+    for block in blocks:
+        header = block.split('\n', 1)[0].upper().replace(' ', '')
+        if header.startswith('*ELEMENT,') and not re.search(r'TYPE=C3D', header):
+            dropped.update(int(line.split(',')[0]) for line in block.split('\n')[1:] if line.strip())
+    kept = []
+    for block in blocks:
+        header = block.split('\n', 1)[0].upper().replace(' ', '')
+        lines = [line for line in block.split('\n')[1:] if line.strip()]
+        if header.startswith('*HEADING') or header.startswith('*ELEMENT,') and not re.search(r'TYPE=C3D', header):
+            continue
+        if header.startswith('*ELSET,'):
+            ids = {int(v) for line in lines for v in line.split(',') if v.strip()}
+            if ids <= dropped:
+                continue
+        kept.append(block)
+    text = ''.join(kept)
+    return text if text.endswith('\n') else text + '\n'
+
+
+def write_analysis(folder, length=10.0, force=-100.0):
+    """folder/plate.inp: the static analysis of folder/mesh.inp, force (N, along z) spread evenly over
+    the load nodes."""
+    load = node_set(os.path.join(folder, 'mesh.inp'), 'load')
+    loads = '\n'.join(f'{n}, 3, {force / len(load):.9g}' for n in load)
+    deck = os.path.join(folder, 'plate.inp')
+    with open(deck, 'w') as f:
+        f.write(ANALYSIS.format(length=length, loads=loads))
+    return deck
+
+
+def node_set(deck, name):
+    """The node ids of the *NSET name of a (Gmsh-written) deck."""
+    ids, inside = [], False
+    with open(deck) as f:
+        for line in f:
+            if line.startswith('*'):
+                inside = re.match(r'\*NSET\s*,\s*NSET\s*=\s*' + re.escape(name) + r'\s*$', line.strip(), re.I) is not None
+            elif inside:
+                ids += [int(v) for v in line.split(',') if v.strip()]
+    return ids
+
+
+def run_ccx(deck, ccx='ccx', threads=1):
+    """Runs ccx on deck in its folder; returns {node: (ux, uy, uz)} of the printed displacements."""
+    folder, name = os.path.split(os.path.abspath(deck))
+    job = os.path.splitext(name)[0]
+    result = subprocess.run([ccx, '-i', job], cwd=folder, capture_output=True, text=True,
+                            env=dict(os.environ, OMP_NUM_THREADS=str(threads)))
+    log = result.stdout + result.stderr
+    if result.returncode != 0 or '*ERROR' in log:
+        raise RuntimeError(f'ccx failed on {deck}:\n' + log[-2000:])
+    displacements = {}
+    with open(os.path.join(folder, job + '.dat')) as f:
+        for line in f:
+            values = line.split()
+            if len(values) == 4 and values[0].isdigit():
+                displacements[int(values[0])] = tuple(float(v) for v in values[1:])
+    return displacements
