@@ -2,6 +2,7 @@
 // binary garbage, flipped bits, lost or repeated lines): each either reads as a valid mesh or
 // gives one clear error and an empty output; none crashes (the sanitizer build checks memory).
 #include "../TestHarness.h"
+#include "Mutations.h"
 #include "vtkOFFReader.h"
 
 #include <vtkCellArray.h>
@@ -44,64 +45,6 @@ const std::vector<std::string>& seeds()
     "STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n",
   };
   return files;
-}
-
-// One random mutation of text.
-std::string mutate(std::string text, std::mt19937& random)
-{
-  auto position = [&](std::size_t size) { return std::uniform_int_distribution<std::size_t>(0, size)(random); };
-  static const char* tokens[] = { "999999999999", "9223372036854775807", "18446744073709551616", "2147483648", "-1", "-99999", "nan",
-    "NaN", "-nan", "inf", "1e400", "-1e400", "0", "1.5", "0x1F", "#", "", "OFF", "\x01\xff" };
-  if (text.empty())
-  {
-    return text;
-  }
-  switch (std::uniform_int_distribution<int>(0, 5)(random))
-  {
-    case 0: // truncated anywhere
-      return text.substr(0, position(text.size()));
-    case 1: // a token replaced by a huge, negative, non-finite or malformed value
-    {
-      std::vector<std::pair<std::size_t, std::size_t>> spans; // (start, length) of each token
-      for (std::size_t i = 0; i < text.size();)
-      {
-        const std::size_t end = text.find_first_of(" \n", i);
-        const std::size_t stop = end == std::string::npos ? text.size() : end;
-        if (stop > i)
-          spans.push_back({ i, stop - i });
-        i = stop + 1;
-      }
-      if (spans.empty())
-        return text;
-      const auto [start, length] = spans[position(spans.size() - 1)];
-      return text.replace(start, length, tokens[position(std::size(tokens) - 1)]);
-    }
-    case 2: // binary garbage inserted
-    {
-      std::string garbage(std::uniform_int_distribution<int>(1, 64)(random), '\0');
-      for (char& c : garbage)
-        c = static_cast<char>(std::uniform_int_distribution<int>(0, 255)(random));
-      return text.insert(position(text.size()), garbage);
-    }
-    case 3: // bits flipped
-      for (int flips = std::uniform_int_distribution<int>(1, 8)(random); flips > 0; --flips)
-        text[position(text.size() - 1)] ^= static_cast<char>(1 << std::uniform_int_distribution<int>(0, 7)(random));
-      return text;
-    case 4: // a line lost or repeated
-    {
-      const std::size_t begin = text.rfind('\n', position(text.size())) + 1; // (npos + 1 = 0)
-      const std::size_t end = std::min(text.find('\n', begin), text.size() - 1) + 1;
-      const std::string line = text.substr(begin, end - begin);
-      return random() % 2 ? text.erase(begin, end - begin) : text.insert(begin, line);
-    }
-    default: // nothing of the file left
-    {
-      std::string garbage(position(256), '\0');
-      for (char& c : garbage)
-        c = static_cast<char>(std::uniform_int_distribution<int>(0, 255)(random));
-      return garbage;
-    }
-  }
 }
 
 // A mesh a pipeline can use: finite points, every face's ids among them.
@@ -174,7 +117,7 @@ TEST(MutatedFilesGiveAValidMeshOrOneClearError)
   {
     std::string text = seeds()[f % seeds().size()];
     for (int m = std::uniform_int_distribution<int>(1, 3)(random); m > 0; --m)
-      text = mutate(text, random);
+      text = testing::mutate(text, random);
     const Reading r = readText(path, text);
     if (r.errors > 0)
     {
