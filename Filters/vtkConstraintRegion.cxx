@@ -408,6 +408,28 @@ void vtkConstraintRegion::RemoveAllBlocks()
   }
 }
 
+void vtkConstraintRegion::AddSet(const char* name)
+{
+  this->SetNames.emplace_back(name ? name : "");
+  this->Modified();
+}
+
+void vtkConstraintRegion::RemoveAllSets()
+{
+  if (!this->SetNames.empty())
+  {
+    this->SetNames.clear();
+    this->Modified();
+  }
+}
+
+std::vector<std::string> vtkConstraintRegion::SelectedNames() const
+{
+  std::vector<std::string> names = this->BlockNames;
+  names.insert(names.end(), this->SetNames.begin(), this->SetNames.end());
+  return names;
+}
+
 bool vtkConstraintRegion::NamesBlock(const char* entry, const char* name)
 {
   return entry && name && mlsvtk::namesBlock(entry, name);
@@ -534,10 +556,10 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
     throw mlsdeform::InvalidInputException("SelectionMode is ImplicitFunction but no Region function is set");
   }
 
-  if (this->SelectionMode == Blocks && this->BlockNames.empty())
+  if (this->SelectionMode == Blocks && this->BlockNames.empty() && this->SetNames.empty())
   {
     throw mlsdeform::InvalidInputException("SelectionMode Blocks needs the names of what it selects in Blocks (patches, "
-                                           "patch groups, sets, or blocks ticked in the panel's list)");
+                                           "patch groups, sets, or blocks ticked in the panel's list) or Sets");
   }
   if (this->Role == FromPrimitive && this->SelectionMode != Primitive)
   {
@@ -632,7 +654,7 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
   const bool byCells = this->CellSets || this->SelectionMode == CellLayers;
   inputs.layers = this->SelectionMode == CellLayers ? this->NumberOfLayers : 0;
   inputs.cellSets = this->CellSets;
-  inputs.blocks = this->SelectionMode == Blocks ? this->BlockNames : std::vector<std::string>();
+  inputs.blocks = this->SelectionMode == Blocks ? this->SelectedNames() : std::vector<std::string>();
   inputs.setPerBlock = this->SelectionMode == Blocks && this->Role == Slip && !this->CellSets;
   inputs.stamp = mlsvtk::pointsStamp(in.sets);
   if (byCells || this->SelectionMode == Blocks) // (a cell set array selects its cells' points)
@@ -658,7 +680,7 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
       : mlsdeform::PointList();
     this->SelectedBlocks.clear();
     const std::optional<mlsvtk::BlockSelection> blocks = this->SelectionMode == Blocks
-      ? std::optional<mlsvtk::BlockSelection>(mlsvtk::selectBlocks(in.data, in.sets, this->BlockNames, group))
+      ? std::optional<mlsvtk::BlockSelection>(mlsvtk::selectBlocks(in.data, in.sets, this->SelectedNames(), group))
       : std::nullopt;
     SelectedPositions chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers,
       blocks ? &*blocks : nullptr, inputs.setPerBlock, group);
@@ -807,6 +829,7 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "NumberOfLayers: " << this->NumberOfLayers << "\n"
      << indent << "CellSets: " << this->CellSets << "\n"
      << indent << "Blocks: " << this->BlockNames.size() << "\n"
+     << indent << "Sets: " << this->SetNames.size() << "\n"
      << indent << "Translation: " << this->Translation[0] << " " << this->Translation[1] << " " << this->Translation[2] << "\n"
      << indent << "Rotation: " << this->Rotation[0] << " " << this->Rotation[1] << " " << this->Rotation[2] << "\n"
      << indent << "Scale: " << this->Scale[0] << " " << this->Scale[1] << " " << this->Scale[2] << "\n"

@@ -138,6 +138,13 @@ public:
   ///@}
 
   ///@{
+  /// Mode Blocks, too: sets of a mesh file by name (the panel lists the arrays the Mesh File
+  /// reader marks as its sets), selected with the Blocks entries.
+  void AddSet(const char* name);
+  void RemoveAllSets();
+  ///@}
+
+  ///@{
   /// The primitive of mode Primitive: its id in a vtkPrimitiveDetector's output (default 0). A
   /// vertex on an edge belongs to every primitive of its faces.
   vtkSetClampMacro(PrimitiveId, int, 0, VTK_INT_MAX);
@@ -336,6 +343,8 @@ private:
   struct DesignVariableList;
   std::unique_ptr<DesignVariableList> Designs;
   std::vector<std::string> BlockNames;    // mode Blocks
+  std::vector<std::string> SetNames;      // mode Blocks: a mesh file's sets
+  std::vector<std::string> SelectedNames() const; // BlockNames, then SetNames
   std::vector<std::string> SelectedBlocks; // the blocks the last selection took whole
 
 };

@@ -9,7 +9,10 @@
 #include <pqOutputPort.h>
 #include <pqPipelineFilter.h>
 #include <pqServerManagerModel.h>
+#include <vtkDataObject.h>
+#include <vtkPVArrayInformation.h>
 #include <vtkPVDataInformation.h>
+#include <vtkPVDataSetAttributesInformation.h>
 #include <vtkSMPropertyHelper.h>
 #include <vtkSMProxy.h>
 
@@ -26,6 +29,23 @@ constexpr int NamesShown = 3;
 bool isRegion(pqPipelineSource* source)
 {
   return source && source->getProxy() && std::strcmp(source->getProxy()->GetXMLName(), "ConstraintRegion") == 0;
+}
+
+// Whether the data has a mesh file's sets (arrays the Mesh File reader marks NAMED_SET).
+bool hasNamedSets(vtkPVDataInformation* information)
+{
+  for (int association : { vtkDataObject::POINT, vtkDataObject::CELL })
+  {
+    vtkPVDataSetAttributesInformation* arrays = information->GetAttributeInformation(association);
+    for (int i = 0; arrays && i < arrays->GetNumberOfArrays(); ++i)
+    {
+      if (arrays->GetArrayInformation(i)->HasInformationKey("vtkMeshFileReader", "NAMED_SET"))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 }
 
@@ -50,11 +70,11 @@ void pqConstraintRegionBehavior::onStartup()
 void pqConstraintRegionBehavior::filterCreated(pqPipelineSource* source)
 {
   // made from the Filters menu (a script's regions keep the defaults it knows): on a composite
-  // input, the blocks' checklist from the start
+  // input, the blocks' checklist from the start; on a mesh file's, the sets' list
   auto* filter = qobject_cast<pqPipelineFilter*>(source);
   pqOutputPort* input = filter ? filter->getAnyInput() : nullptr;
   vtkPVDataInformation* information = input ? input->getDataInformation() : nullptr;
-  if (isRegion(source) && information && information->IsCompositeDataSet())
+  if (isRegion(source) && information && (information->IsCompositeDataSet() || hasNamedSets(information)))
   {
     vtkSMPropertyHelper(source->getProxy(), "SelectionMode").Set(vtkConstraintRegion::Blocks);
     source->getProxy()->UpdateVTKObjects();
@@ -112,12 +132,15 @@ QString pqConstraintRegionBehavior::nameOf(pqPipelineSource* region)
   {
     case vtkConstraintRegion::Blocks:
     {
-      vtkSMPropertyHelper blocks(proxy, "Blocks");
       QStringList names;
-      for (unsigned int i = 0; i < blocks.GetNumberOfElements(); ++i)
+      for (const char* property : { "Blocks", "Sets" })
       {
-        // a hierarchy selector by its last block ("/Root/boundary/hull": hull)
-        names << QString(blocks.GetAsString(i)).section('/', -1);
+        vtkSMPropertyHelper entries(proxy, property);
+        for (unsigned int i = 0; i < entries.GetNumberOfElements(); ++i)
+        {
+          // a hierarchy selector by its last block ("/Root/boundary/hull": hull)
+          names << QString(entries.GetAsString(i)).section('/', -1);
+        }
       }
       const int more = names.size() - NamesShown;
       if (names.isEmpty())

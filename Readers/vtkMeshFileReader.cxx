@@ -10,6 +10,7 @@
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
+#include <vtkInformationIntegerKey.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -30,6 +31,7 @@ vtkSmartPointer<vtkUnsignedCharArray> setArray(const mlsformats::NamedSet& set, 
 {
   auto array = vtkSmartPointer<vtkUnsignedCharArray>::New();
   array->SetName(set.name.c_str());
+  array->GetInformation()->Set(vtkMeshFileReader::NAMED_SET(), 1);
   array->SetNumberOfValues(size);
   array->FillValue(0);
   for (const std::int64_t id : set.ids)
@@ -112,6 +114,8 @@ void toGrid(const mlsformats::SourceMesh& mesh, const std::string& path, vtkUnst
   grid->GetFieldData()->AddArray(source);
 }
 } // namespace
+
+vtkInformationKeyMacro(vtkMeshFileReader, NAMED_SET, Integer);
 
 vtkMeshFileReader::vtkMeshFileReader()
 {

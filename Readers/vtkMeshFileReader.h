@@ -22,6 +22,8 @@
 
 #include <string>
 
+class vtkInformationIntegerKey;
+
 class MLSDEFORMREADERS_EXPORT vtkMeshFileReader : public vtkUnstructuredGridAlgorithm
 {
 public:
@@ -37,6 +39,9 @@ public:
 
   /// 1 if the file is of a format this reader reads (by its extension and first bytes), else 0.
   static int CanReadFile(const char* filename);
+
+  /// Set on the information of every set's array: a Constraint Region's panel lists these.
+  static vtkInformationIntegerKey* NAMED_SET();
 
   /// Why the last read failed ("file:line: reason"), or "" when it succeeded; the error code
   /// (GetErrorCode) is then nonzero. For scripts, which cannot read the output window.

@@ -79,8 +79,14 @@ for name in ('fixed', 'load', 'hole1', 'hole2'):
 check(grid.GetCellData().GetArray('part') is not None, 'element set part is a cell array')
 x = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
 
-# 2. Regions by set name: the ends fixed, hole1 moved along x; the elements stay valid.
-fixed = ConstraintRegion(Input=reader, Role='Fixed', SelectionMode='Blocks', Blocks=['fixed', 'load'])
+# 2. Regions by set name (Sets, the panel's list of the deck's sets, or Blocks entries): the ends
+# fixed, hole1 moved along x; the elements stay valid.
+fixed = ConstraintRegion(Input=reader, Role='Fixed', SelectionMode='Blocks', Sets=['fixed', 'load'])
+fixed.UpdatePipeline()
+domain = fixed.GetProperty('Sets').SMProperty.GetDomain('array_list')
+listed = {domain.GetString(i) for i in range(domain.GetNumberOfStrings())}
+check({'fixed', 'load', 'hole1', 'hole2', 'part'} <= listed and not listed & {'NodeId', 'ElementId'},
+      'the panel\'s Sets list holds the deck\'s sets, not its ids: %s' % sorted(listed))
 hole = ConstraintRegion(Input=reader, Role='Handle', SelectionMode='Blocks', Blocks=['hole1'])
 hole.Translation = [0.4, 0, 0]
 deform = MLSDeform(Input=reader, Regions=[fixed, hole])
