@@ -38,7 +38,7 @@ GROUPS = {
         ('Role and Weight', ['Role', 'Weight']),
         ('Constraint Group', ['ConstraintGroup', 'DistanceAxis', 'MinimumDistance']),
         ('Symmetry Plane', ['SymmetryOrigin', 'SymmetryNormal']),
-        ('Selection', ['SelectionMode', 'Blocks', 'NumberOfLayers', 'CellSets', 'PrimitiveId', 'Region', 'InsideOut',
+        ('Selection', ['SelectionMode', 'Blocks', 'Sets', 'NumberOfLayers', 'CellSets', 'PrimitiveId', 'Region', 'InsideOut',
                        'SelectionArray', 'Range']),
         ('Design Variables', ['DesignVariables'])],
     'MLSSampler': [
