@@ -1,5 +1,6 @@
-// The OpenFOAM case a dataset was read from: the field data CasePath that VTK's OpenFOAM reader
-// puts on its output. Header only: the case writer (Readers/) and the mesh quality share it.
+// Where a dataset was read from: the OpenFOAM case (the field data CasePath that VTK's OpenFOAM
+// reader puts on its output) or the solver's mesh file (the field data SourceFile of the Mesh File
+// reader). Header only: the writers (Readers/) and the mesh quality share it.
 #pragma once
 
 #include <vtkAbstractArray.h>
@@ -29,5 +30,13 @@ inline std::string casePathOf(vtkDataObject* data)
     }
   }
   return path;
+}
+
+/// The SourceFile field data of data (the Mesh File reader's), or "" when it has none.
+inline std::string sourceFileOf(vtkDataObject* data)
+{
+  auto* array = vtkStringArray::SafeDownCast(
+    data && data->GetFieldData() ? data->GetFieldData()->GetAbstractArray("SourceFile") : nullptr);
+  return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : std::string();
 }
 } // namespace mlsvtk

@@ -120,7 +120,7 @@ Elements::Elements(vtkUnstructuredGrid* grid)
   }
 }
 
-double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const
+double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted, bool quadraticOnly) const
 {
   using mlsdeform::ElementShape;
   const long count = static_cast<long>(Cells.size());
@@ -137,7 +137,7 @@ double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigne
     const mlsdeform::ElementJacobian j = mlsdeform::elementJacobian(Shapes[e], nodes);
     least = std::min(least, j.minScaled);
     const bool quadratic = Shapes[e] == ElementShape::Tetra10 || Shapes[e] == ElementShape::Hexa20 || Shapes[e] == ElementShape::Wedge15;
-    if (quadratic && j.inverted)
+    if (j.inverted && (quadratic || !quadraticOnly))
     {
       inverted[Cells[e]] = 1; // one element a cell: no two threads write the same byte
     }
@@ -159,9 +159,20 @@ mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
   return points;
 }
 
-VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath)
+VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath, QualityVerdict verdict)
   : FemElements(rest)
+  , Verdict(verdict)
 {
+  if (verdict == QualityVerdict::FemSolver)
+  {
+    Has3DCells = !FemElements.empty();
+    if (Has3DCells)
+    {
+      gridPoints(rest, "the mesh's points", Points);
+      Original = summarizeMeasures();
+    }
+    return;
+  }
   std::optional<CaseMesh> own = casePath.empty() ? std::nullopt : caseFaces(casePath, rest);
   if (own)
   {
@@ -202,18 +213,31 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::strin
 QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
 {
   gridPoints(grid, "the mesh's points", Points);
-  mlsdeform::faceMeasures(Points, Cells, Faces, Orientation, Work, Measures);
+  if (Verdict == QualityVerdict::CheckMesh)
+  {
+    mlsdeform::faceMeasures(Points, Cells, Faces, Orientation, Work, Measures);
+  }
   return summarizeMeasures();
 }
 
 QualitySummary VolumeMeshQuality::summarizeMeasures()
 {
+  const bool checkMesh = Verdict == QualityVerdict::CheckMesh;
   QualitySummary summary{ Measures.invertedCells, Measures.maxNonOrthogonality, Measures.maxSkewness };
+  summary.faceMeasures = checkMesh;
   if (!FemElements.empty())
   {
-    // the faces' inverted cells, and the quadratic elements folded between their corners
-    Inverted = Measures.inverted;
-    summary.minScaledJacobian = FemElements.measure(Points, Inverted);
+    // checkMesh's: the faces' inverted cells and the quadratic elements folded between their
+    // corners; the FEM solver's: every element with det J <= 0 at one of its points
+    if (checkMesh)
+    {
+      Inverted = Measures.inverted;
+    }
+    else
+    {
+      Inverted.assign(Inverted.size(), 0);
+    }
+    summary.minScaledJacobian = FemElements.measure(Points, Inverted, checkMesh);
     summary.inverted = static_cast<long>(std::count(Inverted.begin(), Inverted.end(), 1));
   }
   return summary;

@@ -35,8 +35,9 @@ public:
   explicit Elements(vtkUnstructuredGrid* grid);
   bool empty() const { return Cells.empty(); }
   /// The least scaled Jacobian over the elements (infinity when there are none), and for each
-  /// quadratic element with det J <= 0 at one of its points, inverted[its cell] set to 1.
-  double measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const;
+  /// element with det J <= 0 at one of its points (every element, or the quadratic ones only),
+  /// inverted[its cell] set to 1.
+  double measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted, bool quadraticOnly) const;
 
 private:
   std::size_t CellCount;
@@ -58,26 +59,38 @@ struct QualitySummary
   double maxNonOrthogonality = 0;
   double maxSkewness = 0;
   double minScaledJacobian = std::numeric_limits<double>::infinity(); // over Elements (none: infinity)
+  bool faceMeasures = false; // whether the non-orthogonality and skewness were measured
 
   /// Adds another mesh's: the counts add up, the largest (least) values stay.
   void add(const QualitySummary& other)
   {
     inverted += other.inverted;
     minScaledJacobian = minScaledJacobian < other.minScaledJacobian ? minScaledJacobian : other.minScaledJacobian;
+    faceMeasures = faceMeasures || other.faceMeasures;
     maxNonOrthogonality = maxNonOrthogonality > other.maxNonOrthogonality ? maxNonOrthogonality : other.maxNonOrthogonality;
     maxSkewness = maxSkewness > other.maxSkewness ? maxSkewness : other.maxSkewness;
   }
 };
 
+/// Whose verdict a mesh gets: OpenFOAM checkMesh's (face pyramids, non-orthogonality, skewness;
+/// quadratic elements also by their Jacobian), or an FEM solver's (every element by its Jacobian
+/// at its corners and integration points, no face measures): a solver's mesh file's.
+enum class QualityVerdict
+{
+  CheckMesh,
+  FemSolver,
+};
+
 /// A grid's interior faces, oriented out of their owner on the rest points (OpenFOAM's face
-/// order), measured again for every new set of points of the same cells.
+/// order), and its elements, measured again for every new set of points of the same cells.
 class VolumeMeshQuality
 {
 public:
   /// The faces of rest's cells, matched by their points; or, when rest is the mesh of the
   /// OpenFOAM case folder casePath as it numbers it, the case's own (caseFaces), with the
-  /// figures of the case's points when those are rest's.
-  explicit VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath = std::string());
+  /// figures of the case's points when those are rest's. The FEM solver's verdict needs no faces.
+  explicit VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath = std::string(),
+    QualityVerdict verdict = QualityVerdict::CheckMesh);
 
   /// Whether the grid has 3D cells to measure.
   bool hasCells() const { return Has3DCells; }
@@ -105,6 +118,7 @@ private:
   mlsdeform::FaceMeasures Measures;
   QualitySummary Original;
   Elements FemElements;
+  QualityVerdict Verdict;
   std::vector<unsigned char> Inverted; // per cell: the faces' verdict, then the elements'
 };
 } // namespace mlsvtk

@@ -1,6 +1,7 @@
 #include "Session/MeshQualityReport.h"
 
 #include "Adapters/CaseFaces.h"
+#include "Adapters/CasePath.h"
 #include "Session/SolutionReport.h"
 
 #include <vtkDataArray.h>
@@ -68,7 +69,9 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
       for (vtkPointSet* set : inSets)
       {
         auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
-        Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid, casePath) : nullptr);
+        // a solver's mesh file gets the solver's verdict (its elements), a case checkMesh's
+        const QualityVerdict verdict = sourceFileOf(set).empty() ? QualityVerdict::CheckMesh : QualityVerdict::FemSolver;
+        Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid, casePath, verdict) : nullptr);
         if (Quality.back() && Quality.back()->hasCells())
         {
           Original.add(Quality.back()->original());
@@ -115,8 +118,11 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
     std::vector<double> largest{ q.maxNonOrthogonality, q.maxSkewness, -q.minScaledJacobian };
     group.maximum(largest);
     addField(field, (std::string(prefix) + "InvertedCells").c_str(), static_cast<double>(inverted[0]));
-    addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), largest[0]);
-    addField(field, (std::string(prefix) + "MaxSkewness").c_str(), largest[1]);
+    if (group.any(q.faceMeasures)) // checkMesh's figures; none on a solver's mesh file
+    {
+      addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), largest[0]);
+      addField(field, (std::string(prefix) + "MaxSkewness").c_str(), largest[1]);
+    }
     if (std::isfinite(largest[2])) // some process has elements ElementJacobian measures
     {
       addField(field, (std::string(prefix) + "MinScaledJacobian").c_str(), -largest[2]);

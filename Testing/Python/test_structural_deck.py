@@ -100,6 +100,8 @@ shift = moved - x
 balance = (deform.StretchWeight + deform.BendWeight) / deform.FixWeight * 0.4
 check(np.abs(shift[in_hole] - [0.4, 0, 0]).max() < balance and np.abs(shift[in_fixed]).max() < balance,
       'the hole moves by 0.4 along x, the clamped end stays (within the balance %.2g)' % balance)
+check(field(deform, 'MaxNonOrthogonality') is None and field(deform, 'MaxSkewness') is None,
+      'a deck gets the FEM solver\'s verdict: no checkMesh face measures')
 check(field(deform, 'InvertedCells') == 0 and 0 < field(deform, 'MinScaledJacobian') <= 1,
       'no element inverted at its corners or integration points; least scaled Jacobian %.3f (before %.3f)'
       % (field(deform, 'MinScaledJacobian'), field(deform, 'OriginalMinScaledJacobian')))
