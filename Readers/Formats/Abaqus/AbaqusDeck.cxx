@@ -1137,6 +1137,46 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
   }
 }
 
+// The text of file f with each of its nodes' coordinates replaced by xyz (row: where node k's are),
+// in pieces of nodes formatted side by side (the same text for any number of threads), to be
+// written one after the other.
+std::vector<std::string> withCoordinates(
+  const std::string& text, const std::vector<NodeSlot>& slots, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
+{
+  std::vector<std::size_t> mine; // the nodes in file f, in file order
+  for (std::size_t k = 0; k < slots.size(); ++k)
+  {
+    if (slots[k].file == f)
+    {
+      mine.push_back(k);
+    }
+  }
+  constexpr long Pieces = 64;
+  std::vector<std::string> pieces(Pieces);
+  // piece p: from its first node's coordinates (the file's start for p = 0) to the next piece's
+  auto start = [&](long p) {
+    const std::size_t first = mine.size() * p / Pieces;
+    return p == 0 ? std::size_t(0) : p == Pieces ? text.size() : first < mine.size() ? slots[mine[first]].begin : text.size();
+  };
+#pragma omp parallel for schedule(dynamic)
+  for (long p = 0; p < Pieces; ++p)
+  {
+    std::string& out = pieces[p];
+    std::size_t copied = start(p);
+    const std::size_t end = start(p + 1);
+    out.reserve((end - copied) * 9 / 8);
+    for (std::size_t i = mine.size() * p / Pieces; i < mine.size() * (p + 1) / Pieces; ++i)
+    {
+      const NodeSlot& s = slots[mine[i]];
+      out.append(text, copied, s.begin - copied);
+      appendSlot(out, std::string_view(text).substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
+      copied = s.end;
+    }
+    out.append(text, copied, end - copied);
+  }
+  return pieces;
+}
+
 std::string canonical(const fs::path& path)
 {
   std::error_code ignored;
@@ -1230,21 +1270,8 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       throw FileError(deck.files[f], 0, "has changed since it was read: read the deck again");
     }
-    std::string out;
-    out.reserve(text.size() + text.size() / 8);
-    std::size_t copied = 0;
-    for (std::size_t k = 0; k < deck.slots.size(); ++k)
-    {
-      const NodeSlot& s = deck.slots[k];
-      if (s.file == f)
-      {
-        out.append(text, copied, s.begin - copied);
-        appendSlot(out, std::string_view(text).substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[k]);
-        copied = s.end;
-      }
-    }
-    out.append(text, copied, std::string::npos);
-    write.add(destinations[f], out);
+    const std::vector<std::string> pieces = withCoordinates(text, deck.slots, f, row, xyz);
+    write.add(destinations[f], std::vector<std::string_view>(pieces.begin(), pieces.end()));
   }
   write.commit();
 }

@@ -58,6 +58,11 @@ AtomicWrite::~AtomicWrite()
 
 void AtomicWrite::add(const std::string& path, const std::string& text)
 {
+  this->add(path, std::vector<std::string_view>{ text });
+}
+
+void AtomicWrite::add(const std::string& path, const std::vector<std::string_view>& pieces)
+{
   if (!this->Overwrite && std::filesystem::exists(path))
   {
     throw FileError(path, 0, "exists already (overwrite it or choose another name)");
@@ -71,7 +76,10 @@ void AtomicWrite::add(const std::string& path, const std::string& text)
   const std::string aside = path + ".writing-" + std::to_string(::getpid());
   this->Pending.emplace_back(aside, path);
   std::ofstream out(aside, std::ios::binary | std::ios::trunc);
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  for (const std::string_view piece : pieces)
+  {
+    out.write(piece.data(), static_cast<std::streamsize>(piece.size()));
+  }
   out.close();
   if (!out)
   {

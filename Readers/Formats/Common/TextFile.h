@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mlsformats
@@ -30,8 +31,9 @@ class AtomicWrite
 public:
   explicit AtomicWrite(bool overwrite);
   ~AtomicWrite(); // removes what was written aside and not committed
-  /// Writes text aside for path.
+  /// Writes text (or its pieces, one after the other) aside for path.
   void add(const std::string& path, const std::string& text);
+  void add(const std::string& path, const std::vector<std::string_view>& pieces);
   /// Renames every file written aside into place, the first added last: once it is in place,
   /// so are the others (a variant interrupted before has no main file, and is written again).
   void commit();
