@@ -1,6 +1,7 @@
 #include "SourceFile.h"
 
 #include "Abaqus/AbaqusDeck.h"
+#include "Gmsh/GmshMesh.h"
 
 #include <algorithm>
 #include <cctype>
@@ -23,6 +24,11 @@ std::unique_ptr<SourceFile> readDeck(const std::string& path, bool layout)
   return std::make_unique<abaqus::Deck>(layout ? abaqus::readNodeLayout(path) : abaqus::readDeck(path));
 }
 
+std::unique_ptr<SourceFile> readGmsh(const std::string& path, bool layout)
+{
+  return std::make_unique<gmsh::MshFile>(layout ? gmsh::readMshLayout(path) : gmsh::readMsh(path));
+}
+
 std::string lowerCase(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -34,6 +40,7 @@ const std::vector<Format>& formats()
 {
   static const std::vector<Format> table = {
     { "Abaqus/CalculiX deck", "inp", isDeck, readDeck },
+    { "Gmsh mesh", "msh", gmsh::isMsh, readGmsh },
   };
   return table;
 }

@@ -113,8 +113,11 @@ check(open(variant, 'rb').read() == open(deck, 'rb').read(), 'the main deck is c
 variant_nodes, variant_other = node_lines(os.path.join(work, 'variant', 'mesh.inp'))
 check(variant_other == source_other, 'every line of the included mesh but the nodes\' is byte-identical')
 by_id = dict(zip(ids.tolist(), map(tuple, moved)))
-check(sorted(variant_nodes) == sorted(source_nodes) and all(variant_nodes[n] == by_id[n] for n in variant_nodes),
-      'the variant\'s nodes are the same ids at the deformed positions, exactly')
+# exactly, or within 1e-13 where the shortest text of a coordinate is wider than the 20 characters
+# CalculiX reads a number in (14 significant digits then)
+check(sorted(variant_nodes) == sorted(source_nodes) and
+      all(abs(a - b) <= 1e-13 * abs(b) for n in variant_nodes for a, b in zip(variant_nodes[n], by_id[n])),
+      'the variant\'s nodes are the same ids at the deformed positions')
 unmoved = [n for n in source_nodes if by_id[n] == source_nodes[n]]
 
 

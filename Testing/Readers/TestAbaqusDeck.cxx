@@ -5,6 +5,8 @@
 #include "Common/TextFile.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -273,6 +275,41 @@ TEST(VariantKeepsEveryOtherByte)
   CHECK(layout.mesh.nodeIds == deck.mesh.nodeIds && layout.mesh.blocks.empty());
   layout.writeVariant(dir + "/layout/cube.inp", ids.data(), xyz.data(), count, false);
   CHECK(readFile(dir + "/layout/cube.inp") == readFile(dir + "/moved/cube.inp"));
+}
+
+TEST(VariantNumbersFitCalculixFields)
+{
+  // CalculiX reads a number in 20 characters and cuts a longer one without a word: every written
+  // coordinate fits, as the shortest text when that fits, else to 14-16 significant digits
+  // (relative change below 1e-13: 17 digits make a double, each one fewer rounds by 10x more)
+  const std::string dir = folder("width");
+  const std::string source = writeFile(dir + "/deck.inp", "*NODE\n1, 0., 0., 0.\n2, 1., 0., 0.\n");
+  const abaqus::Deck deck = abaqus::readDeck(source);
+  const double xyz[6] = { -1.2345678901234567e-07, 0.0012345678901234567, -123456.78901234567, 1.0 / 3.0, -2e-300, 5.0 };
+  deck.writeVariant(dir + "/variant/deck.inp", deck.mesh.nodeIds.data(), xyz, 2, false);
+  const std::string text = readFile(dir + "/variant/deck.inp");
+  std::printf("%s", text.c_str());
+  std::size_t widest = 0, begin = text.find('\n', text.find("*NODE")) + 1;
+  while (begin < text.size())
+  {
+    const std::size_t end = text.find('\n', begin);
+    std::string line = text.substr(begin, end - begin);
+    for (std::size_t field = 0, comma = 0; comma != std::string::npos; field = comma + 1)
+    {
+      comma = line.find(',', field);
+      std::string number = line.substr(field, (comma == std::string::npos ? line.size() : comma) - field);
+      number.erase(std::remove(number.begin(), number.end(), ' '), number.end()); // ccx drops the blanks
+      widest = std::max(widest, number.size());
+    }
+    begin = end + 1;
+  }
+  CHECK(widest <= 20);
+  const abaqus::Deck again = abaqus::readDeck(dir + "/variant/deck.inp");
+  for (int i = 0; i < 6; ++i)
+  {
+    CHECK(std::abs(again.mesh.xyz[i] - xyz[i]) <= 1e-13 * std::abs(xyz[i]));
+  }
+  CHECK(again.mesh.xyz[3] == 1.0 / 3.0 && again.mesh.xyz[5] == 5.0); // the shortest text, exact, where it fits
 }
 
 TEST(VariantRefusesOtherDataAndNeverHalfWrites)

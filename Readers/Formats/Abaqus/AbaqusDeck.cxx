@@ -1,6 +1,7 @@
 #include "Abaqus/AbaqusDeck.h"
 
 #include "Common/IdIndex.h"
+#include "Common/VariantNodes.h"
 #include "Common/TextFile.h"
 
 #include <algorithm>
@@ -1106,6 +1107,10 @@ namespace
 {
 // Appends the slot's text with the coordinates xyz: each number whose value changed is replaced by
 // the shortest text of the new one; blanks, separators and unchanged numbers stay as they were.
+// CalculiX reads a number in 20 characters and silently cuts a longer one ("1.2345678901234567e-05"
+// becomes 1.2345678901234567e-0): a changed coordinate's text fits them.
+constexpr std::size_t NumberWidth = 20;
+
 void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, const double* xyz)
 {
   std::size_t begin = 0;
@@ -1126,7 +1131,7 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
     {
       const std::size_t lead = number.empty() ? field.size() : static_cast<std::size_t>(number.data() - field.data());
       out.append(field.substr(0, lead));
-      appendShortest(out, xyz[c]);
+      appendShortest(out, xyz[c], NumberWidth);
       out.append(field.substr(lead + number.size()));
     }
     if (c + 1 < count)
@@ -1177,11 +1182,6 @@ std::vector<std::string> withCoordinates(
   return pieces;
 }
 
-std::string canonical(const fs::path& path)
-{
-  std::error_code ignored;
-  return fs::weakly_canonical(path, ignored).string();
-}
 } // namespace
 
 void Deck::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
@@ -1190,50 +1190,14 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
   const Deck& deck = *this;
   const std::vector<std::int64_t>& nodeIds = deck.mesh.nodeIds;
   const std::string& source = deck.files.at(0);
-  if (count != nodeIds.size())
-  {
-    throw FileError(target, 0, "the data has " + std::to_string(count) + " points; " + source + " has " +
-        std::to_string(nodeIds.size()) + " nodes (is it that deck's mesh?)");
-  }
-  // where each node's coordinates are in xyz
-  std::vector<std::size_t> row(count);
-  if (std::equal(nodeIds.begin(), nodeIds.end(), ids))
-  {
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      row[i] = i;
-    }
-  }
-  else
-  {
-    const IdIndex index(nodeIds);
-    std::vector<char> seen(count, 0);
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      const std::size_t at = index.find(ids[i]);
-      if (at == IdIndex::none || seen[at])
-      {
-        throw FileError(target, 0, "node " + std::to_string(ids[i]) + (at == IdIndex::none ? " is not in " : " comes twice, once in ") +
-            source + " (is the data that deck's mesh?)");
-      }
-      seen[at] = 1;
-      row[at] = i;
-    }
-  }
-  for (std::size_t i = 0; i < 3 * count; ++i)
-  {
-    if (!std::isfinite(xyz[i]))
-    {
-      throw FileError(target, 0, "node " + std::to_string(ids[i / 3]) + " has a coordinate that is not finite");
-    }
-  }
+  const std::vector<std::size_t> row = variantRows(target, source, nodeIds, ids, xyz, count);
   // each file's destination: the deck at target, a relative include beside it under its name
   const fs::path folder = fs::path(target).parent_path();
   std::vector<std::string> destinations(deck.files.size());
   std::vector<std::string> sources;
   for (const std::string& file : deck.files)
   {
-    sources.push_back(canonical(file));
+    sources.push_back(canonicalPath(file));
   }
   std::vector<char> hasNodes(deck.files.size(), 0);
   for (const NodeSlot& slot : deck.slots)
@@ -1253,7 +1217,7 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
       continue; // read where it is, by the variant as by the source
     }
     destinations[f] = f == 0 ? target : (folder / name).string();
-    if (std::find(sources.begin(), sources.end(), canonical(destinations[f])) != sources.end())
+    if (std::find(sources.begin(), sources.end(), canonicalPath(destinations[f])) != sources.end())
     {
       throw FileError(destinations[f], 0, "is a file of the source deck " + source + ": a variant is written elsewhere");
     }

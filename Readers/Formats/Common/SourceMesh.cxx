@@ -20,6 +20,8 @@ int nodesPerCell(CellType type)
     case CellType::QuadraticTetra: return 10;
     case CellType::QuadraticHexahedron: return 20;
     case CellType::QuadraticWedge: return 15;
+    case CellType::BiQuadraticQuad: return 9;
+    case CellType::TriQuadraticHexahedron: return 27;
   }
   return 0;
 }

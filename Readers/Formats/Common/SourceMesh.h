@@ -27,6 +27,8 @@ enum class CellType : int
   QuadraticTetra = 24,
   QuadraticHexahedron = 25,
   QuadraticWedge = 26,
+  BiQuadraticQuad = 28,
+  TriQuadraticHexahedron = 29,
 };
 
 /// The number of nodes of a cell of a type.

@@ -26,6 +26,12 @@ FileError::FileError(const std::string& file_, std::size_t line_, const std::str
 {
 }
 
+std::string canonicalPath(const std::string& path)
+{
+  std::error_code ignored;
+  return std::filesystem::weakly_canonical(path, ignored).string();
+}
+
 std::string readFile(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
@@ -132,10 +138,15 @@ bool parseReal(const char* first, const char* last, double& value)
   return first < last && error == std::errc() && end == last && std::isfinite(value);
 }
 
-void appendShortest(std::string& out, double value)
+void appendShortest(std::string& out, double value, std::size_t width)
 {
   char text[32];
-  const auto written = std::to_chars(text, text + sizeof(text), value);
+  auto written = std::to_chars(text, text + sizeof(text), value);
+  // too wide: the most significant digits that fit (%g's choice of fixed or exponent)
+  for (int digits = 16; static_cast<std::size_t>(written.ptr - text) > width && digits > 0; --digits)
+  {
+    written = std::to_chars(text, text + sizeof(text), value, std::chars_format::general, digits);
+  }
   out.append(text, written.ptr);
 }
 

@@ -20,6 +20,10 @@ public:
   std::size_t line;
 };
 
+/// The path with its folders resolved as far as they exist (symbolic links, "..", "."): two paths
+/// of the same file compare equal.
+std::string canonicalPath(const std::string& path);
+
 /// The whole file. Throws FileError when it cannot be read.
 std::string readFile(const std::string& path);
 
@@ -50,8 +54,10 @@ bool parseInteger(const char* first, const char* last, std::int64_t& value);
 /// value; NaN, infinities and numbers out of a double's range are not.
 bool parseReal(const char* first, const char* last, double& value);
 
-/// Appends the shortest text that reads back as the same double.
-void appendShortest(std::string& out, double value);
+/// Appends the shortest text that reads back as the same double; when that is wider than width
+/// characters, the closest text of as many significant digits as fit (a relative change below
+/// 1e-13 for width 20: the field width CalculiX and Abaqus read a number in).
+void appendShortest(std::string& out, double value, std::size_t width = 32);
 
 /// The lines of text: the offsets where each line starts and ends (without "\n" or "\r\n").
 struct Line

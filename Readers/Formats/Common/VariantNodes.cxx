@@ -1,0 +1,52 @@
+#include "Common/VariantNodes.h"
+
+#include "Common/IdIndex.h"
+#include "Common/TextFile.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mlsformats
+{
+std::vector<std::size_t> variantRows(const std::string& target, const std::string& source,
+  const std::vector<std::int64_t>& nodeIds, const std::int64_t* ids, const double* xyz, std::size_t count)
+{
+  if (count != nodeIds.size())
+  {
+    throw FileError(target, 0, "the data has " + std::to_string(count) + " points; " + source + " has " +
+        std::to_string(nodeIds.size()) + " nodes (is it that file's mesh?)");
+  }
+  std::vector<std::size_t> row(count);
+  if (std::equal(nodeIds.begin(), nodeIds.end(), ids))
+  {
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      row[i] = i;
+    }
+  }
+  else
+  {
+    const IdIndex index(nodeIds);
+    std::vector<char> seen(count, 0);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const std::size_t at = index.find(ids[i]);
+      if (at == IdIndex::none || seen[at])
+      {
+        throw FileError(target, 0, "node " + std::to_string(ids[i]) + (at == IdIndex::none ? " is not in " : " comes twice, once in ") +
+            source + " (is the data that file's mesh?)");
+      }
+      seen[at] = 1;
+      row[at] = i;
+    }
+  }
+  for (std::size_t i = 0; i < 3 * count; ++i)
+  {
+    if (!std::isfinite(xyz[i]))
+    {
+      throw FileError(target, 0, "node " + std::to_string(ids[i / 3]) + " has a coordinate that is not finite");
+    }
+  }
+  return row;
+}
+} // namespace mlsformats
