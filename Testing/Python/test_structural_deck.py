@@ -1,4 +1,4 @@
-"""Issue 55, points 1, 2, 4 and 6: a structural engineer's loop on a CalculiX deck from pvpython.
+"""Issue 55, points 1 to 4 and 6: a structural engineer's loop on a CalculiX deck (and a Gmsh mesh) from pvpython.
 
 A plate with two holes meshed by Gmsh into quadratic tetrahedra (C3D10), its mesh in an included
 file: ParaView opens the deck with the Mesh File reader (not AVS UCD), its sets are arrays that
@@ -148,7 +148,32 @@ SaveData(other, proxy=part)
 check(not os.path.exists(os.path.join(work, 'part')) or not os.listdir(os.path.join(work, 'part')),
       'half the mesh (other node count) is refused: nothing written')
 
-# 6. A design of experiments on the deck: variant decks with the FEM verdict, resumable.
+# 6. The same part as a Gmsh mesh (.msh 4.1 binary and 2.2 ASCII): its physical groups are the sets,
+# Save Data writes a .msh variant that Gmsh reads, with the deformed positions exactly.
+for version, binary in (('msh41', True), ('msh22', False)):
+    mesh = os.path.join(work, 'gmsh', version, 'plate.msh')
+    os.makedirs(os.path.dirname(mesh), exist_ok=True)
+    subprocess.run(['gmsh', '-3', os.path.join(source, 'plate.geo'), '-format', version, '-o', mesh] + (['-bin'] if binary else []),
+                   check=True, stdout=subprocess.DEVNULL)
+    msh = OpenDataFile(mesh)
+    kind = '%s %s' % (version, 'binary' if binary else 'ASCII')
+    check(msh.GetXMLName() == 'MeshFileReader' and {24} == {sm.Fetch(msh).GetCellType(c) for c in range(sm.Fetch(msh).GetNumberOfCells())},
+          '%s opens with the Mesh File reader into quadratic tetrahedra' % kind)
+    fixed_m = ConstraintRegion(Input=msh, Role='Fixed', SelectionMode='Blocks', Sets=['fixed', 'load'])
+    hole_m = ConstraintRegion(Input=msh, Role='Handle', SelectionMode='Blocks', Sets=['hole1'], Translation=[0.4, 0, 0])
+    deform_m = MLSDeform(Input=msh, Regions=[fixed_m, hole_m])
+    moved_m = vtk_to_numpy(sm.Fetch(deform_m).GetPoints().GetData()).astype(float)
+    ids_m = vtk_to_numpy(sm.Fetch(msh).GetPointData().GetArray('NodeId'))
+    target = os.path.join(work, 'gmsh', version, 'variant', 'plate.msh')
+    SaveData(target, proxy=deform_m)
+    reread = subprocess.run(['gmsh', target, '-0', '-o', os.path.join(work, 'gmsh', version, 'reread.msh')], capture_output=True, text=True)
+    back = sm.Fetch(OpenDataFile(target))
+    same = dict(zip(vtk_to_numpy(back.GetPointData().GetArray('NodeId')).tolist(), map(tuple, vtk_to_numpy(back.GetPoints().GetData()))))
+    check(reread.returncode == 0 and 'Error' not in reread.stdout + reread.stderr and
+          all(same[n] == tuple(p) for n, p in zip(ids_m.tolist(), moved_m)),
+          '%s: the variant has the deformed positions exactly and Gmsh reads it' % kind)
+
+# 7. A design of experiments on the deck: variant decks with the FEM verdict, resumable.
 import mlsdeform  # noqa: E402
 hole.Translation = [0, 0, 0]
 dvs = mlsdeform.DesignVariables(deform)
@@ -177,7 +202,7 @@ try:
 except ValueError as e:
     check('MaxSkewness' in str(e) and 'MinScaledJacobian' in str(e), 'a case\'s threshold on a deck is an error: %s' % e)
 
-# 7. The command line on a deck design: the sets by name, the same verdicts.
+# 8. The command line on a deck design: the sets by name, the same verdicts.
 design = os.path.join(work, 'design.json')
 with open(design, 'w') as f:
     json.dump({'deck': 'source/plate.inp', 'handle': ['hole1'], 'fixed': ['fixed', 'load'],
