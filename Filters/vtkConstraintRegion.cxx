@@ -199,9 +199,13 @@ struct SelectedPositions
 // cell's points in turn with its set number (cellSets), or each point of a chosen cell once.
 // Cells are chosen by layers around the surface (mode CellLayers) or when all their points
 // follow the rule; with cell sets only cells of dimension 2 or 3 count.
+// A Slip region's planes: each block selected whole is one (numbered by its composite id), and each
+// entry that names set arrays one more (numbered from SetArrayPlanes by the entry's position).
+constexpr int SetArrayPlanes = 1 << 24;
+
 SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values,
   const PointRule& rule, bool cellSets, const mlsdeform::PointList& surface, int layers, const mlsvtk::BlockSelection* blocks,
-  bool setPerBlock, const mlsdeform::Collective& group)
+  bool setPerBlock, int entry, const mlsdeform::Collective& group)
 {
   SelectedPositions out;
   const bool byLayers = rule.mode == vtkConstraintRegion::CellLayers;
@@ -248,8 +252,8 @@ SelectedPositions selectPositions(const std::vector<vtkPointSet*>& sets, const s
             if (setPerBlock)
             {
               // each block its own set (a Slip region's planes), numbered alike on every process
-              // (negative: Common/GatheredPositions.h); the points of set arrays one more
-              out.sets.push_back(-1.0 - blocks->block[s]);
+              // (negative: Common/GatheredPositions.h); the points of an entry's set arrays one more
+              out.sets.push_back(-1.0 - (blocks->block[s] ? blocks->block[s] : SetArrayPlanes + entry));
             }
           }
         }
@@ -679,12 +683,37 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
       ? mlsdeform::gatherPositions(mlsvtk::points(in.surfaceSets), {}, group).positions
       : mlsdeform::PointList();
     this->SelectedBlocks.clear();
-    const std::optional<mlsvtk::BlockSelection> blocks = this->SelectionMode == Blocks
-      ? std::optional<mlsvtk::BlockSelection>(mlsvtk::selectBlocks(in.data, in.sets, this->SelectedNames(), group))
-      : std::nullopt;
-    SelectedPositions chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers,
-      blocks ? &*blocks : nullptr, inputs.setPerBlock, group);
-    this->SelectedBlocks = blocks ? blocks->names : std::vector<std::string>();
+    SelectedPositions chosen;
+    if (inputs.setPerBlock)
+    {
+      // a Slip region: each entry selected on its own, so that each names its own planes (a point
+      // of two, on an edge, slides along both)
+      const std::vector<std::string> names = this->SelectedNames();
+      for (std::size_t e = 0; e < names.size(); ++e)
+      {
+        const mlsvtk::BlockSelection blocks = mlsvtk::selectBlocks(in.data, in.sets, { names[e] }, group);
+        SelectedPositions part = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers,
+          &blocks, true, static_cast<int>(e), group);
+        chosen.positions.insert(chosen.positions.end(), part.positions.begin(), part.positions.end());
+        chosen.sets.insert(chosen.sets.end(), part.sets.begin(), part.sets.end());
+        for (const std::string& block : blocks.names)
+        {
+          if (std::find(this->SelectedBlocks.begin(), this->SelectedBlocks.end(), block) == this->SelectedBlocks.end())
+          {
+            this->SelectedBlocks.push_back(block);
+          }
+        }
+      }
+    }
+    else
+    {
+      const std::optional<mlsvtk::BlockSelection> blocks = this->SelectionMode == Blocks
+        ? std::optional<mlsvtk::BlockSelection>(mlsvtk::selectBlocks(in.data, in.sets, this->SelectedNames(), group))
+        : std::nullopt;
+      chosen = selectPositions(in.sets, in.values, rule, this->CellSets, surface, this->NumberOfLayers,
+        blocks ? &*blocks : nullptr, false, 0, group);
+      this->SelectedBlocks = blocks ? blocks->names : std::vector<std::string>();
+    }
     selection.positions = std::move(chosen.positions);
     selection.sets = std::move(chosen.sets);
     selection.cloud = !selection.sets.empty()

@@ -51,7 +51,9 @@
  * With CellSets, each cell's points in turn (a point of several cells once per cell) and point
  * array "ConstraintSet" (the set a position belongs to); a Slip region in mode Blocks, each
  * block's points in turn and their block in ConstraintSet (negative: -1 - the block's composite
- * id, the same set on every process). Plug it into MLSDeform's Regions input.
+ * id, the same set on every process), and each entry's set arrays (a mesh file's sets: one plane
+ * an entry) likewise, entry by entry: a point of two planes slides along both. Plug it into
+ * MLSDeform's Regions input.
  */
 #ifndef vtkConstraintRegion_h
 #define vtkConstraintRegion_h
