@@ -2,11 +2,13 @@
 (C3D10), written as a CalculiX deck whose mesh is an included file, and run with ccx.
 
 mesh_plate(folder, ...) writes folder/mesh.inp: the nodes, the C3D10 elements and the sets a user
-names regions by (node sets fixed, load, hole1, hole2, ... and the element set part), without the
-boundary triangles Gmsh adds for the surface groups (ccx would take them for plane-stress
-elements). write_analysis(folder) writes folder/plate.inp: steel, the fixed end clamped, a load on
-the far end, a static step, and includes mesh.inp. run_ccx(deck) runs ccx on a deck in its folder
-and returns what it printed for the load nodes (the displacements, from the .dat file).
+names regions by (node sets fixed, load, tip: the loaded end away from the fillets, hole1, hole2,
+..., fillet, the plane faces bottom, top, front and back, surface: every boundary node, and the
+element set part), without the boundary triangles Gmsh adds for the surface groups (ccx
+would take them for plane-stress elements). write_analysis(folder) writes folder/plate.inp: steel,
+the fixed end clamped, a load on the far end, a static step, and, with responses, the sensitivity
+step whose derivatives mlsdeform.readCalculixSensitivity reads. run_ccx(deck) runs ccx on a deck in
+its folder and returns what it printed for the load nodes (the displacements, from the .dat file).
 """
 import os
 import re
@@ -17,10 +19,16 @@ Box(1) = {{0, 0, 0, {length}, {width}, {thickness}}};
 {cylinders}
 BooleanDifference(100) = {{ Volume{{1}}; Delete; }}{{ {tools} }};
 e = 1e-6 * {length};
-Physical Volume("part") = {{100}};
+{fillet}
+Physical Volume("part") = Volume{{:}};
 Physical Surface("fixed") = Surface In BoundingBox{{-e, -e, -e, e, {width} + e, {thickness} + e}};
 Physical Surface("load") = Surface In BoundingBox{{{length} - e, -e, -e, {length} + e, {width} + e, {thickness} + e}};
 {hole_groups}
+Physical Surface("bottom") = Surface In BoundingBox{{-e, -e, -e, {length} + e, {width} + e, e}};
+Physical Surface("top") = Surface In BoundingBox{{-e, -e, {thickness} - e, {length} + e, {width} + e, {thickness} + e}};
+Physical Surface("front") = Surface In BoundingBox{{-e, -e, -e, {length} + e, e, {thickness} + e}};
+Physical Surface("back") = Surface In BoundingBox{{-e, {width} - e, -e, {length} + e, {width} + e, {thickness} + e}};
+Physical Surface("surface") = Surface{{:}};
 Mesh.ElementOrder = 2;
 Mesh.CharacteristicLengthMax = {size};
 Mesh.SaveGroupsOfNodes = 1;
@@ -36,7 +44,7 @@ Plate with holes: clamped at x = 0, pulled down at x = {length}
 *DENSITY
 7.85E-9
 *SOLID SECTION, ELSET=part, MATERIAL=STEEL
-*STEP
+{design}*STEP
 *STATIC
 *BOUNDARY
 fixed, 1, 3
@@ -47,11 +55,19 @@ U
 *NODE PRINT, NSET=load
 U
 *END STEP
+{sensitivity}'''
+
+# The sensitivity step (ccx 2.20): after the static step, one *DESIGNRESPONSE card a response.
+SENSITIVITY = '''*STEP
+*SENSITIVITY, WRITE
+{responses}*END STEP
 '''
 
 
-def mesh_plate(folder, holes=((5.0, 2.0, 1.0),), length=10.0, width=4.0, thickness=1.0, size=0.6, gmsh='gmsh'):
-    """Meshes the plate minus the holes (x, y, radius), into folder/mesh.inp; returns its path."""
+def mesh_plate(folder, holes=((5.0, 2.0, 1.0),), length=10.0, width=4.0, thickness=1.0, size=0.6, fillet=0.0,
+               gmsh='gmsh'):
+    """Meshes the plate minus the holes (x, y, radius), its two corners at the loaded end rounded by
+    a fillet of that radius (0: none; the set fillet), into folder/mesh.inp; returns its path."""
     os.makedirs(folder, exist_ok=True)
     cylinders = '\n'.join(f'Cylinder({2 + i}) = {{{x}, {y}, -1, 0, 0, {thickness + 2}, {r}}};'
                           for i, (x, y, r) in enumerate(holes))
@@ -60,15 +76,45 @@ def mesh_plate(folder, holes=((5.0, 2.0, 1.0),), length=10.0, width=4.0, thickne
                        f'{x + r} + e, {y + r} + e, {thickness} + e}};' for i, (x, y, r) in enumerate(holes))
     geo = os.path.join(folder, 'plate.geo')
     with open(geo, 'w') as f:
+        rounded = ''
+        if fillet > 0:
+            # the edges along z at (length, 0) and (length, width), rounded
+            rounded = (f'edges() = Curve In BoundingBox{{{length} - e, -e, -e, {length} + e, e, {thickness} + e}};\n'
+                       f'edges() += Curve In BoundingBox{{{length} - e, {width} - e, -e, {length} + e, {width} + e, {thickness} + e}};\n'
+                       f'Fillet{{100}}{{edges()}}{{{fillet}}}\n')
+            groups += (f'\nPhysical Surface("fillet") = Surface In BoundingBox{{{length - fillet} - e, -e, -e, {length} + e, '
+                       f'{fillet} + e, {thickness} + e}};\n'
+                       f'Physical Surface("fillet") += Surface In BoundingBox{{{length - fillet} - e, {width - fillet} - e, -e, '
+                       f'{length} + e, {width} + e, {thickness} + e}};')
         f.write(GEO.format(length=length, width=width, thickness=thickness, cylinders=cylinders, tools=tools,
-                           hole_groups=groups, size=size))
+                           hole_groups=groups, size=size, fillet=rounded))
     raw = os.path.join(folder, 'gmsh.inp')
     subprocess.run([gmsh, '-3', geo, '-o', raw, '-format', 'inp'], check=True, stdout=subprocess.DEVNULL)
     mesh = os.path.join(folder, 'mesh.inp')
     with open(raw) as f, open(mesh, 'w') as out:
         out.write(volume_elements_only(f.read()))
     os.remove(raw)
+    # tip: the middle of the loaded end, well away from its fillets (the fillets' motion shears the
+    # end between them and the tip), where the displacement response is measured
+    margin = fillet + 0.25 * width
+    coordinates = node_coordinates(mesh)
+    tip = [n for n in node_set(mesh, 'load') if margin <= coordinates[n][1] <= width - margin]
+    with open(mesh, 'a') as out:
+        out.write('*NSET, NSET=tip\n' + ''.join(f'{n},\n' for n in tip))
     return mesh
+
+
+def node_coordinates(deck):
+    """{node: (x, y, z)} of a deck's *NODE lines (one data line a node)."""
+    nodes, inside = {}, False
+    with open(deck) as f:
+        for line in f:
+            if line.startswith('*'):
+                inside = re.match(r'\*NODE\s*(,|$)', line.strip(), re.I) is not None
+            elif inside and line.strip():
+                values = line.split(',')
+                nodes[int(values[0])] = tuple(float(v) for v in values[1:4])
+    return nodes
 
 
 def volume_elements_only(deck):
@@ -95,14 +141,20 @@ def volume_elements_only(deck):
     return text if text.endswith('\n') else text + '\n'
 
 
-def write_analysis(folder, length=10.0, force=-100.0):
+def write_analysis(folder, length=10.0, force=-100.0, responses=()):
     """folder/plate.inp: the static analysis of folder/mesh.inp, force (N, along z) spread evenly over
-    the load nodes."""
+    the load nodes; responses: (name, definition) pairs of a sensitivity step on the surface nodes,
+    e.g. (('MASS', 'MASS'), ('TIP', 'ALL-DISP, tip')): the tip displacement's norm over the tip
+    nodes, which the morph keeps fixed (a displacement response over nodes it moves would measure
+    the mesh, not the part)."""
     load = node_set(os.path.join(folder, 'mesh.inp'), 'load')
     loads = '\n'.join(f'{n}, 3, {force / len(load):.9g}' for n in load)
+    design = '*DESIGNVARIABLES, TYPE=COORDINATE\nsurface\n' if responses else ''
+    cards = ''.join(f'*DESIGNRESPONSE, NAME={name}\n{definition}\n' for name, definition in responses)
     deck = os.path.join(folder, 'plate.inp')
     with open(deck, 'w') as f:
-        f.write(ANALYSIS.format(length=length, loads=loads))
+        f.write(ANALYSIS.format(length=length, loads=loads, design=design,
+                                sensitivity=SENSITIVITY.format(responses=cards) if responses else ''))
     return deck
 
 
@@ -127,6 +179,9 @@ def run_ccx(deck, ccx='ccx', threads=1):
     log = result.stdout + result.stderr
     if result.returncode != 0 or '*ERROR' in log:
         raise RuntimeError(f'ccx failed on {deck}:\n' + log[-2000:])
+    stiffness = os.path.join(folder, job + '.stm')  # the static step's stiffness dump for the sensitivity step
+    if os.path.exists(stiffness):
+        os.remove(stiffness)
     displacements = {}
     with open(os.path.join(folder, job + '.dat')) as f:
         for line in f:

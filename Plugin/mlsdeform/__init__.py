@@ -5,15 +5,19 @@ VTK pipeline (``mlsdeform.vtkfoam``).
 
 ``DesignVariables`` puts design variables on the Handle regions of an MLS Deform filter and
 gives the deformed points and their exact derivatives, with the interface of pyGeo's DVGeometry
-(``addHandleDV``, ``setDesignVars``, ``update``, ``totalSensitivity``,
-``totalSensitivityProd``, ``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO; ``designOfExperiments``
-turns a Latin hypercube or a table of values into variants (OpenFOAM cases, or FEM decks read by
-the Mesh File reader) with a mesh-quality verdict each (checkMesh's, or an FEM solver's); ``readFoamSensitivity`` turns an OpenFOAM adjoint sensitivity field into dJ/dX on
-the deformation's points (for ``totalSensitivity``) and ``readFoamObjective`` reads J.
+(``addHandleDV``, ``setDesignVars``, ``update``, ``totalSensitivity``, ``totalSensitivityProd``,
+``checkDerivatives``), for scipy.optimize, pyOptSparse or OpenMDAO. ``designOfExperiments`` turns
+a Latin hypercube or a table of values into variants (OpenFOAM cases, or FEM decks read by the
+Mesh File reader) with a mesh-quality verdict each (checkMesh's, or an FEM solver's).
+``readFoamSensitivity`` turns an OpenFOAM adjoint sensitivity field into dJ/dX on the
+deformation's points (for ``totalSensitivity``) and ``readFoamObjective`` reads J;
+``readCalculixSensitivity`` and ``readCalculixObjective`` do the same for CalculiX's shape
+sensitivities of a variant deck (``mlsdeform.meshfile`` reads decks and writes their variants).
 """
 from .deformer import _load_wrapping
 from .design import DesignVariables, KINDS
 from .adjoint import readFoamDictionary, readFoamObjective, readFoamSensitivity
+from .calculix import readCalculixObjective, readCalculixSensitivity
 from .experiments import FEM_THRESHOLDS, THRESHOLDS, designOfExperiments, latinHypercube, meshQuality, passes, readTable
 
 # The filters' Python wrapping, now: a VTK object handed to Python before it is loaded keeps its
@@ -21,4 +25,5 @@ from .experiments import FEM_THRESHOLDS, THRESHOLDS, designOfExperiments, latinH
 _load_wrapping()
 
 __all__ = ["DesignVariables", "FEM_THRESHOLDS", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "meshQuality", "passes",
-           "readFoamDictionary", "readFoamObjective", "readFoamSensitivity", "readTable"]
+           "readCalculixObjective", "readCalculixSensitivity", "readFoamDictionary", "readFoamObjective",
+           "readFoamSensitivity", "readTable"]

@@ -1,0 +1,104 @@
+"""The structural design loop, worked through: a plate with two holes and rounded corners (Gmsh,
+C3D10), clamped at one end and pulled down at the other, made as light as it can be while its tip
+deflects at most 2% more than at the start. Design variables on the holes' positions and radii
+(translate and scale of their sets) and on the fillets (scale); scipy's SLSQP with the gradients of
+CalculiX's shape sensitivities chained through MLS Deform's exact dX/dp
+(mlsdeform.readCalculixSensitivity, DesignVariables.totalSensitivity). Every design is a variant
+deck that ccx runs, and each must pass the FEM verdict (no inverted element).
+
+    python3 optimize_plate.py PLUGIN_FOLDER WORK [--quick] [--validate]
+
+Writes WORK/history.csv (one row per ccx run of the optimizer: the variables, mass, tip deflection,
+least scaled Jacobian), WORK/optimize_plate.png (mass and deflection per iteration) and the best
+design's deck WORK/best/plate.inp. --validate first prints the check of dJ/dp against central
+differences of ccx's responses (plate_design.validate). --quick: a coarse mesh and 3 iterations
+(the test suite's run).
+"""
+import argparse
+import csv
+import os
+import sys
+
+import numpy as np
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('plugin', help="the MLSDeform plugin's folder (it holds the mlsdeform package)")
+    parser.add_argument('work', help='where the decks, the history and the plot go')
+    parser.add_argument('--quick', action='store_true', help='a coarse mesh and 3 iterations')
+    parser.add_argument('--validate', action='store_true', help='check dJ/dp against central differences first')
+    arguments = parser.parse_args()
+    sys.path.insert(0, arguments.plugin)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plate_design
+    from scipy.optimize import minimize
+
+    work = os.path.abspath(arguments.work)
+    deck = plate_design.make_source(os.path.join(work, 'source'), size=0.6 if arguments.quick else 0.35)
+    if arguments.validate:
+        check = plate_design.PlateDesign(deck, os.path.join(work, 'validate'), variables=('x1', 'y1', 'r1', 'fillet'))
+        print(plate_design.table(plate_design.validate(check, steps=(2e-3, 1e-3))))
+        turn = plate_design.PlateDesign(deck, os.path.join(work, 'validate-turn'), variables=('turn',))
+        print(plate_design.table(plate_design.validate(turn, steps=(0.1, 0.05))), flush=True)
+
+    names = ('x1', 'r1', 'x2', 'r2', 'fillet')
+    design = plate_design.PlateDesign(deck, work, variables=names)
+    bounds = [(plate_design.VARIABLES[n]['lower'], plate_design.VARIABLES[n]['upper']) for n in names]
+    start, gradients0, _ = design.evaluate(dict.fromkeys(names, 0.0), 'start')
+    limit = 1.02 * start['TIP']
+    history, cache = [], {}
+
+    def evaluate(p):
+        key = tuple(np.round(p, 12))
+        if key not in cache:
+            values = dict(zip(names, map(float, p)))
+            J, dJdp, quality = design.evaluate(values, 'current')
+            if quality['InvertedCells'] != 0:
+                raise RuntimeError(f"the design {values} inverts {quality['InvertedCells']} elements")
+            history.append(dict(values, mass=J['MASS'], tip=J['TIP'], MinScaledJacobian=quality['MinScaledJacobian']))
+            print('run %2d: mass %.5g t, tip %.5g mm (limit %.5g), least scaled Jacobian %.3f, %s' % (
+                len(history), J['MASS'], J['TIP'], limit, quality['MinScaledJacobian'],
+                ', '.join('%s %+.3f' % (n, values[n]) for n in names)), flush=True)
+            cache[key] = (J, dJdp)
+        return cache[key]
+
+    objective = lambda p: evaluate(p)[0]['MASS'] / start['MASS']  # noqa: E731
+    objective_gradient = lambda p: np.array([evaluate(p)[1]['MASS'][n] for n in names]) / start['MASS']  # noqa: E731
+    # the deflection bound as c(p) >= 0
+    constraint = {'type': 'ineq', 'fun': lambda p: 1 - evaluate(p)[0]['TIP'] / limit,
+                  'jac': lambda p: -np.array([evaluate(p)[1]['TIP'][n] for n in names]) / limit}
+    result = minimize(objective, np.zeros(len(names)), jac=objective_gradient, bounds=bounds, constraints=[constraint],
+                      method='SLSQP', options={'maxiter': 3 if arguments.quick else 30, 'ftol': 1e-4})
+    best = dict(zip(names, map(float, result.x)))
+    J, _ = evaluate(result.x)
+    design.write(best, 'best')
+    print('SLSQP: %s after %d iterations, %d ccx runs; mass %.4g -> %.4g t (%+.1f%%), tip %.4g -> %.4g mm (limit %.4g)' % (
+        result.message, result.nit, design.runs, start['MASS'], J['MASS'], 100 * (J['MASS'] / start['MASS'] - 1),
+        start['TIP'], J['TIP'], limit))
+    print('best design: ' + ', '.join('%s %+.4f' % item for item in best.items()))
+
+    with open(os.path.join(work, 'history.csv'), 'w', newline='') as f:
+        writer = csv.DictWriter(f, fieldnames=list(history[0]))
+        writer.writeheader()
+        writer.writerows(history)
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    figure, mass_axis = plt.subplots(figsize=(6, 3.5))
+    runs = np.arange(1, len(history) + 1)
+    mass_axis.plot(runs, [h['mass'] / start['MASS'] for h in history], 'o-', color='tab:blue', label='mass / start')
+    mass_axis.set_xlabel('ccx run')
+    mass_axis.set_ylabel('mass / start', color='tab:blue')
+    tip_axis = mass_axis.twinx()
+    tip_axis.plot(runs, [h['tip'] / start['TIP'] for h in history], 's--', color='tab:red', label='tip deflection / start')
+    tip_axis.axhline(limit / start['TIP'], color='tab:red', linewidth=0.8, linestyle=':')
+    tip_axis.set_ylabel('tip deflection / start (limit 1.02)', color='tab:red')
+    figure.suptitle('Plate with holes: minimum mass, tip deflection at most +2% (SLSQP, CalculiX)')
+    figure.tight_layout()
+    figure.savefig(os.path.join(work, 'optimize_plate.png'), dpi=100)
+    return 0 if J['TIP'] <= limit * (1 + 1e-3) else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())
