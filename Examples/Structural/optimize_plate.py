@@ -85,7 +85,7 @@ def main():
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
-    figure, mass_axis = plt.subplots(figsize=(6, 3.5))
+    figure, mass_axis = plt.subplots(figsize=(7, 3.8))
     runs = np.arange(1, len(history) + 1)
     mass_axis.plot(runs, [h['mass'] / start['MASS'] for h in history], 'o-', color='tab:blue', label='mass / start')
     mass_axis.set_xlabel('ccx run')
@@ -94,7 +94,7 @@ def main():
     tip_axis.plot(runs, [h['tip'] / start['TIP'] for h in history], 's--', color='tab:red', label='tip deflection / start')
     tip_axis.axhline(limit / start['TIP'], color='tab:red', linewidth=0.8, linestyle=':')
     tip_axis.set_ylabel('tip deflection / start (limit 1.02)', color='tab:red')
-    figure.suptitle('Plate with holes: minimum mass, tip deflection at most +2% (SLSQP, CalculiX)')
+    figure.suptitle('Plate with holes: least mass with the tip deflection at most +2% (SLSQP, CalculiX)', fontsize=10)
     figure.tight_layout()
     figure.savefig(os.path.join(work, 'optimize_plate.png'), dpi=100)
     return 0 if J['TIP'] <= limit * (1 + 1e-3) else 1
