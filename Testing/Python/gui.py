@@ -109,3 +109,38 @@ class FandiskHandle:
         self.view.CameraViewUp = [0, 0, 1]
         self.view.ResetCamera()
         pvs.Render(self.view)
+
+
+def new_region(source, settle):
+    """Filters > MLS Deformation > Constraint Region on source, as a user makes it: returns the new
+    region (the active source)."""
+    import paraview.simple as pvs
+    pvs.SetActiveSource(source)
+    settle(seconds=0.5)
+    [a for a in main_window().findChildren(QAction) if a.text() == 'Constraint Region'][0].trigger()
+    settle(seconds=1.0)
+    return pvs.GetActiveSource()
+
+
+def choose_role(window, role, click, settle, wait):
+    """Chooses role in the visible Constraint Region panel's Role combo box as a user does: a click
+    on it, the arrow keys, Return (the X server's: xinput). Returns the combo box."""
+    from PyQt5.QtWidgets import QComboBox
+    import xinput
+    combo = [c for c in window.findChildren(QComboBox) if c.isVisible() and c.findText('Slip') >= 0 and c.findText('Handle') >= 0][0]
+    if combo.currentText() != role:
+        click(combo)
+        for _ in range(abs(combo.findText(role) - combo.currentIndex())):
+            xinput.key('Down' if combo.findText(role) > combo.currentIndex() else 'Up')
+        xinput.key('Return', wait=wait)
+        settle(seconds=0.5)
+    return combo
+
+
+def tick(tree, index, settle, wait):
+    """Clicks the check box of a tree view's item (the X server's mouse)."""
+    import xinput
+    rect = tree.visualRect(index)
+    rect.setLeft(rect.left() + 10)  # the item's check box
+    xinput.click(*reveal(tree.viewport(), point=rect.topLeft() + (rect.bottomLeft() - rect.topLeft()) / 2), wait=wait)
+    settle(seconds=0.3)

@@ -19,7 +19,7 @@ ARRIVAL = 0.05
 
 try:
     from PyQt5.QtCore import Qt
-    from PyQt5.QtWidgets import QAction, QApplication, QComboBox, QDockWidget, QPushButton, QTreeView, QWidget
+    from PyQt5.QtWidgets import QAction, QApplication, QDockWidget, QPushButton, QTreeView, QWidget
     import paraview.simple as pvs
     from paraview import servermanager
     import fandisk_scene as scene  # Examples/, on PYTHONPATH
@@ -52,26 +52,14 @@ try:
     pvs.Show(reader, view)
     pvs.Hide(reader, view)
     apply = [b for b in window.findChildren(QPushButton) if b.objectName() == 'Accept'][0]
-    menu = [a for a in window.findChildren(QAction) if a.text() == 'Constraint Region'][0]
 
     def region_for(role, patches):
         """Filters > Constraint Region on the case, the role chosen, the patches ticked, Apply."""
-        pvs.SetActiveSource(reader)
-        settle(seconds=0.5)
-        menu.trigger()
-        settle(seconds=1.0)
-        region = pvs.GetActiveSource()
+        region = gui.new_region(reader, settle)
         check(region.SelectionMode == 'Blocks', 'a new region on the case selects blocks from the start (%s)' % region.SelectionMode)
         handles, shown = gui.shown_boxes(view)
         check(not shown, 'a new region shows no box before its first Apply (%d)' % len(shown))
-        roles = [c for c in window.findChildren(QComboBox) if c.isVisible() and c.findText('Slip') >= 0 and c.findText('Handle') >= 0]
-        combo = roles[0]
-        if combo.currentText() != role:
-            click(combo)
-            for _ in range(abs(combo.findText(role) - combo.currentIndex())):
-                xinput.key('Down' if combo.findText(role) > combo.currentIndex() else 'Up')
-            xinput.key('Return', wait=ARRIVAL)
-            settle(seconds=0.5)
+        combo = gui.choose_role(window, role, click, settle, ARRIVAL)
         check(combo.currentText() == role, 'the Role chosen in the panel: %s' % combo.currentText())
         tree = [w for w in window.findChildren(QWidget) if w.metaObject().className() == 'pqDataAssemblyPropertyWidget'
                 and w.isVisible()][0].findChildren(QTreeView)[0]
@@ -85,11 +73,7 @@ try:
                 collect(index)
         collect(tree.rootIndex())
         for patch in patches:
-            rect = tree.visualRect(items[patch])
-            rect.setLeft(rect.left() + 10)  # the item's check box
-            xinput.click(*gui.reveal(tree.viewport(), point=rect.topLeft() + (rect.bottomLeft() - rect.topLeft()) / 2),
-                         wait=ARRIVAL)
-            settle(seconds=0.3)
+            gui.tick(tree, items[patch], settle, ARRIVAL)
         click(apply)
         settle(lambda: region.GetDataInformation().GetNumberOfPoints() > 0)
         check(sorted(str(b).split('/')[-1] for b in region.Blocks) == sorted(patches),

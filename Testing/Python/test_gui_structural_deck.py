@@ -25,7 +25,7 @@ def gui():
     import checks
     from checks import check
     from PyQt5.QtCore import Qt
-    from PyQt5.QtWidgets import QAction, QApplication, QComboBox, QDockWidget, QPushButton, QTreeView
+    from PyQt5.QtWidgets import QApplication, QDockWidget, QPushButton, QTreeView
     import paraview.simple as pvs
     import gui
     import xinput
@@ -49,23 +49,12 @@ def gui():
     view = pvs.GetActiveViewOrCreate('RenderView')
     pvs.Show(reader, view)
     apply = [b for b in window.findChildren(QPushButton) if b.objectName() == 'Accept'][0]
-    menu = [a for a in window.findChildren(QAction) if a.text() == 'Constraint Region'][0]
 
     def region_for(role, sets):
         """Filters > Constraint Region on the deck, the role chosen, the sets ticked, Apply."""
-        pvs.SetActiveSource(reader)
-        settle(seconds=0.5)
-        menu.trigger()
-        settle(seconds=1.0)
-        region = pvs.GetActiveSource()
+        region = gui.new_region(reader, settle)
         check(region.SelectionMode == 'Blocks', 'a new region on a deck selects by name from the start (%s)' % region.SelectionMode)
-        combo = [c for c in window.findChildren(QComboBox) if c.isVisible() and c.findText('Slip') >= 0 and c.findText('Handle') >= 0][0]
-        if combo.currentText() != role:
-            click(combo)
-            for _ in range(abs(combo.findText(role) - combo.currentIndex())):
-                xinput.key('Down' if combo.findText(role) > combo.currentIndex() else 'Up')
-            xinput.key('Return', wait=ARRIVAL)
-            settle(seconds=0.5)
+        combo = gui.choose_role(window, role, click, settle, ARRIVAL)
         check(combo.currentText() == role, 'the Role chosen in the panel: %s' % combo.currentText())
         lists = [w for w in window.findChildren(QTreeView) if w.metaObject().className() == 'pqArraySelectionWidget'
                  and w.isVisible()]
@@ -76,12 +65,7 @@ def gui():
         check({'fixed', 'load', 'hole1', 'hole2'} <= set(items) and 'NodeId' not in items,
               'the list holds the deck\'s sets by name: %s' % sorted(items))
         for name in sets:
-            rect = tree.visualRect(items[name])
-            at = rect.topLeft()
-            at.setX(rect.left() + 10)  # the item's check box
-            at.setY(rect.top() + rect.height() // 2)
-            xinput.click(*gui.reveal(tree.viewport(), point=at), wait=ARRIVAL)
-            settle(seconds=0.3)
+            gui.tick(tree, items[name], settle, ARRIVAL)
         if role == 'Handle':
             region.Translation = [0.4, 0, 0]  # typed in the panel's Translation (the handle's drag is tested elsewhere)
         click(apply)

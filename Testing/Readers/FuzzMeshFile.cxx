@@ -1,10 +1,10 @@
-// The Mesh File reader on thousands of mutated decks (Mutations.h, the OFF reader's mutations and
+// The Mesh File reader on thousands of mutated decks (Fuzzing.h, the OFF reader's mutations and
 // the deck's own keywords and separators): each either reads as a valid mesh or gives one clear
 // error naming the file and an empty output; none crashes (the sanitizer build checks memory).
 // Every deck that reads is written back as a variant with its own coordinates: byte for byte the
 // deck (a variant changes the coordinates and nothing else).
 #include "../TestHarness.h"
-#include "Mutations.h"
+#include "Fuzzing.h"
 #include "SourceFile.h"
 #include "vtkMeshFileReader.h"
 
@@ -29,17 +29,7 @@
 
 namespace
 {
-struct LastError : vtkCommand
-{
-  static LastError* New() { return new LastError; }
-  void Execute(vtkObject*, unsigned long, void* message) override
-  {
-    ++count;
-    text = static_cast<const char*>(message);
-  }
-  int count = 0;
-  std::string text;
-};
+using testing::LastError;
 
 // Valid decks of what the reader knows: the seeds of the mutations.
 const std::vector<std::string>& seeds()

@@ -2,7 +2,7 @@
 // binary garbage, flipped bits, lost or repeated lines): each either reads as a valid mesh or
 // gives one clear error and an empty output; none crashes (the sanitizer build checks memory).
 #include "../TestHarness.h"
-#include "Mutations.h"
+#include "Fuzzing.h"
 #include "vtkOFFReader.h"
 
 #include <vtkCellArray.h>
@@ -22,17 +22,7 @@
 
 namespace
 {
-struct LastError : vtkCommand
-{
-  static LastError* New() { return new LastError; }
-  void Execute(vtkObject*, unsigned long, void* message) override
-  {
-    ++count;
-    text = static_cast<const char*>(message);
-  }
-  int count = 0;
-  std::string text;
-};
+using testing::LastError;
 
 // Valid files of every header kind the reader knows: the seeds of the mutations.
 const std::vector<std::string>& seeds()

@@ -3,6 +3,7 @@
 #include "../TestHarness.h"
 #include "Abaqus/AbaqusDeck.h"
 #include "Common/TextFile.h"
+#include "FormatFiles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,31 +17,13 @@ using namespace mlsformats;
 
 namespace
 {
+using testing::contains;
+using testing::find;
+using testing::writeFile;
+
 std::string folder(const std::string& name)
 {
-  const fs::path path = fs::path(TEST_OUTPUT_DIR) / "abaqus" / name;
-  fs::remove_all(path);
-  fs::create_directories(path);
-  return path.string();
-}
-
-std::string writeFile(const std::string& path, const std::string& text)
-{
-  fs::create_directories(fs::path(path).parent_path());
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-const NamedSet* find(const std::vector<NamedSet>& sets, const std::string& name)
-{
-  for (const NamedSet& set : sets)
-  {
-    if (set.name == name)
-    {
-      return &set;
-    }
-  }
-  return nullptr;
+  return testing::freshFolder("abaqus", name);
 }
 
 std::vector<std::int64_t> sorted(std::vector<std::int64_t> ids)
@@ -52,21 +35,7 @@ std::vector<std::int64_t> sorted(std::vector<std::int64_t> ids)
 // The error message of reading path, "" if it reads.
 std::string readError(const std::string& path)
 {
-  try
-  {
-    abaqus::readDeck(path);
-  }
-  catch (const FileError& e)
-  {
-    std::printf("expected error: %s\n", e.what());
-    return e.what();
-  }
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
+  return testing::readError([&] { abaqus::readDeck(path); });
 }
 
 // A deck of one hexahedron C3D20 (nodes 1-20 of the unit cube), a C3D10 tetrahedron on its side,

@@ -3,6 +3,7 @@
 // the line (a binary one: the section and the byte).
 #include "../TestHarness.h"
 #include "Common/TextFile.h"
+#include "FormatFiles.h"
 #include "Gmsh/GmshMesh.h"
 
 #include <algorithm>
@@ -18,39 +19,19 @@ using namespace mlsformats;
 
 namespace
 {
+using testing::contains;
+using testing::find;
+using testing::writeFile;
+
 std::string folder(const std::string& name)
 {
-  const fs::path path = fs::path(TEST_OUTPUT_DIR) / "gmsh" / name;
-  fs::remove_all(path);
-  fs::create_directories(path);
-  return path.string();
-}
-
-std::string writeFile(const std::string& path, const std::string& text)
-{
-  fs::create_directories(fs::path(path).parent_path());
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-bool contains(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
+  return testing::freshFolder("gmsh", name);
 }
 
 // The error message of reading path, "" if it reads.
 std::string readError(const std::string& path)
 {
-  try
-  {
-    gmsh::readMsh(path);
-  }
-  catch (const FileError& e)
-  {
-    std::printf("expected error: %s\n", e.what());
-    return e.what();
-  }
-  return "";
+  return testing::readError([&] { gmsh::readMsh(path); });
 }
 
 // The bytes of a binary file's numbers, in this machine's order (as Gmsh writes them).
@@ -167,18 +148,6 @@ std::array<std::string, 4> fourFiles(const std::string& dir)
 {
   return { writeFile(dir + "/a22.msh", ascii22()), writeFile(dir + "/b22.msh", binary22()), writeFile(dir + "/a41.msh", ascii41()),
     writeFile(dir + "/b41.msh", binary41()) };
-}
-
-const NamedSet* find(const std::vector<NamedSet>& sets, const std::string& name)
-{
-  for (const NamedSet& set : sets)
-  {
-    if (set.name == name)
-    {
-      return &set;
-    }
-  }
-  return nullptr;
 }
 
 bool sameSets(const std::vector<NamedSet>& a, const std::vector<NamedSet>& b)

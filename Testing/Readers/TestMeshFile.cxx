@@ -2,6 +2,7 @@
 // orientation, the sets as arrays, a variant written from a deformation, data from elsewhere
 // refused; the AVS UCD reader declines decks.
 #include "../TestHarness.h"
+#include "FormatFiles.h"
 #include "vtkAVSucdReaderUnlessDeck.h"
 #include "vtkMeshFileReader.h"
 #include "vtkMeshVariantWriter.h"
@@ -31,26 +32,12 @@ namespace fs = std::filesystem;
 
 namespace
 {
+using mlsformats::readFile;
+using testing::writeFile;
+
 std::string folder(const std::string& name)
 {
-  const fs::path path = fs::path(TEST_OUTPUT_DIR) / "meshfile" / name;
-  fs::remove_all(path);
-  fs::create_directories(path);
-  return path.string();
-}
-
-std::string writeFile(const std::string& path, const std::string& text)
-{
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-std::string readFile(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return testing::freshFolder("meshfile", name);
 }
 
 struct Messages : vtkCommand

@@ -1,7 +1,9 @@
-// The mutations of a text file that the readers' fuzz tests apply to valid seeds: truncation,
-// a token replaced by a huge, negative, non-finite or malformed value, binary garbage, flipped
-// bits, a line lost or repeated, or nothing of the file left.
+// What the readers' fuzz tests share: the mutations they apply to valid seeds (truncation, a token
+// replaced by a huge, negative, non-finite or malformed value, binary garbage, flipped bits, a line
+// lost or repeated, or nothing of the file left), and an observer that counts a reader's messages.
 #pragma once
+
+#include <vtkCommand.h>
 
 #include <algorithm>
 #include <iterator>
@@ -12,6 +14,19 @@
 
 namespace testing
 {
+/// Counts the messages (errors, warnings) of what it observes and keeps the last.
+struct LastError : vtkCommand
+{
+  static LastError* New() { return new LastError; }
+  void Execute(vtkObject*, unsigned long, void* message) override
+  {
+    ++count;
+    text = static_cast<const char*>(message);
+  }
+  int count = 0;
+  std::string text;
+};
+
 // One random mutation of text.
 inline std::string mutate(std::string text, std::mt19937& random)
 {
