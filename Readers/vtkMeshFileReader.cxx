@@ -41,7 +41,7 @@ vtkSmartPointer<vtkUnsignedCharArray> setArray(const mlsformats::NamedSet& set, 
   return array;
 }
 
-void toGrid(const mlsformats::SourceMesh& mesh, const std::string& path, vtkUnstructuredGrid* grid)
+void toGrid(const mlsformats::SourceMesh& mesh, const std::string& path, bool fem, vtkUnstructuredGrid* grid)
 {
   const vtkIdType nodes = static_cast<vtkIdType>(mesh.nodeIds.size());
   vtkNew<vtkDoubleArray> xyz;
@@ -112,6 +112,10 @@ void toGrid(const mlsformats::SourceMesh& mesh, const std::string& path, vtkUnst
   source->SetName("SourceFile");
   source->InsertNextValue(path);
   grid->GetFieldData()->AddArray(source);
+  vtkNew<vtkStringArray> verdict; // whose mesh-quality verdict (MeshQualityReport, the design of experiments)
+  verdict->SetName("QualityVerdict");
+  verdict->InsertNextValue(fem ? "FemSolver" : "CheckMesh");
+  grid->GetFieldData()->AddArray(verdict);
 }
 } // namespace
 
@@ -153,7 +157,7 @@ int vtkMeshFileReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
       vtkWarningMacro(<< warning);
     }
     this->UpdateProgress(0.5);
-    toGrid(file->mesh, this->FileName, output);
+    toGrid(file->mesh, this->FileName, format->fem, output);
   }
   catch (const std::exception& e)
   {

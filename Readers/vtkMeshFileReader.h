@@ -9,7 +9,9 @@
  *  - a point array per node set (*NSET, *SURFACE) and a cell array per element set (*ELSET),
  *    named after it, 1 in the set and 0 outside (a Constraint Region's SelectionMode Blocks
  *    selects a set by name);
- *  - field data "SourceFile": the file read.
+ *  - field data "SourceFile": the file read, and "QualityVerdict": "FemSolver" for a structural
+ *    solver's format (its elements' Jacobian judge a variant), "CheckMesh" for a finite-volume
+ *    solver's (OpenFOAM checkMesh's face measures).
  * A file that cannot be read gives an error naming the file and the line, and an empty output;
  * what the file holds but a grid cannot (an element type without a VTK cell) is a warning, its
  * elements left out. Under MPI the whole mesh is read on the first process.

@@ -1,6 +1,7 @@
 // Where a dataset was read from: the OpenFOAM case (the field data CasePath that VTK's OpenFOAM
 // reader puts on its output) or the solver's mesh file (the field data SourceFile of the Mesh File
-// reader). Header only: the writers (Readers/) and the mesh quality share it.
+// reader, and QualityVerdict: whose verdict its variants get). Header only: the writers (Readers/)
+// and the mesh quality share it.
 #pragma once
 
 #include <vtkAbstractArray.h>
@@ -38,5 +39,14 @@ inline std::string sourceFileOf(vtkDataObject* data)
   auto* array = vtkStringArray::SafeDownCast(
     data && data->GetFieldData() ? data->GetFieldData()->GetAbstractArray("SourceFile") : nullptr);
   return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : std::string();
+}
+
+/// Whether data came from a structural solver's mesh file, whose variants an FEM solver's verdict
+/// judges (the Mesh File reader's field data QualityVerdict "FemSolver").
+inline bool femVerdictOf(vtkDataObject* data)
+{
+  auto* array = vtkStringArray::SafeDownCast(
+    data && data->GetFieldData() ? data->GetFieldData()->GetAbstractArray("QualityVerdict") : nullptr);
+  return array && array->GetNumberOfValues() > 0 && array->GetValue(0) == "FemSolver";
 }
 } // namespace mlsvtk

@@ -69,8 +69,9 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
       for (vtkPointSet* set : inSets)
       {
         auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
-        // a solver's mesh file gets the solver's verdict (its elements), a case checkMesh's
-        const QualityVerdict verdict = sourceFileOf(set).empty() ? QualityVerdict::CheckMesh : QualityVerdict::FemSolver;
+        // a structural solver's mesh file gets the FEM solver's verdict (its elements), a case and
+        // a finite-volume solver's mesh checkMesh's
+        const QualityVerdict verdict = femVerdictOf(set) ? QualityVerdict::FemSolver : QualityVerdict::CheckMesh;
         Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid, casePath, verdict) : nullptr);
         if (Quality.back() && Quality.back()->hasCells())
         {

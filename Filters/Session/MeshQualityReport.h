@@ -23,9 +23,9 @@ class MeshQualityReport
 public:
   /// Adds InvertedCells, MaxNonOrthogonality, MaxSkewness, MinScaledJacobian (with tetrahedra,
   /// hexahedra or wedges, linear or quadratic: ElementJacobian) and the same prefixed "Original" to
-  /// field when some process has volume cells. A solver's mesh file (field data SourceFile) gets
-  /// the FEM solver's verdict instead of checkMesh's (QualityVerdict): InvertedCells by the
-  /// elements' Jacobian, MinScaledJacobian, and no face measures. Split over processes, each measures its own piece
+  /// field when some process has volume cells. A structural solver's mesh file (field data
+  /// QualityVerdict "FemSolver") gets the FEM solver's verdict instead of checkMesh's: InvertedCells
+  /// by the elements' Jacobian, MinScaledJacobian, and no face measures. Split over processes, each measures its own piece
   /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
   /// it cannot measure give a warning (from owner) once per input mesh; the deformation stands.
   /// casePath: the OpenFOAM case folder the input was read from (or ""), whose own faces a grid

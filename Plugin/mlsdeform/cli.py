@@ -98,7 +98,7 @@ def setUp(design_path):
 
 def main(argv):
     from . import designOfExperiments
-    from .experiments import _is_deck
+    from .experiments import _fem
     parser = argparse.ArgumentParser(prog='mlsdeform-doe.py', description='Design of experiments on an OpenFOAM case or an FEM deck.')
     parser.add_argument('design', help='the design file (JSON): case or deck, patches or sets by role, variables')
     parser.add_argument('folder', help='where the variants and report.csv go')
@@ -116,7 +116,7 @@ def main(argv):
     try:
         dvs = setUp(arguments.design)
         thresholds = {'InvertedCells': arguments.max_inverted_cells}
-        thresholds.update({'MinScaledJacobian': arguments.min_scaled_jacobian} if _is_deck(dvs) else
+        thresholds.update({'MinScaledJacobian': arguments.min_scaled_jacobian} if _fem(dvs) else
                           {'MaxNonOrthogonality': arguments.max_non_orthogonality, 'MaxSkewness': arguments.max_skewness})
         rows = designOfExperiments(dvs, arguments.folder, samples=arguments.samples, seed=arguments.seed, table=arguments.table,
                                    thresholds=thresholds, writeFailed=arguments.write_failed, copy=arguments.copy)

@@ -8,12 +8,12 @@ On an OpenFOAM case every variant is ``<folder>/variant<i>/case.foam``, written 
 OpenFOAM case writer (mlsdeform.foam's for a paraview.simple proxy, mlsdeform.vtkfoam's for a VTK
 filter) from the deformation's source case (the reader's CasePath): its own points, and links to
 the source's unchanged files unless copies are asked for; the verdict is checkMesh's
-(THRESHOLDS: InvertedCells, MaxNonOrthogonality, MaxSkewness at most their thresholds). On a deck
-read by the Mesh File reader (an Abaqus/CalculiX .inp) every variant is
-``<folder>/variant<i>/<the deck's name>`` with its included files beside it, only the node
-coordinates changed (mlsdeform.meshfile); the verdict is an FEM solver's (FEM_THRESHOLDS: no
-inverted element, and the least scaled Jacobian over every element's corners and integration
-points at least MinScaledJacobian). ``<folder>/report.csv`` holds a row per variant: the
+(THRESHOLDS: InvertedCells, MaxNonOrthogonality, MaxSkewness at most their thresholds). On a
+solver's mesh file read by the Mesh File reader (a deck, a Gmsh mesh) every variant is
+``<folder>/variant<i>/<the file's name>`` (a deck's included files beside it), only the node
+coordinates changed (mlsdeform.meshfile); a structural solver's mesh gets an FEM solver's verdict
+(FEM_THRESHOLDS: no inverted element, and the least scaled Jacobian over every element's corners
+and integration points at least MinScaledJacobian), a finite-volume solver's checkMesh's. ``<folder>/report.csv`` holds a row per variant: the
 variables' values, the verdict's figures (MLS Deform's mesh-quality figures), ok (the verdict),
 seconds and path (empty for a variant that failed and was not written). ``<folder>/design.json``
 records the design (the values, and the source, regions and set-up it deforms with), so that
@@ -42,8 +42,15 @@ FEM_QUALITY = ('InvertedCells', 'MinScaledJacobian')
 
 
 def _is_deck(dvs):
+    """Whether the deformation's input came from a solver's mesh file (the Mesh File reader)."""
     from .meshfile import source_file
     return bool(source_file(dvs._algorithm.GetInputDataObject(0, 0)))
+
+
+def _fem(dvs):
+    """Whether its variants get an FEM solver's verdict (a structural solver's mesh file)."""
+    from .meshfile import fem_verdict
+    return fem_verdict(dvs._algorithm.GetInputDataObject(0, 0))
 
 
 def meshQuality(dvs):
@@ -52,7 +59,7 @@ def meshQuality(dvs):
     deck. Raises RuntimeError when MLS Deform reports none."""
     output = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
     figures = {}
-    for key in FEM_QUALITY if _is_deck(dvs) else QUALITY:
+    for key in FEM_QUALITY if _fem(dvs) else QUALITY:
         array = output.GetArray(key)
         if array is None:
             raise RuntimeError(f"MLS Deform reports no {key}: turn its MeshQuality on and give it a volume mesh")
@@ -197,11 +204,12 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     if (samples is None) == (table is None):
         raise ValueError("give either samples= (a Latin hypercube) or table= (a CSV file), not both or neither")
     deck = _is_deck(dvs)
-    defaults, quality = (FEM_THRESHOLDS, FEM_QUALITY) if deck else (THRESHOLDS, QUALITY)
+    defaults, quality = (FEM_THRESHOLDS, FEM_QUALITY) if _fem(dvs) else (THRESHOLDS, QUALITY)
     limits = dict(defaults)
     for key, value in (thresholds or {}).items():
         if key not in defaults:
-            raise ValueError(f"unknown threshold {key!r} for a {'deck' if deck else 'case'} (known: {', '.join(defaults)})")
+            raise ValueError(f"unknown threshold {key!r} for {'an FEM' if _fem(dvs) else 'a finite-volume'} mesh "
+                             f"(known: {', '.join(defaults)})")
         limits[key] = float(value)
     if samples is not None:
         points = latinHypercube([bounds[n] for n in names], samples, seed)

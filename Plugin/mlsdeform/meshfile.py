@@ -17,6 +17,13 @@ def source_file(data):
     return path.GetValue(0) if path is not None and path.GetNumberOfValues() else ''
 
 
+def fem_verdict(data):
+    """Whether a dataset came from a structural solver's mesh file, whose variants get an FEM
+    solver's verdict (the Mesh File reader's QualityVerdict field data "FemSolver")."""
+    verdict = data.GetFieldData().GetAbstractArray('QualityVerdict') if data is not None else None
+    return verdict is not None and verdict.GetNumberOfValues() > 0 and verdict.GetValue(0) == 'FemSolver'
+
+
 def open_mesh(path):
     """The mesh file read (nodes, elements, every set as a 0/1 array), updated. Raises ValueError
     with the reader's message (file and line) when it cannot be read."""

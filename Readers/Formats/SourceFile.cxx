@@ -39,8 +39,8 @@ std::string lowerCase(std::string text)
 const std::vector<Format>& formats()
 {
   static const std::vector<Format> table = {
-    { "Abaqus/CalculiX deck", "inp", isDeck, readDeck },
-    { "Gmsh mesh", "msh", gmsh::isMsh, readGmsh },
+    { "Abaqus/CalculiX deck", "inp", true, isDeck, readDeck },
+    { "Gmsh mesh", "msh", true, gmsh::isMsh, readGmsh },
   };
   return table;
 }

@@ -30,6 +30,9 @@ struct Format
 {
   const char* name;       // "Abaqus/CalculiX deck"
   const char* extensions; // "inp", several separated by blanks
+  /// Whose mesh-quality verdict its meshes get: an FEM solver's (true: the elements' Jacobian) or
+  /// a finite-volume solver's (false: checkMesh's face measures).
+  bool fem;
   /// Whether text (a file's first bytes) is of this format.
   bool (*recognizes)(const std::string& text);
   /// The file read whole, or (layout) only what writing a variant needs.
