@@ -2,6 +2,7 @@
 
 #include "Abaqus/AbaqusDeck.h"
 #include "Gmsh/GmshMesh.h"
+#include "SU2/SU2Mesh.h"
 
 #include <algorithm>
 #include <cctype>
@@ -29,6 +30,11 @@ std::unique_ptr<SourceFile> readGmsh(const std::string& path, bool layout)
   return std::make_unique<gmsh::MshFile>(layout ? gmsh::readMshLayout(path) : gmsh::readMsh(path));
 }
 
+std::unique_ptr<SourceFile> readSu2Mesh(const std::string& path, bool layout)
+{
+  return std::make_unique<su2::MeshFile>(layout ? su2::readSu2Layout(path) : su2::readSu2(path));
+}
+
 std::string lowerCase(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -41,6 +47,7 @@ const std::vector<Format>& formats()
   static const std::vector<Format> table = {
     { "Abaqus/CalculiX deck", "inp", true, isDeck, readDeck },
     { "Gmsh mesh", "msh", true, gmsh::isMsh, readGmsh },
+    { "SU2 mesh", "su2", false, su2::isSu2, readSu2Mesh },
   };
   return table;
 }

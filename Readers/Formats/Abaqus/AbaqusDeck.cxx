@@ -228,19 +228,6 @@ std::string upperCase(std::string_view text)
   return out;
 }
 
-std::string_view trim(std::string_view text)
-{
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t'))
-  {
-    text.remove_prefix(1);
-  }
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t'))
-  {
-    text.remove_suffix(1);
-  }
-  return text;
-}
-
 // A data line's fields (between commas, blanks trimmed), as views into the file's text.
 void splitFields(std::string_view line, std::vector<std::string_view>& fields)
 {

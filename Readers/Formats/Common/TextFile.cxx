@@ -150,6 +150,49 @@ void appendShortest(std::string& out, double value, std::size_t width)
   out.append(text, written.ptr);
 }
 
+std::string_view trim(std::string_view text)
+{
+  while (!text.empty() && isBlank(text.front()))
+  {
+    text.remove_prefix(1);
+  }
+  while (!text.empty() && isBlank(text.back()))
+  {
+    text.remove_suffix(1);
+  }
+  return text;
+}
+
+std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t begin, int count, const double* xyz)
+{
+  std::size_t end = begin;
+  for (int c = 0; c < count; ++c)
+  {
+    const std::size_t blanks = end;
+    while (begin < text.size() && isBlank(text[begin]))
+    {
+      ++begin;
+    }
+    out.append(text, blanks, begin - blanks);
+    end = begin;
+    while (end < text.size() && !isBlank(text[end]) && text[end] != '\r' && text[end] != '\n')
+    {
+      ++end;
+    }
+    double old = 0;
+    if (parseReal(text.data() + begin, text.data() + end, old) && old == xyz[c])
+    {
+      out.append(text, begin, end - begin);
+    }
+    else
+    {
+      appendShortest(out, xyz[c]);
+    }
+    begin = end;
+  }
+  return end;
+}
+
 std::vector<Line> lines(const std::string& text)
 {
   std::vector<Line> out;

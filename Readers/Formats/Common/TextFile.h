@@ -59,6 +59,20 @@ bool parseReal(const char* first, const char* last, double& value);
 /// 1e-13 for width 20: the field width CalculiX and Abaqus read a number in).
 void appendShortest(std::string& out, double value, std::size_t width = 32);
 
+/// Whether c is a blank within a line (a space or a tab).
+inline bool isBlank(char c)
+{
+  return c == ' ' || c == '\t';
+}
+
+/// text without its leading and trailing blanks.
+std::string_view trim(std::string_view text);
+
+/// Appends the count numbers separated by blanks that start at text[begin] (after blanks) with the
+/// values xyz: a number whose value changed becomes appendShortest's text of the new one, the
+/// others and the blanks before them stay as they were. Returns where the last number's text ends.
+std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t begin, int count, const double* xyz);
+
 /// The lines of text: the offsets where each line starts and ends (without "\n" or "\r\n").
 struct Line
 {

@@ -152,24 +152,6 @@ bool cellKind(std::int64_t type, CellKind& kind)
 
 // ---- the reader --------------------------------------------------------------------------------
 
-bool isBlank(char c)
-{
-  return c == ' ' || c == '\t';
-}
-
-std::string_view trim(std::string_view text)
-{
-  while (!text.empty() && isBlank(text.front()))
-  {
-    text.remove_prefix(1);
-  }
-  while (!text.empty() && isBlank(text.back()))
-  {
-    text.remove_suffix(1);
-  }
-  return text;
-}
-
 // The physical groups an element is in: their dimension and tags (sorted).
 struct Owner
 {
@@ -1328,47 +1310,6 @@ bool isMsh(const std::string& head)
 
 namespace
 {
-bool isSpace(char c)
-{
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
-
-// Appends the ASCII coordinates at text[begin..] with the values xyz: a number whose value changed
-// is replaced by the shortest text of the new one, the others and the blanks between stay. Returns
-// where the z's text ends.
-std::size_t appendCoordinates(std::string& out, const std::string& text, std::size_t begin, const double* xyz)
-{
-  std::size_t end = begin;
-  for (int c = 0; c < 3; ++c)
-  {
-    if (c > 0)
-    {
-      const std::size_t blanks = end;
-      while (isBlank(text[begin]))
-      {
-        ++begin;
-      }
-      out.append(text, blanks, begin - blanks);
-    }
-    end = begin;
-    while (end < text.size() && !isSpace(text[end]))
-    {
-      ++end;
-    }
-    double old = 0;
-    if (parseReal(text.data() + begin, text.data() + end, old) && old == xyz[c])
-    {
-      out.append(text, begin, end - begin);
-    }
-    else
-    {
-      appendShortest(out, xyz[c]);
-    }
-    begin = end;
-  }
-  return end;
-}
-
 } // namespace
 
 void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
@@ -1409,7 +1350,7 @@ void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, c
     for (std::size_t k = 0; k < count; ++k)
     {
       out.append(text, copied, this->coordinates[k] - copied);
-      copied = appendCoordinates(out, text, this->coordinates[k], xyz + 3 * row[k]);
+      copied = appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]);
     }
     out.append(text, copied, std::string::npos);
   }
