@@ -1,6 +1,7 @@
 #include "SourceFile.h"
 
 #include "Abaqus/AbaqusDeck.h"
+#include "Fluent/FluentMesh.h"
 #include "Gmsh/GmshMesh.h"
 #include "SU2/SU2Mesh.h"
 
@@ -35,6 +36,11 @@ std::unique_ptr<SourceFile> readSu2Mesh(const std::string& path, bool layout)
   return std::make_unique<su2::MeshFile>(layout ? su2::readSu2Layout(path) : su2::readSu2(path));
 }
 
+std::unique_ptr<SourceFile> readFluentMesh(const std::string& path, bool layout)
+{
+  return std::make_unique<fluent::MeshFile>(layout ? fluent::readFluentLayout(path) : fluent::readFluent(path));
+}
+
 std::string lowerCase(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -48,6 +54,7 @@ const std::vector<Format>& formats()
     { "Abaqus/CalculiX deck", "inp", true, isDeck, readDeck },
     { "Gmsh mesh", "msh", true, gmsh::isMsh, readGmsh },
     { "SU2 mesh", "su2", false, su2::isSu2, readSu2Mesh },
+    { "Fluent mesh", "msh cas", false, fluent::isFluent, readFluentMesh },
   };
   return table;
 }

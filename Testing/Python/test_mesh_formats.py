@@ -7,6 +7,7 @@ the format's precision, every other byte or record the source's.
   pvpython test_mesh_formats.py PLUGIN WORK
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -45,6 +46,14 @@ def python3(code, *args):
     return subprocess.run(['/usr/bin/python3', '-c', code] + list(args), capture_output=True, text=True, check=True).stdout
 
 
+def foam_points(path):
+    """The points of an ASCII OpenFOAM points file."""
+    lines = open(path).read().splitlines()
+    start = next(i for i, line in enumerate(lines) if line.strip().isdigit() and lines[i + 1].strip() == '(')
+    count = int(lines[start])
+    return np.array([line.strip('()').split() for line in lines[start + 2:start + 2 + count]], dtype=float)
+
+
 def morph(path, handle, fixed):
     """The mesh file opened, the handle set moved by (0.1, 0.05, 0), the fixed sets kept: (reader,
     deformation, NodeIds, moved points)."""
@@ -71,4 +80,49 @@ check(len(points) == len(moved) and np.array_equal(points[ids], moved),
       'SU2: meshio reads the variant with the deformed points exactly (%d points)' % len(moved))
 body = open(source).read().split('NMARK', 1)[1]
 check(open(variant).read().split('NMARK', 1)[1] == body, 'SU2: the markers are the source\'s, byte for byte')
+
+# Fluent (OpenFOAM's foamMeshToFluent on a blockMesh box; zones), converted back by
+# fluentMeshToFoam and checked by checkMesh: the points are the deformed ones (OpenFOAM's own
+# parsing of a number may differ from the nearest double by 1 ulp).
+FOAM = 'source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; set -e; '
+HEADER = 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n'
+CONTROL = HEADER % 'controlDict' + 'application icoFoam; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;\n' \
+    'writeControl timeStep; writeInterval 1; writeFormat ascii; writePrecision 17;\n'
+BLOCKS = HEADER % 'blockMeshDict' + '''convertToMeters 1;
+vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 1) (2 0 1) (2 1 1) (0 1 1));
+blocks (hex (0 1 2 3 4 5 6 7) (8 4 4) simpleGrading (1 1 1));
+boundary
+(
+    lid { type wall; faces ((4 5 6 7)); }
+    base { type wall; faces ((0 3 2 1)); }
+    sides { type patch; faces ((0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }
+);
+'''
+SCHEMES = HEADER % 'fvSchemes' + 'ddtSchemes { default Euler; } gradSchemes { default Gauss linear; } divSchemes { default none; } ' \
+    'laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default linear; } snGradSchemes { default corrected; }\n'
+SOLUTION = HEADER % 'fvSolution' + 'solvers { }\n'
+if os.path.exists('/usr/share/openfoam/etc/bashrc'):
+    case = os.path.join(work, 'fluent', 'box')
+    for name, text in (('controlDict', CONTROL), ('blockMeshDict', BLOCKS), ('fvSchemes', SCHEMES), ('fvSolution', SOLUTION)):
+        os.makedirs(os.path.join(case, 'system'), exist_ok=True)
+        with open(os.path.join(case, 'system', name), 'w') as f:
+            f.write(text)
+    subprocess.run(['bash', '-c', FOAM + 'cd "%s" && blockMesh > log.blockMesh && foamMeshToFluent > log.foamMeshToFluent' % case], check=True)
+    source = os.path.join(case, 'fluentInterface', 'box.msh')
+    reader, deform, ids, moved = morph(source, 'lid', ['base'])
+    variant = os.path.join(work, 'fluent', 'variant', 'box.msh')
+    SaveData(variant, proxy=deform)
+    back = os.path.join(work, 'fluent', 'back')
+    shutil.copytree(os.path.join(case, 'system'), os.path.join(back, 'system'))
+    log = subprocess.run(['bash', '-c', FOAM + 'cd "%s" && fluentMeshToFoam "%s" > log.fluentMeshToFoam && checkMesh' % (back, variant)],
+                         capture_output=True, text=True)
+    check('Mesh OK.' in log.stdout, 'Fluent: fluentMeshToFoam converts the variant and checkMesh passes')
+    points = foam_points(os.path.join(back, 'constant', 'polyMesh', 'points'))
+    check(len(points) == len(moved) and np.allclose(points[ids - 1], moved, rtol=1e-15, atol=1e-15 * np.abs(moved).max()),
+          'Fluent: the converted points are the deformed ones (%d points)' % len(moved))
+    coordinates = re.compile(r'^[ \t]*[-+0-9.eE]+[ \t]+[-+0-9.eE]+[ \t]+[-+0-9.eE]+[ \t]*$', re.M)  # a node's line
+    check(coordinates.sub('', open(variant).read()) == coordinates.sub('', open(source).read()),
+          'Fluent: every line but the nodes\' is the source\'s, byte for byte')
+else:
+    check(False, 'OpenFOAM (foamMeshToFluent) is installed for the Fluent round trip (Debian package openfoam)')
 finish()

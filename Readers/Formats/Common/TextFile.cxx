@@ -169,13 +169,14 @@ std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t
   for (int c = 0; c < count; ++c)
   {
     const std::size_t blanks = end;
-    while (begin < text.size() && isBlank(text[begin]))
+    while (begin < text.size() && (isBlank(text[begin]) || text[begin] == '\r' || text[begin] == '\n'))
     {
       ++begin;
     }
     out.append(text, blanks, begin - blanks);
     end = begin;
-    while (end < text.size() && !isBlank(text[end]) && text[end] != '\r' && text[end] != '\n')
+    while (end < text.size() && !isBlank(text[end]) && text[end] != '\r' && text[end] != '\n' && text[end] != '(' &&
+      text[end] != ')')
     {
       ++end;
     }

@@ -68,9 +68,9 @@ inline bool isBlank(char c)
 /// text without its leading and trailing blanks.
 std::string_view trim(std::string_view text);
 
-/// Appends the count numbers separated by blanks that start at text[begin] (after blanks) with the
-/// values xyz: a number whose value changed becomes appendShortest's text of the new one, the
-/// others and the blanks before them stay as they were. Returns where the last number's text ends.
+/// Appends the count numbers separated by blanks or line ends that start at text[begin] (a number
+/// also ends at a parenthesis: Fluent's "0 0 1))") with the values xyz: a number whose value changed becomes appendShortest's text of the new one, the
+/// others and what separates them stay as they were. Returns where the last number's text ends.
 std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t begin, int count, const double* xyz);
 
 /// The lines of text: the offsets where each line starts and ends (without "\n" or "\r\n").
