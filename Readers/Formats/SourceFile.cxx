@@ -2,7 +2,9 @@
 
 #include "Abaqus/AbaqusDeck.h"
 #include "Fluent/FluentMesh.h"
+#include "Exodus/ExodusMesh.h"
 #include "Gmsh/GmshMesh.h"
+#include "Nastran/NastranDeck.h"
 #include "SU2/SU2Mesh.h"
 
 #include <algorithm>
@@ -41,6 +43,16 @@ std::unique_ptr<SourceFile> readFluentMesh(const std::string& path, bool layout)
   return std::make_unique<fluent::MeshFile>(layout ? fluent::readFluentLayout(path) : fluent::readFluent(path));
 }
 
+std::unique_ptr<SourceFile> readNastran(const std::string& path, bool layout)
+{
+  return std::make_unique<nastran::Deck>(layout ? nastran::readNodeLayout(path) : nastran::readDeck(path));
+}
+
+std::unique_ptr<SourceFile> readExodusMesh(const std::string& path, bool layout)
+{
+  return std::make_unique<exodus::MeshFile>(layout ? exodus::readExodusLayout(path) : exodus::readExodus(path));
+}
+
 std::string lowerCase(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -55,6 +67,8 @@ const std::vector<Format>& formats()
     { "Gmsh mesh", "msh", true, gmsh::isMsh, readGmsh },
     { "SU2 mesh", "su2", false, su2::isSu2, readSu2Mesh },
     { "Fluent mesh", "msh cas", false, fluent::isFluent, readFluentMesh },
+    { "Nastran bulk data", "bdf nas dat", true, nastran::isNastran, readNastran },
+    { "Exodus II mesh", "exo e ex2 g", true, exodus::isExodus, readExodusMesh },
   };
   return table;
 }

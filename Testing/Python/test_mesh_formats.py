@@ -54,13 +54,24 @@ def foam_points(path):
     return np.array([line.strip('()').split() for line in lines[start + 2:start + 2 + count]], dtype=float)
 
 
-def morph(path, handle, fixed):
-    """The mesh file opened, the handle set moved by (0.1, 0.05, 0), the fixed sets kept: (reader,
-    deformation, NodeIds, moved points)."""
-    reader = OpenDataFile(path)
+def morph(path, handle, fixed, reader=None):
+    """The mesh file opened (by File > Open's choice, or the reader given), the handle set moved by
+    (0.1, 0.05, 0), the fixed sets kept: (reader, deformation, NodeIds, moved points). handle None:
+    the points within 0.6 of the box's centre move, fixed None: those within 0.2 of its ends stay."""
+    reader = reader or OpenDataFile(path)
     check(reader.GetXMLName() == 'MeshFileReader', '%s opens with the Mesh File reader' % os.path.basename(path))
-    still = ConstraintRegion(Input=reader, Role='Fixed', SelectionMode='Blocks', Sets=fixed)  # noqa: F821 (the plugin's)
-    moving = ConstraintRegion(Input=reader, Role='Handle', SelectionMode='Blocks', Sets=[handle], Translation=[0.1, 0.05, 0])  # noqa: F821
+    if fixed:
+        still = ConstraintRegion(Input=reader, Role='Fixed', SelectionMode='Blocks', Sets=fixed)  # noqa: F821 (the plugin's)
+    else:
+        still = ConstraintRegion(Input=reader, Role='Fixed', InsideOut=1)  # noqa: F821
+        still.Region = 'Box'
+        still.Region.Position, still.Region.Length = [0.2, -1, -1], [3.6, 4, 4]
+    if handle:
+        moving = ConstraintRegion(Input=reader, Role='Handle', SelectionMode='Blocks', Sets=[handle], Translation=[0.1, 0.05, 0])  # noqa: F821
+    else:
+        moving = ConstraintRegion(Input=reader, Role='Handle', Translation=[0.1, 0.05, 0])  # noqa: F821
+        moving.Region = 'Sphere'
+        moving.Region.Center, moving.Region.Radius = [2, 1, 1], 0.6
     deform = MLSDeform(Input=reader, Regions=[still, moving])  # noqa: F821
     out = sm.Fetch(deform)
     ids = vtk_to_numpy(out.GetPointData().GetArray('NodeId'))
@@ -80,6 +91,48 @@ check(len(points) == len(moved) and np.array_equal(points[ids], moved),
       'SU2: meshio reads the variant with the deformed points exactly (%d points)' % len(moved))
 body = open(source).read().split('NMARK', 1)[1]
 check(open(variant).read().split('NMARK', 1)[1] == body, 'SU2: the markers are the source\'s, byte for byte')
+
+# Nastran bulk data (Gmsh's writer, small and free field: grids, CTETRA, CTRIA3), read back by Gmsh
+# (meshio 5 wants a BEGIN BULK that Gmsh does not write): the points to the field's precision
+# (small field: 8 characters, 1e-6 of the box's size; free field: the shortest exact text, which
+# Gmsh's .msh keeps to 16 digits), every other card the source's.
+grid = re.compile(r'^GRID.*$(\n[+*].*$)?', re.M)
+for field, tolerance in ((1, 1e-6), (0, 1e-15)):  # Gmsh writes 16 significant digits
+    name = ('small', 'free')[field == 0]
+    source = os.path.join(work, 'nastran-' + name, 'box.bdf')
+    os.makedirs(os.path.dirname(source))
+    subprocess.run(['gmsh', '-3', geo, '-format', 'bdf', '-setnumber', 'Mesh.BdfFieldFormat', str(field), '-o', source],
+                   check=True, stdout=subprocess.DEVNULL)
+    reader, deform, ids, moved = morph(source, None, None)
+    variant = os.path.join(work, 'nastran-' + name, 'variant', 'box.bdf')
+    SaveData(variant, proxy=deform)
+    reread = os.path.join(work, 'nastran-' + name, 'reread.msh')
+    run = subprocess.run(['gmsh', variant, '-0', '-o', reread], capture_output=True, text=True)
+    back = sm.Fetch(OpenDataFile(reread))  # Gmsh's reading of the variant, in its own format
+    gmsh_points = dict(zip(vtk_to_numpy(back.GetPointData().GetArray('NodeId')).tolist(), vtk_to_numpy(back.GetPoints().GetData())))
+    gap = max(np.abs(gmsh_points[n] - p).max() for n, p in zip(ids.tolist(), moved))
+    check(run.returncode == 0 and gap <= tolerance * 4, 'Nastran %s field: Gmsh reads the variant at the deformed points '
+          '(largest gap %.2g)' % (name, gap))
+    check(grid.sub('', open(variant).read()) == grid.sub('', open(source).read()), 'Nastran: every card but the grids is the source\'s')
+
+# Exodus II (ParaView's own writer, a tetrahedral box), opened with the Mesh File reader (ParaView
+# opens .exo with its IOSS reader, which writes no variant), the variant read back by ParaView's
+# IOSS reader: the points to float precision (ParaView writes single precision coordinates).
+from paraview.simple import ExodusIIWriter, IOSSReader, MergeBlocks, Tetrahedralize, Wavelet  # noqa: E402
+source = os.path.join(work, 'exodus', 'box.exo')
+os.makedirs(os.path.dirname(source))
+box = Tetrahedralize(Input=Wavelet(WholeExtent=[0, 8, 0, 4, 0, 4]))
+writer = ExodusIIWriter(FileName=source, Input=box)
+writer.UpdatePipeline()
+reader, deform, ids, moved = morph(source, None, None, reader=MeshFileReader(FileName=source))  # noqa: F821 (the plugin's)
+variant = os.path.join(work, 'exodus', 'variant', 'box.exo')
+SaveData(variant, proxy=deform)
+block = sm.Fetch(MergeBlocks(Input=IOSSReader(FileName=variant)))
+read_ids = vtk_to_numpy(block.GetPointData().GetArray('ids'))
+order = np.argsort(ids)
+points = vtk_to_numpy(block.GetPoints().GetData()).astype(float)[np.argsort(read_ids)]
+check(np.abs(points - moved[order]).max() <= 6e-8 * np.abs(moved).max(),
+      'Exodus: ParaView\'s IOSS reader reads the variant at the deformed points, to float precision')
 
 # Fluent (OpenFOAM's foamMeshToFluent on a blockMesh box; zones), converted back by
 # fluentMeshToFoam and checked by checkMesh: the points are the deformed ones (OpenFOAM's own

@@ -20,6 +20,7 @@ int nodesPerCell(CellType type)
     case CellType::QuadraticTetra: return 10;
     case CellType::QuadraticHexahedron: return 20;
     case CellType::QuadraticWedge: return 15;
+    case CellType::QuadraticPyramid: return 13;
     case CellType::BiQuadraticQuad: return 9;
     case CellType::TriQuadraticHexahedron: return 27;
   }

@@ -27,6 +27,7 @@ enum class CellType : int
   QuadraticTetra = 24,
   QuadraticHexahedron = 25,
   QuadraticWedge = 26,
+  QuadraticPyramid = 27,
   BiQuadraticQuad = 28,
   TriQuadraticHexahedron = 29,
 };
