@@ -8,6 +8,7 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkObjectFactory.h>
+#include <vtkIdTypeArray.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
@@ -101,12 +102,14 @@ void vtkMeshVariantWriter::WriteData()
     {
       throw std::runtime_error(source + " cannot be read or is of no format a variant can be written of");
     }
+    vtkIdTypeArray* integerIds = vtkIdTypeArray::SafeDownCast(nodeIds);
     const vtkIdType count = input->GetNumberOfPoints();
     std::vector<std::int64_t> ids(count);
     std::vector<double> xyz(3 * count);
     for (vtkIdType i = 0; i < count; ++i)
     {
-      ids[i] = static_cast<std::int64_t>(nodeIds->GetTuple1(i));
+      // as integers: a double holds ids only up to 2^53
+      ids[i] = integerIds ? static_cast<std::int64_t>(integerIds->GetValue(i)) : static_cast<std::int64_t>(nodeIds->GetTuple1(i));
       input->GetPoint(i, xyz.data() + 3 * i);
     }
     layoutCache().get(source, *format)->writeVariant(this->FileName, ids.data(), xyz.data(), ids.size(), this->Overwrite != 0);

@@ -414,6 +414,10 @@ private:
     {
       this->nodes();
     }
+    else if ((kind == 39 || kind == 45) && !this->InBinary)
+    {
+      this->names(); // the layout too: it must end where the full read ends, whatever a name holds
+    }
     else if (this->LayoutOnly)
     {
       this->skipRest();
@@ -425,10 +429,6 @@ private:
     else if (kind == 13)
     {
       this->faces();
-    }
-    else if ((kind == 39 || kind == 45) && !this->InBinary)
-    {
-      this->names();
     }
     else
     {
