@@ -1,6 +1,7 @@
 #include "SourceFile.h"
 
 #include "Abaqus/AbaqusDeck.h"
+#include "CGNS/CgnsMesh.h"
 #include "Fluent/FluentMesh.h"
 #include "Exodus/ExodusMesh.h"
 #include "Gmsh/GmshMesh.h"
@@ -53,6 +54,11 @@ std::unique_ptr<SourceFile> readExodusMesh(const std::string& path, bool layout)
   return std::make_unique<exodus::MeshFile>(layout ? exodus::readExodusLayout(path) : exodus::readExodus(path));
 }
 
+std::unique_ptr<SourceFile> readCgnsMesh(const std::string& path, bool layout)
+{
+  return std::make_unique<cgns::MeshFile>(layout ? cgns::readCgnsLayout(path) : cgns::readCgns(path));
+}
+
 std::string lowerCase(std::string text)
 {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -69,6 +75,7 @@ const std::vector<Format>& formats()
     { "Fluent mesh", "msh cas", false, fluent::isFluent, readFluentMesh },
     { "Nastran bulk data", "bdf nas dat", true, nastran::isNastran, readNastran },
     { "Exodus II mesh", "exo e ex2 g", true, exodus::isExodus, readExodusMesh },
+    { "CGNS mesh", "cgns", false, cgns::isCgns, readCgnsMesh },
   };
   return table;
 }

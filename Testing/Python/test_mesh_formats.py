@@ -134,6 +134,20 @@ points = vtk_to_numpy(block.GetPoints().GetData()).astype(float)[np.argsort(read
 check(np.abs(points - moved[order]).max() <= 6e-8 * np.abs(moved).max(),
       'Exodus: ParaView\'s IOSS reader reads the variant at the deformed points, to float precision')
 
+# CGNS (ParaView's own writer, CGNS 4: a tetrahedral box), opened with the Mesh File reader
+# (ParaView opens .cgns with its CGNS reader, and saves .cgns with its CGNS writer, which writes a
+# new file: the variant writer is named), the variant read back by ParaView's CGNS reader.
+source = os.path.join(work, 'cgns', 'box.cgns')
+os.makedirs(os.path.dirname(source))
+SaveData(source, proxy=box)
+reader, deform, ids, moved = morph(source, None, None, reader=MeshFileReader(FileName=source))  # noqa: F821
+variant = os.path.join(work, 'cgns', 'variant', 'box.cgns')
+sm.writers.MeshFileVariant(Input=deform, FileName=variant).UpdatePipeline()
+block = sm.Fetch(MergeBlocks(Input=OpenDataFile(variant)))
+points = vtk_to_numpy(block.GetPoints().GetData()).astype(float)
+check(len(points) == len(moved) and np.abs(points[ids - 1] - moved).max() <= 6e-8 * np.abs(moved).max(),
+      'CGNS: ParaView\'s CGNS reader reads the variant at the deformed points (%d points)' % len(moved))
+
 # Fluent (OpenFOAM's foamMeshToFluent on a blockMesh box; zones), converted back by
 # fluentMeshToFoam and checked by checkMesh: the points are the deformed ones (OpenFOAM's own
 # parsing of a number may differ from the nearest double by 1 ulp).

@@ -90,7 +90,9 @@ std::string contents(const std::string& path)
 // a valid mesh whose variant with its own coordinates is the file, or one clear error naming it.
 void fuzz(const std::string& extension, const std::vector<std::string>& seeds, bool keyword, unsigned seed)
 {
-  const std::string path = outputFile("fuzz-mutated." + extension), variant = outputFile("fuzz-variant/fuzz-mutated." + extension);
+  // files of this run's own (ctest -j runs the formats side by side; Gmsh and Fluent share .msh)
+  const std::string name = "fuzz-" + std::to_string(seed) + "." + extension;
+  const std::string path = outputFile(name), variant = outputFile("fuzz-variant/" + name);
   std::mt19937 random(seed);
   int errors = 0, read = 0, unclear = 0, broken = 0, changed = 0;
   const int files = 3000;
