@@ -9,7 +9,6 @@
 #include <functional>
 #include <map>
 
-#include <unistd.h>
 
 // ParaView's CGNS library (VTK::cgns, CGNS 4.2) reads the files of CGNS 3 and 4; the system's
 // (Debian 12's libcgns 3.4) refuses those written by CGNS 4.
@@ -843,16 +842,9 @@ void overwriteCoordinates(const std::string& path, const std::string& target, co
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const std::vector<std::size_t> row = variantRows(target, this->path, this->mesh.nodeIds, ids, xyz, count);
-  if (canonicalPath(target) == canonicalPath(this->path))
-  {
-    throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
-  }
-  const std::string bytes = readFile(this->path);
-  if (std::hash<std::string>()(bytes) != this->hash)
-  {
-    throw FileError(this->path, 0, "has changed since it was read: read the mesh again");
-  }
+  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  const std::vector<std::size_t>& row = source.row;
+  const std::string& bytes = source.bytes;
   // the new arrays, each in its data type, before anything is written
   std::vector<Array> arrays;
   for (const Zone& zone : this->zones)
@@ -897,8 +889,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   // the source's bytes written aside, their coordinates overwritten there, renamed into place
   AtomicWrite write(overwrite);
-  write.add(target, bytes);
-  overwriteCoordinates(target + ".writing-" + std::to_string(::getpid()), target, arrays);
+  overwriteCoordinates(write.add(target, bytes), target, arrays);
   write.commit();
 }
 } // namespace cgns

@@ -62,12 +62,12 @@ AtomicWrite::~AtomicWrite()
   }
 }
 
-void AtomicWrite::add(const std::string& path, const std::string& text)
+std::string AtomicWrite::add(const std::string& path, const std::string& text)
 {
-  this->add(path, std::vector<std::string_view>{ text });
+  return this->add(path, std::vector<std::string_view>{ text });
 }
 
-void AtomicWrite::add(const std::string& path, const std::vector<std::string_view>& pieces)
+std::string AtomicWrite::add(const std::string& path, const std::vector<std::string_view>& pieces)
 {
   if (!this->Overwrite && std::filesystem::exists(path))
   {
@@ -91,6 +91,7 @@ void AtomicWrite::add(const std::string& path, const std::vector<std::string_vie
   {
     throw FileError(path, 0, "cannot be written (" + (made ? made.message() : std::string("no space or no permission")) + ")");
   }
+  return aside;
 }
 
 void AtomicWrite::commit()

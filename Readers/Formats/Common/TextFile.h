@@ -35,9 +35,10 @@ class AtomicWrite
 public:
   explicit AtomicWrite(bool overwrite);
   ~AtomicWrite(); // removes what was written aside and not committed
-  /// Writes text (or its pieces, one after the other) aside for path.
-  void add(const std::string& path, const std::string& text);
-  void add(const std::string& path, const std::vector<std::string_view>& pieces);
+  /// Writes text (or its pieces, one after the other) aside for path; returns the file written
+  /// aside (a binary format edits it there through its library before the commit).
+  std::string add(const std::string& path, const std::string& text);
+  std::string add(const std::string& path, const std::vector<std::string_view>& pieces);
   /// Renames every file written aside into place, the first added last: once it is in place,
   /// so are the others (a variant interrupted before has no main file, and is written again).
   void commit();

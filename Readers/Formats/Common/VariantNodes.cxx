@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace mlsformats
 {
@@ -48,5 +49,21 @@ std::vector<std::size_t> variantRows(const std::string& target, const std::strin
     }
   }
   return row;
+}
+
+VariantSource variantSource(const std::string& target, const std::string& source, std::size_t hash,
+  const std::vector<std::int64_t>& nodeIds, const std::int64_t* ids, const double* xyz, std::size_t count)
+{
+  VariantSource out{ variantRows(target, source, nodeIds, ids, xyz, count), std::string() };
+  if (canonicalPath(target) == canonicalPath(source))
+  {
+    throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
+  }
+  out.bytes = readFile(source);
+  if (std::hash<std::string>()(out.bytes) != hash)
+  {
+    throw FileError(source, 0, "has changed since it was read: read the mesh again");
+  }
+  return out;
 }
 } // namespace mlsformats

@@ -19,7 +19,6 @@
 #include <string_view>
 #include <utility>
 
-#include <unistd.h>
 
 namespace mlsformats
 {
@@ -746,11 +745,8 @@ bool isExodus(const std::string& head)
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const std::vector<std::size_t> row = variantRows(target, this->path, this->mesh.nodeIds, ids, xyz, count);
-  if (canonicalPath(target) == canonicalPath(this->path))
-  {
-    throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
-  }
+  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  const std::vector<std::size_t>& row = source.row;
   // the coordinates dimension after dimension, as the file holds them
   const std::size_t dimensions = static_cast<std::size_t>(this->dimensions);
   std::vector<double> values(dimensions * count);
@@ -775,15 +771,9 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
       }
     }
   }
-  const std::string bytes = readFile(this->path);
-  if (std::hash<std::string>()(bytes) != this->hash)
-  {
-    throw FileError(this->path, 0, "has changed since it was read: read the mesh again");
-  }
   // the source's bytes written aside, their coordinates rewritten there, then renamed into place
   AtomicWrite write(overwrite);
-  write.add(target, bytes);
-  NetCDF copy(target, target + ".writing-" + std::to_string(::getpid())); // AtomicWrite's name for it
+  NetCDF copy(target, write.add(target, source.bytes));
   const std::size_t each = this->coordinates.size() == 1 ? values.size() : count; // "coord" holds them all
   for (std::size_t c = 0; c < this->coordinates.size(); ++c)
   {

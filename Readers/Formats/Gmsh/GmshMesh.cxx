@@ -1315,17 +1315,9 @@ namespace
 void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const std::vector<std::int64_t>& nodeIds = this->mesh.nodeIds;
-  const std::vector<std::size_t> row = variantRows(target, this->path, nodeIds, ids, xyz, count);
-  if (canonicalPath(target) == canonicalPath(this->path))
-  {
-    throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
-  }
-  const std::string text = readFile(this->path);
-  if (std::hash<std::string>()(text) != this->hash)
-  {
-    throw FileError(this->path, 0, "has changed since it was read: read the mesh again");
-  }
+  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  const std::vector<std::size_t>& row = source.row;
+  const std::string& text = source.bytes;
   std::string out;
   if (this->binary)
   {

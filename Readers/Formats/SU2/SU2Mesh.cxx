@@ -725,16 +725,9 @@ bool isSu2(const std::string& head)
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const std::vector<std::size_t> row = variantRows(target, this->path, this->mesh.nodeIds, ids, xyz, count);
-  if (canonicalPath(target) == canonicalPath(this->path))
-  {
-    throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
-  }
-  const std::string text = readFile(this->path);
-  if (std::hash<std::string>()(text) != this->hash)
-  {
-    throw FileError(this->path, 0, "has changed since it was read: read the mesh again");
-  }
+  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  const std::vector<std::size_t>& row = source.row;
+  const std::string& text = source.bytes;
   std::string out;
   out.reserve(text.size() + text.size() / 8);
   std::size_t copied = 0;
