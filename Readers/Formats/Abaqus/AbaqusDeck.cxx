@@ -1179,36 +1179,12 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
   const std::string& source = deck.files.at(0);
   const std::vector<std::size_t> row = variantRows(target, source, nodeIds, ids, xyz, count);
   // each file's destination: the deck at target, a relative include beside it under its name
-  const fs::path folder = fs::path(target).parent_path();
-  std::vector<std::string> destinations(deck.files.size());
-  std::vector<std::string> sources;
-  for (const std::string& file : deck.files)
-  {
-    sources.push_back(canonicalPath(file));
-  }
   std::vector<char> hasNodes(deck.files.size(), 0);
   for (const NodeSlot& slot : deck.slots)
   {
     hasNodes[slot.file] = 1;
   }
-  for (std::size_t f = 0; f < deck.files.size(); ++f)
-  {
-    const std::string& name = deck.includeNames[f];
-    if (f > 0 && fs::path(name).is_absolute())
-    {
-      if (hasNodes[f])
-      {
-        throw FileError(deck.files[f], 0, "holds nodes and is included by its absolute path: a variant cannot be written beside " +
-            target + " under that name (include it by a relative name)");
-      }
-      continue; // read where it is, by the variant as by the source
-    }
-    destinations[f] = f == 0 ? target : (folder / name).string();
-    if (std::find(sources.begin(), sources.end(), canonicalPath(destinations[f])) != sources.end())
-    {
-      throw FileError(destinations[f], 0, "is a file of the source deck " + source + ": a variant is written elsewhere");
-    }
-  }
+  const std::vector<std::string> destinations = variantDestinations(target, deck.files, deck.includeNames, hasNodes);
   AtomicWrite write(overwrite);
   for (std::size_t f = 0; f < deck.files.size(); ++f)
   {

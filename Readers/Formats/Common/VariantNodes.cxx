@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 
 namespace mlsformats
@@ -49,6 +50,36 @@ std::vector<std::size_t> variantRows(const std::string& target, const std::strin
     }
   }
   return row;
+}
+
+std::vector<std::string> variantDestinations(const std::string& target, const std::vector<std::string>& files,
+  const std::vector<std::string>& includeNames, const std::vector<char>& holdsNodes)
+{
+  const std::filesystem::path folder = std::filesystem::path(target).parent_path();
+  std::vector<std::string> destinations(files.size()), sources;
+  for (const std::string& file : files)
+  {
+    sources.push_back(canonicalPath(file));
+  }
+  for (std::size_t f = 0; f < files.size(); ++f)
+  {
+    const std::string& name = includeNames[f];
+    if (f > 0 && std::filesystem::path(name).is_absolute())
+    {
+      if (holdsNodes[f])
+      {
+        throw FileError(files[f], 0, "holds nodes and is included by its absolute path: a variant cannot be written beside " +
+            target + " under that name (include it by a relative name)");
+      }
+      continue; // read where it is, by the variant as by the source
+    }
+    destinations[f] = f == 0 ? target : (folder / name).string();
+    if (std::find(sources.begin(), sources.end(), canonicalPath(destinations[f])) != sources.end())
+    {
+      throw FileError(destinations[f], 0, "is a file of the source " + files[0] + ": a variant is written elsewhere");
+    }
+  }
+  return destinations;
 }
 
 VariantSource variantSource(const std::string& target, const std::string& source, std::size_t hash,

@@ -24,4 +24,12 @@ struct VariantSource
 };
 VariantSource variantSource(const std::string& target, const std::string& source, std::size_t hash,
   const std::vector<std::int64_t>& nodeIds, const std::int64_t* ids, const double* xyz, std::size_t count);
+
+/// Where the files of a variant of a source made of several files go (files[0] the main file, the
+/// others included under includeNames): the main file at target, each file included by a relative
+/// name beside it under that name, and "" (not written: the variant reads it where it is) for one
+/// included by its absolute path. Throws FileError for such a file that holds nodes (holdsNodes),
+/// and for a destination that is one of the source's files.
+std::vector<std::string> variantDestinations(const std::string& target, const std::vector<std::string>& files,
+  const std::vector<std::string>& includeNames, const std::vector<char>& holdsNodes);
 } // namespace mlsformats

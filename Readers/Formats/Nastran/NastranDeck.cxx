@@ -1408,35 +1408,12 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
   const std::string& source = this->files.at(0);
   const std::vector<std::size_t> row = variantRows(target, source, this->mesh.nodeIds, ids, xyz, count);
   // each file's destination: the deck at target, a relative include beside it under its name
-  const fs::path folder = fs::path(target).parent_path();
-  std::vector<std::string> destinations(this->files.size()), sources;
-  for (const std::string& file : this->files)
-  {
-    sources.push_back(canonicalPath(file));
-  }
   std::vector<char> hasGrids(this->files.size(), 0);
   for (const GridSlot& slot : this->slots)
   {
     hasGrids[slot.file] = 1;
   }
-  for (std::size_t f = 0; f < this->files.size(); ++f)
-  {
-    const std::string& name = this->includeNames[f];
-    if (f > 0 && fs::path(name).is_absolute())
-    {
-      if (hasGrids[f])
-      {
-        throw FileError(this->files[f], 0, "holds grids and is included by its absolute path: a variant cannot be written beside " +
-            target + " under that name (include it by a relative name)");
-      }
-      continue; // read where it is, by the variant as by the source
-    }
-    destinations[f] = f == 0 ? target : (folder / name).string();
-    if (std::find(sources.begin(), sources.end(), canonicalPath(destinations[f])) != sources.end())
-    {
-      throw FileError(destinations[f], 0, "is a file of the source deck " + source + ": a variant is written elsewhere");
-    }
-  }
+  const std::vector<std::string> destinations = variantDestinations(target, this->files, this->includeNames, hasGrids);
   AtomicWrite write(overwrite);
   for (std::uint32_t f = 0; f < this->files.size(); ++f)
   {
