@@ -195,6 +195,24 @@ std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t
   return end;
 }
 
+bool nextLine(const std::string& text, std::size_t& at, std::string_view& line)
+{
+  if (at >= text.size())
+  {
+    return false;
+  }
+  std::size_t end = text.find('\n', at);
+  const std::size_t next = end == std::string::npos ? text.size() : end + 1;
+  end = end == std::string::npos ? text.size() : end;
+  line = std::string_view(text).substr(at, end - at);
+  if (!line.empty() && line.back() == '\r')
+  {
+    line.remove_suffix(1);
+  }
+  at = next;
+  return true;
+}
+
 std::vector<Line> lines(const std::string& text)
 {
   std::vector<Line> out;

@@ -74,6 +74,9 @@ std::string_view trim(std::string_view text);
 /// others and what separates them stay as they were. Returns where the last number's text ends.
 std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t begin, int count, const double* xyz);
 
+/// The line of text at `at` (without "\n" or "\r\n"), `at` moved to the next; false at the end.
+bool nextLine(const std::string& text, std::size_t& at, std::string_view& line);
+
 /// The lines of text: the offsets where each line starts and ends (without "\n" or "\r\n").
 struct Line
 {

@@ -299,20 +299,12 @@ private:
   // The next line (without "\n" or "\r\n"), or false at the end of the file.
   bool nextLine(std::string_view& line)
   {
-    if (this->At >= this->Text.size())
+    const std::size_t at = this->At;
+    if (!mlsformats::nextLine(this->Text, this->At, line))
     {
       return false;
     }
-    std::size_t end = this->Text.find('\n', this->At);
-    const std::size_t next = end == std::string::npos ? this->Text.size() : end + 1;
-    end = end == std::string::npos ? this->Text.size() : end;
-    line = std::string_view(this->Text).substr(this->At, end - this->At);
-    if (!line.empty() && line.back() == '\r')
-    {
-      line.remove_suffix(1);
-    }
-    this->Mark = this->At;
-    this->At = next;
+    this->Mark = at; // where the line read starts (an error's line number)
     return true;
   }
 
