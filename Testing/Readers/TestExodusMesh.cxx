@@ -27,6 +27,9 @@ namespace
 {
 using testing::contains;
 using testing::find;
+using testing::midsideNodesOnTheirEdges;
+using testing::Point;
+using testing::position;
 using testing::writeFile;
 
 std::string folder(const std::string& name)
@@ -394,45 +397,11 @@ bool sameMesh(const SourceMesh& a, const SourceMesh& b)
     });
 }
 
-using Point = std::array<double, 3>;
-
-Point position(const SourceMesh& mesh, std::int64_t id)
-{
-  const std::size_t at = static_cast<std::size_t>(std::find(mesh.nodeIds.begin(), mesh.nodeIds.end(), id) - mesh.nodeIds.begin());
-  return { mesh.xyz[3 * at], mesh.xyz[3 * at + 1], mesh.xyz[3 * at + 2] };
-}
-
 // (p1 - p0) x (p2 - p0) . (p3 - p0) of a block's first element's nodes corners.
 double tripleProduct(const SourceMesh& mesh, const ElementBlock& block, std::array<int, 4> corners)
 {
-  std::array<Point, 4> p;
-  for (int i = 0; i < 4; ++i)
-  {
-    p[i] = position(mesh, block.nodes[corners[i]]);
-  }
-  const Point a{ p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] }, b{ p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] },
-    c{ p[3][0] - p[0][0], p[3][1] - p[0][1], p[3][2] - p[0][2] };
-  return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] + (a[0] * b[1] - a[1] * b[0]) * c[2];
-}
-
-// Whether the nodes corners + i of a block's first element are at the middle of the corner pairs
-// edges[i].
-bool midsideNodesOnTheirEdges(const SourceMesh& mesh, const ElementBlock& block, int corners, const std::vector<std::array<int, 2>>& edges)
-{
-  for (std::size_t i = 0; i < edges.size(); ++i)
-  {
-    const Point a = position(mesh, block.nodes[edges[i][0]]), b = position(mesh, block.nodes[edges[i][1]]);
-    const Point middle = position(mesh, block.nodes[corners + i]);
-    for (int c = 0; c < 3; ++c)
-    {
-      if (middle[c] != (a[c] + b[c]) / 2)
-      {
-        std::printf("%s: node %zu is not on the edge %d-%d\n", block.name.c_str(), corners + i, edges[i][0], edges[i][1]);
-        return false;
-      }
-    }
-  }
-  return true;
+  return testing::tripleProduct(position(mesh, block.nodes[corners[0]]), position(mesh, block.nodes[corners[1]]),
+    position(mesh, block.nodes[corners[2]]), position(mesh, block.nodes[corners[3]]));
 }
 } // namespace
 

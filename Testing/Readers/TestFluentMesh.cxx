@@ -38,7 +38,8 @@ std::string readError(const std::string& path)
   return testing::readError([&] { fluent::readFluent(path); });
 }
 
-using Point = std::array<double, 3>;
+using testing::Point;
+using testing::tripleProduct;
 using Nodes = std::vector<std::int64_t>;
 
 // A mesh to write as a Fluent file: its nodes (ids from 1, in two node zones: up to split and the
@@ -270,14 +271,6 @@ std::string fluentFile(const Sample& sample, Encoding encoding)
   }
   out += "(45 (1 fluid " + sample.cellZones[0].first + ")())\n(45 (16 fluid " + sample.cellZones[1].first + ")())\n";
   return out;
-}
-
-// (p1 - p0) x (p2 - p0) . (p3 - p0)
-double tripleProduct(const Point& p0, const Point& p1, const Point& p2, const Point& p3)
-{
-  const Point a{ p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] }, b{ p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] },
-    c{ p3[0] - p0[0], p3[1] - p0[1], p3[2] - p0[2] };
-  return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] + (a[0] * b[1] - a[1] * b[0]) * c[2];
 }
 
 // Whether the mesh's cells are the sample's, each as a cell of its type in VTK's order: the same
