@@ -46,6 +46,21 @@ def python3(code, *args):
     return subprocess.run(['/usr/bin/python3', '-c', code] + list(args), capture_output=True, text=True, check=True).stdout
 
 
+def doe(deform, folder, extension, fem):
+    """A design of experiments of 2 variants on the deformation's handle: variant files of the
+    source's format, each with the verdict of its solver family (FEM or checkMesh's), written
+    whatever the verdict."""
+    import mlsdeform
+    dvs = mlsdeform.DesignVariables(deform)
+    dvs.addHandleDV('dx', [deform.Regions[1]], translate=[1, 0, 0], lower=-0.1, upper=0.1)
+    rows = mlsdeform.designOfExperiments(dvs, folder, samples=2, verbose=False, writeFailed=True)  # (Gmsh's tetrahedra here
+    # have scaled Jacobians below the FEM threshold already: written all the same, with their verdict)
+    figure = 'MinScaledJacobian' if fem else 'MaxNonOrthogonality'
+    check(len(rows) == 2 and all(figure in r and r['path'].endswith(extension) and os.path.exists(r['path']) for r in rows),
+          'a design of experiments writes %s variants with the %s verdict (%s)' % (extension, 'FEM' if fem else 'checkMesh',
+                                                                                  [r.get(figure) for r in rows]))
+
+
 def foam_points(path):
     """The points of an ASCII OpenFOAM points file."""
     lines = open(path).read().splitlines()
@@ -91,6 +106,7 @@ check(len(points) == len(moved) and np.array_equal(points[ids], moved),
       'SU2: meshio reads the variant with the deformed points exactly (%d points)' % len(moved))
 body = open(source).read().split('NMARK', 1)[1]
 check(open(variant).read().split('NMARK', 1)[1] == body, 'SU2: the markers are the source\'s, byte for byte')
+doe(deform, os.path.join(work, 'su2', 'doe'), '.su2', fem=False)
 
 # Nastran bulk data (Gmsh's writer, small and free field: grids, CTETRA, CTRIA3), read back by Gmsh
 # (meshio 5 wants a BEGIN BULK that Gmsh does not write): the points to the field's precision
@@ -114,6 +130,8 @@ for field, tolerance in ((1, 1e-6), (0, 1e-15)):  # Gmsh writes 16 significant d
     check(run.returncode == 0 and gap <= tolerance * 4, 'Nastran %s field: Gmsh reads the variant at the deformed points '
           '(largest gap %.2g)' % (name, gap))
     check(grid.sub('', open(variant).read()) == grid.sub('', open(source).read()), 'Nastran: every card but the grids is the source\'s')
+    if field == 0:
+        doe(deform, os.path.join(work, 'nastran-free', 'doe'), '.bdf', fem=True)
 
 # Exodus II (ParaView's own writer, a tetrahedral box), opened with the Mesh File reader (ParaView
 # opens .exo with its IOSS reader, which writes no variant), the variant read back by ParaView's
