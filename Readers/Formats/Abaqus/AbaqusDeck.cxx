@@ -1,6 +1,7 @@
 #include "Abaqus/AbaqusDeck.h"
 
 #include "Common/IdIndex.h"
+#include "Common/Pieces.h"
 #include "Common/VariantNodes.h"
 #include "Common/TextFile.h"
 
@@ -1129,9 +1130,7 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
   }
 }
 
-// The text of file f with each of its nodes' coordinates replaced by xyz (row: where node k's are),
-// in pieces of nodes formatted side by side (the same text for any number of threads), to be
-// written one after the other.
+// The text of file f with each of its nodes' coordinates replaced by xyz (row: where node k's are).
 std::vector<std::string> withCoordinates(
   const std::string& text, const std::vector<NodeSlot>& slots, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
 {
@@ -1143,30 +1142,13 @@ std::vector<std::string> withCoordinates(
       mine.push_back(k);
     }
   }
-  constexpr long Pieces = 64;
-  std::vector<std::string> pieces(Pieces);
-  // piece p: from its first node's coordinates (the file's start for p = 0) to the next piece's
-  auto start = [&](long p) {
-    const std::size_t first = mine.size() * p / Pieces;
-    return p == 0 ? std::size_t(0) : p == Pieces ? text.size() : first < mine.size() ? slots[mine[first]].begin : text.size();
-  };
-#pragma omp parallel for schedule(dynamic)
-  for (long p = 0; p < Pieces; ++p)
-  {
-    std::string& out = pieces[p];
-    std::size_t copied = start(p);
-    const std::size_t end = start(p + 1);
-    out.reserve((end - copied) * 9 / 8);
-    for (std::size_t i = mine.size() * p / Pieces; i < mine.size() * (p + 1) / Pieces; ++i)
-    {
+  return rewriteInPieces(
+    text, mine.size(), [&](std::size_t i) { return slots[mine[i]].begin; },
+    [&](std::string& out, std::size_t i) {
       const NodeSlot& s = slots[mine[i]];
-      out.append(text, copied, s.begin - copied);
       appendSlot(out, std::string_view(text).substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
-      copied = s.end;
-    }
-    out.append(text, copied, end - copied);
-  }
-  return pieces;
+      return static_cast<std::size_t>(s.end);
+    });
 }
 
 } // namespace

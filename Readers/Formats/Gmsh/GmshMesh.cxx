@@ -1,6 +1,7 @@
 #include "Gmsh/GmshMesh.h"
 
 #include "Common/IdIndex.h"
+#include "Common/Pieces.h"
 #include "Common/TextFile.h"
 #include "Common/VariantNodes.h"
 
@@ -1310,10 +1311,10 @@ void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, c
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
   const std::string& text = source.bytes;
-  std::string out;
+  AtomicWrite write(overwrite);
   if (this->binary)
   {
-    out = text;
+    std::string out = text;
     for (std::size_t k = 0; k < count; ++k)
     {
       for (int c = 0; c < 3; ++c)
@@ -1326,20 +1327,15 @@ void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, c
         }
       }
     }
+    write.add(target, out);
   }
   else
   {
-    out.reserve(text.size() + text.size() / 8);
-    std::size_t copied = 0;
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      out.append(text, copied, this->coordinates[k] - copied);
-      copied = appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]);
-    }
-    out.append(text, copied, std::string::npos);
+    const std::vector<std::string> pieces = rewriteInPieces(
+      text, count, [&](std::size_t k) { return this->coordinates[k]; },
+      [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]); });
+    write.add(target, std::vector<std::string_view>(pieces.begin(), pieces.end()));
   }
-  AtomicWrite write(overwrite);
-  write.add(target, out);
   write.commit();
 }
 } // namespace gmsh

@@ -1,5 +1,6 @@
 #include "SU2/SU2Mesh.h"
 
+#include "Common/Pieces.h"
 #include "Common/TextFile.h"
 #include "Common/VariantNodes.h"
 
@@ -720,21 +721,17 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
   const std::string& text = source.bytes;
-  std::string out;
-  out.reserve(text.size() + text.size() / 8);
-  std::size_t copied = 0;
+  std::vector<int> dimension(count); // each node's: its zone's
   for (std::size_t z = 0; z < this->zones.size(); ++z)
   {
     const std::size_t end = z + 1 < this->zones.size() ? this->zones[z + 1].firstNode : count;
-    for (std::size_t k = this->zones[z].firstNode; k < end; ++k)
-    {
-      out.append(text, copied, this->coordinates[k] - copied);
-      copied = appendNumbers(out, text, this->coordinates[k], this->zones[z].dimension, xyz + 3 * row[k]);
-    }
+    std::fill(dimension.begin() + this->zones[z].firstNode, dimension.begin() + end, this->zones[z].dimension);
   }
-  out.append(text, copied, std::string::npos);
+  const std::vector<std::string> pieces = rewriteInPieces(
+    text, count, [&](std::size_t k) { return this->coordinates[k]; },
+    [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], dimension[k], xyz + 3 * row[k]); });
   AtomicWrite write(overwrite);
-  write.add(target, out);
+  write.add(target, std::vector<std::string_view>(pieces.begin(), pieces.end()));
   write.commit();
 }
 } // namespace su2
