@@ -191,7 +191,7 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
     // the volume mesh is measured once it moved (not during a drag's surface-only updates)
     if (this->MeshQuality && !group.any(std::find(moving.begin(), moving.end(), 0) != moving.end()))
     {
-      session.reportQuality(inSets, outSets, output->GetFieldData(), mlsvtk::casePathOf(input), group);
+      session.reportQuality(inSets, outSets, output->GetFieldData(), mlsvtk::casePathOf(input), mlsvtk::femReaderUpstream(this), group);
     }
     if (!session.targetConflicts().empty())
     {

@@ -1,19 +1,12 @@
 #include "vtkMeshVariantWriter.h"
 
 #include "SourceFile.h"
+#include "VariantInput.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkDataArray.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
+#include <vtkCompositeDataSet.h>
 #include <vtkInformation.h>
 #include <vtkObjectFactory.h>
-#include <vtkIdTypeArray.h>
-#include <vtkPointData.h>
-#include <vtkPointSet.h>
-#include <vtkPoints.h>
-#include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
 
 #include <filesystem>
 #include <map>
@@ -62,36 +55,22 @@ LayoutCache& layoutCache()
 int vtkMeshVariantWriter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
 }
 
 void vtkMeshVariantWriter::WriteData()
 {
-  vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
+  vtkDataObject* input = this->GetInput();
   this->LastError.clear();
   this->SetErrorCode(0);
   try
   {
-    if (!input || input->GetNumberOfPoints() == 0)
-    {
-      throw std::runtime_error("the input has no points");
-    }
-    std::string source = this->SourceFile;
-    vtkStringArray* named = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("SourceFile"));
-    if (source.empty() && named && named->GetNumberOfValues() > 0)
-    {
-      source = named->GetValue(0);
-    }
+    const std::string source = this->FindSourceFile();
     if (source.empty())
     {
-      throw std::runtime_error("the input does not name its source file (no field data SourceFile): set SourceFile, or deform "
-                               "what the Mesh File reader read");
-    }
-    vtkDataArray* nodeIds = input->GetPointData()->GetArray("NodeId");
-    if (!nodeIds || nodeIds->GetNumberOfComponents() != 1)
-    {
-      throw std::runtime_error("the input has no point array NodeId (the source's node ids, which the Mesh File reader gives): "
-                               "it did not come from " + source);
+      throw std::runtime_error("the input does not name its source file (no field data SourceFile, and no reader of ParaView's "
+                               "up the pipeline names one): set SourceFile, or deform what the Mesh File reader read");
     }
     if (this->FileName.empty())
     {
@@ -102,17 +81,11 @@ void vtkMeshVariantWriter::WriteData()
     {
       throw std::runtime_error(source + " cannot be read or is of no format a variant can be written of");
     }
-    vtkIdTypeArray* integerIds = vtkIdTypeArray::SafeDownCast(nodeIds);
-    const vtkIdType count = input->GetNumberOfPoints();
-    std::vector<std::int64_t> ids(count);
-    std::vector<double> xyz(3 * count);
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      // as integers: a double holds ids only up to 2^53
-      ids[i] = integerIds ? static_cast<std::int64_t>(integerIds->GetValue(i)) : static_cast<std::int64_t>(nodeIds->GetTuple1(i));
-      input->GetPoint(i, xyz.data() + 3 * i);
-    }
-    layoutCache().get(source, *format)->writeVariant(this->FileName, ids.data(), xyz.data(), ids.size(), this->Overwrite != 0);
+    const std::shared_ptr<const mlsformats::SourceFile> layout = layoutCache().get(source, *format);
+    std::vector<std::int64_t> ids;
+    std::vector<double> xyz;
+    mlsformats::variantNodesOf(input, layout->mesh, source, ids, xyz);
+    layout->writeVariant(this->FileName, ids.data(), xyz.data(), ids.size(), this->Overwrite != 0);
   }
   catch (const std::exception& e)
   {
@@ -120,6 +93,18 @@ void vtkMeshVariantWriter::WriteData()
     vtkErrorMacro(<< this->LastError);
     this->SetErrorCode(1);
   }
+}
+
+std::string vtkMeshVariantWriter::FindSourceFile()
+{
+  return this->SourceFile.empty() ? mlsformats::sourceFileOf(this, this->GetInput()) : this->SourceFile;
+}
+
+bool vtkMeshVariantWriter::FindSourceIsFem()
+{
+  const std::string source = this->FindSourceFile();
+  const mlsformats::Format* format = source.empty() ? nullptr : mlsformats::formatOf(source);
+  return format && format->fem;
 }
 
 void vtkMeshVariantWriter::PrintSelf(ostream& os, vtkIndent indent)

@@ -5,7 +5,9 @@
  *
  * The input is a deformation of what vtkMeshFileReader read: its points are the new coordinates,
  * its point data "NodeId" the file's node ids (any order), its field data "SourceFile" the source
- * (or SourceFile set here). The source's format (vtkMeshFileReader's formats) decides how the
+ * (or SourceFile set here). Or a deformation of what ParaView's own CGNS, IOSS or Exodus II reader
+ * read: the source is that reader's file, the nodes the Exodus node ids ("ids", "GlobalNodeId")
+ * or a CGNS zone's (the blocks named by base and zone, points in the zone's order). The source's format (vtkMeshFileReader's formats) decides how the
  * variant is written; an Abaqus/CalculiX deck's includes are written beside FileName under the
  * names the deck gives them.
  *
@@ -48,6 +50,12 @@ public:
   vtkGetMacro(Overwrite, vtkTypeBool);
   vtkBooleanMacro(Overwrite, vtkTypeBool);
   ///@}
+
+  /// The source file Write writes a variant of: SourceFile, else the input's field data
+  /// SourceFile, else the file of ParaView's CGNS, IOSS or Exodus II reader up the pipeline; ""
+  /// when none. Whether variants of it get an FEM solver's verdict: FindSourceIsFem.
+  std::string FindSourceFile();
+  bool FindSourceIsFem();
 
   /// Why the last write wrote nothing, or "" when it wrote the variant (the error code is then 0).
   vtkGetCharFromStdStringMacro(LastError);

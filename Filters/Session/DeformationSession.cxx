@@ -651,10 +651,10 @@ void DeformationSession::writeOutput(const std::vector<vtkPointSet*>& inSets, co
 }
 
 void DeformationSession::reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
-  vtkFieldData* field, const std::string& casePath, const Collective& group)
+  vtkFieldData* field, const std::string& casePath, bool femSource, const Collective& group)
 {
   vtkLogScopeF(TRACE, "MLS Deform: mesh quality report");
-  Quality.report(inSets, outSets, field, casePath, group, Owner);
+  Quality.report(inSets, outSets, field, casePath, femSource, group, Owner);
   checkAbort(Owner, group);
 }
 } // namespace mlsvtk

@@ -200,7 +200,7 @@ public:
   /// The volume mesh's quality before and after, into field (MeshQualityReport.h); casePath: the
   /// OpenFOAM case folder the input was read from, or "".
   void reportQuality(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-    const std::string& casePath, const mlsdeform::Collective& group);
+    const std::string& casePath, bool femSource, const mlsdeform::Collective& group);
   /// Reads ahead the case's faces that the next reportQuality needs (MeshQualityReport::readAhead).
   void readQualityAhead(const std::vector<vtkPointSet*>& inSets, const std::string& casePath) const
   {

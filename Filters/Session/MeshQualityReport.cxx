@@ -56,7 +56,7 @@ void MeshQualityReport::readAhead(const std::vector<vtkPointSet*>& inSets, const
 }
 
 void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-  const std::string& casePath, const Collective& group, vtkObject* owner)
+  const std::string& casePath, bool femSource, const Collective& group, vtkObject* owner)
 {
   Stamp stamp = stampOf(inSets);
   if (group.any(stamp != Measured))
@@ -71,7 +71,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
         auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
         // a structural solver's mesh file gets the FEM solver's verdict (its elements), a case and
         // a finite-volume solver's mesh checkMesh's
-        const QualityVerdict verdict = femVerdictOf(set) ? QualityVerdict::FemSolver : QualityVerdict::CheckMesh;
+        const QualityVerdict verdict = femSource || femVerdictOf(set) ? QualityVerdict::FemSolver : QualityVerdict::CheckMesh;
         Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid, casePath, verdict) : nullptr);
         if (Quality.back() && Quality.back()->hasCells())
         {

@@ -29,9 +29,10 @@ public:
   /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
   /// it cannot measure give a warning (from owner) once per input mesh; the deformation stands.
   /// casePath: the OpenFOAM case folder the input was read from (or ""), whose own faces a grid
-  /// that is its mesh is measured on (VolumeMeshQuality).
+  /// that is its mesh is measured on (VolumeMeshQuality). femSource: the input came from a
+  /// structural solver's mesh file through a reader that does not say so (femReaderUpstream).
   void report(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets, vtkFieldData* field,
-    const std::string& casePath, const mlsdeform::Collective& group, vtkObject* owner);
+    const std::string& casePath, bool femSource, const mlsdeform::Collective& group, vtkObject* owner);
 
   /// Starts reading ahead the faces of the OpenFOAM case casePath (CaseFaces.h) for the next
   /// report when that report will find the faces of new cells: they are read in a background

@@ -110,8 +110,8 @@ def read_faces_ahead(foam_file):
 def _saved_as_mesh_file(algorithm, path, overwrite):
     """Whether the deformation's input came from a mesh file (a deck), whose variant was then
     written to path (a case's variant is written by the caller)."""
-    from .meshfile import save_variant, source_file
-    if not source_file(algorithm.GetInputDataObject(0, 0)):
+    from .meshfile import save_variant, source_of
+    if not source_of(algorithm)[0]:
         return False
     save_variant(algorithm, path, overwrite)
     return True

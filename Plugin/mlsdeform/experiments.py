@@ -42,15 +42,14 @@ FEM_QUALITY = ('InvertedCells', 'MinScaledJacobian')
 
 
 def _is_deck(dvs):
-    """Whether the deformation's input came from a solver's mesh file (the Mesh File reader)."""
-    from .meshfile import source_file
-    return bool(source_file(dvs._algorithm.GetInputDataObject(0, 0)))
+    """Whether the deformation's input came from a solver's mesh file (not an OpenFOAM case)."""
+    return bool(_deformation_source(dvs))
 
 
 def _fem(dvs):
     """Whether its variants get an FEM solver's verdict (a structural solver's mesh file)."""
-    from .meshfile import fem_verdict
-    return fem_verdict(dvs._algorithm.GetInputDataObject(0, 0))
+    from .meshfile import source_of
+    return source_of(dvs._algorithm)[1]
 
 
 def meshQuality(dvs):
@@ -133,10 +132,9 @@ def _deformation(dvs):
     from .ranks import all_reduce
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from .deformer import case_path
-    from .meshfile import source_file
     field = dvs._algorithm.GetOutputDataObject(0).GetFieldData()
-    data = dvs._algorithm.GetInputDataObject(0, 0)
-    record = {'deck': source_file(data)} if source_file(data) else {'case': case_path(data)}
+    source = _deformation_source(dvs)
+    record = {'deck': source} if source else {'case': case_path(dvs._algorithm.GetInputDataObject(0, 0))}
     for key, digits in (('NumberOfSamples', 12), ('NumberOfIntegrationPoints', 12), ('ReciprocalCondition', 6)):
         array = field.GetArray(key)
         record[key] = float('%.*g' % (digits, array.GetTuple1(0))) if array is not None else None
@@ -153,8 +151,8 @@ def _deformation(dvs):
 
 
 def _deformation_source(dvs):
-    from .meshfile import source_file
-    return source_file(dvs._algorithm.GetInputDataObject(0, 0))
+    from .meshfile import source_of
+    return source_of(dvs._algorithm)[0]
 
 
 def _write_atomically(path, text):

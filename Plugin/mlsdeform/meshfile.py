@@ -11,17 +11,14 @@ import os
 from .deformer import _load_wrapping
 
 
-def source_file(data):
-    """The mesh file a dataset was read from (the Mesh File reader's SourceFile field data), or ''."""
-    path = data.GetFieldData().GetAbstractArray('SourceFile') if data is not None else None
-    return path.GetValue(0) if path is not None and path.GetNumberOfValues() else ''
-
-
-def fem_verdict(data):
-    """Whether a dataset came from a structural solver's mesh file, whose variants get an FEM
-    solver's verdict (the Mesh File reader's QualityVerdict field data "FemSolver")."""
-    verdict = data.GetFieldData().GetAbstractArray('QualityVerdict') if data is not None else None
-    return verdict is not None and verdict.GetNumberOfValues() > 0 and verdict.GetValue(0) == 'FemSolver'
+def source_of(algorithm):
+    """The solver's mesh file an (updated) algorithm's output came from, as the variant writer
+    finds it (the Mesh File reader's SourceFile field data, or the file of ParaView's CGNS, IOSS
+    or Exodus II reader up the pipeline), and whether its variants get an FEM solver's verdict:
+    ('', False) when none."""
+    writer = _load_wrapping(readers=True).vtkMeshVariantWriter()
+    writer.SetInputConnection(algorithm.GetOutputPort())
+    return writer.FindSourceFile(), bool(writer.FindSourceIsFem())
 
 
 def open_mesh(path):

@@ -133,38 +133,62 @@ for field, tolerance in ((1, 1e-6), (0, 1e-15)):  # Gmsh writes 16 significant d
     if field == 0:
         doe(deform, os.path.join(work, 'nastran-free', 'doe'), '.bdf', fem=True)
 
-# Exodus II (ParaView's own writer, a tetrahedral box), opened with the Mesh File reader (ParaView
-# opens .exo with its IOSS reader, which writes no variant), the variant read back by ParaView's
-# IOSS reader: the points to float precision (ParaView writes single precision coordinates).
-from paraview.simple import ExodusIIWriter, IOSSReader, MergeBlocks, Tetrahedralize, Wavelet  # noqa: E402
-source = os.path.join(work, 'exodus', 'box.exo')
-os.makedirs(os.path.dirname(source))
+# Exodus II (ParaView's own writer, a tetrahedral box) and CGNS (ParaView's own writer, CGNS 4),
+# opened with ParaView's own readers (IOSS and Exodus II; CGNS), which record neither the file nor
+# (CGNS) node ids: the variant writer finds the file up the pipeline and the nodes by the readers'
+# node ids (Exodus) or zones (CGNS). Saved with the variant writer named (Save Data picks ParaView's
+# writers for .exo and .cgns, which write new files), read back by ParaView's readers: the points
+# the deformed ones, to float precision where ParaView wrote single precision coordinates.
+from paraview.simple import CGNSSeriesReader, ExodusIIReader, ExodusIIWriter, IOSSReader, MergeBlocks, Tetrahedralize, Wavelet  # noqa: E402
 box = Tetrahedralize(Input=Wavelet(WholeExtent=[0, 8, 0, 4, 0, 4]))
-writer = ExodusIIWriter(FileName=source, Input=box)
-writer.UpdatePipeline()
-reader, deform, ids, moved = morph(source, None, None, reader=MeshFileReader(FileName=source))  # noqa: F821 (the plugin's)
-variant = os.path.join(work, 'exodus', 'variant', 'box.exo')
-SaveData(variant, proxy=deform)
-block = sm.Fetch(MergeBlocks(Input=IOSSReader(FileName=variant)))
-read_ids = vtk_to_numpy(block.GetPointData().GetArray('ids'))
-order = np.argsort(ids)
-points = vtk_to_numpy(block.GetPoints().GetData()).astype(float)[np.argsort(read_ids)]
-check(np.abs(points - moved[order]).max() <= 6e-8 * np.abs(moved).max(),
-      'Exodus: ParaView\'s IOSS reader reads the variant at the deformed points, to float precision')
+exodus = os.path.join(work, 'exodus', 'box.exo')
+cgns = os.path.join(work, 'cgns', 'box.cgns')
+os.makedirs(os.path.dirname(exodus))
+os.makedirs(os.path.dirname(cgns))
+ExodusIIWriter(FileName=exodus, Input=box).UpdatePipeline()
+SaveData(cgns, proxy=box)
 
-# CGNS (ParaView's own writer, CGNS 4: a tetrahedral box), opened with the Mesh File reader
-# (ParaView opens .cgns with its CGNS reader, and saves .cgns with its CGNS writer, which writes a
-# new file: the variant writer is named), the variant read back by ParaView's CGNS reader.
-source = os.path.join(work, 'cgns', 'box.cgns')
-os.makedirs(os.path.dirname(source))
-SaveData(source, proxy=box)
-reader, deform, ids, moved = morph(source, None, None, reader=MeshFileReader(FileName=source))  # noqa: F821
-variant = os.path.join(work, 'cgns', 'variant', 'box.cgns')
-sm.writers.MeshFileVariant(Input=deform, FileName=variant).UpdatePipeline()
-block = sm.Fetch(MergeBlocks(Input=OpenDataFile(variant)))
-points = vtk_to_numpy(block.GetPoints().GetData()).astype(float)
-check(len(points) == len(moved) and np.abs(points[ids - 1] - moved).max() <= 6e-8 * np.abs(moved).max(),
-      'CGNS: ParaView\'s CGNS reader reads the variant at the deformed points (%d points)' % len(moved))
+
+def merged_points(proxy, ids_name):
+    """The points of a reader's or filter's output, merged, in the order of their node ids."""
+    block = sm.Fetch(MergeBlocks(Input=proxy))
+    points = vtk_to_numpy(block.GetPoints().GetData()).astype(float)
+    if ids_name is None:  # CGNS: one zone, in file order
+        return points
+    return points[np.argsort(vtk_to_numpy(block.GetPointData().GetArray(ids_name)))]
+
+
+for source, opener, ids_name, tolerance in ((exodus, IOSSReader, 'ids', 6e-8), (exodus, ExodusIIReader, 'GlobalNodeId', 6e-8),
+                                            (cgns, CGNSSeriesReader, None, 0)):
+    name = opener.__name__
+    reader = OpenDataFile(source) if opener is not ExodusIIReader else ExodusIIReader(FileName=source)
+    check(reader.GetXMLName() == name, '%s opens with ParaView\'s %s' % (os.path.basename(source), name))
+    still = ConstraintRegion(Input=reader, Role='Fixed', InsideOut=1)  # noqa: F821 (the plugin's)
+    still.Region = 'Box'
+    still.Region.Position, still.Region.Length = [0.2, -1, -1], [7.6, 6, 6]
+    moving = ConstraintRegion(Input=reader, Role='Handle', Translation=[0.1, 0.05, 0])  # noqa: F821
+    moving.Region = 'Sphere'
+    moving.Region.Center, moving.Region.Radius = [4, 2, 2], 1.5
+    deform = MLSDeform(Input=[reader], Regions=[still, moving])  # noqa: F821
+    moved = merged_points(deform, ids_name)
+    variant = os.path.join(work, name, os.path.basename(source))
+    writer = sm.writers.MeshFileVariant(Input=deform, FileName=variant)
+    writer.UpdatePipeline()
+    back = merged_points(opener(FileName=variant) if opener is not CGNSSeriesReader else CGNSSeriesReader(FileNames=[variant]), ids_name)
+    gap = np.abs(back - moved).max()
+    check(len(back) == len(moved) and np.abs(moved - merged_points(reader, ids_name)).max() > 0.01 and
+          gap <= tolerance * np.abs(moved).max(), '%s: a deformation of what ParaView\'s %s read is written as a variant and read '
+          'back at the deformed points (%d points, largest gap %.2g)' % (os.path.splitext(source)[1], name, len(moved), gap))
+    if opener is IOSSReader:
+        # a dataset of another mesh (the box with one point less) is refused, nothing written
+        other = os.path.join(work, name, 'other.exo')
+        bad = sm.writers.MeshFileVariant(Input=Tetrahedralize(Input=Wavelet(WholeExtent=[0, 8, 0, 4, 0, 3])), FileName=other,
+                                         SourceFile=source)
+        bad.UpdatePipeline()
+        check(not os.path.exists(other), 'a dataset without node ids of the source is refused: nothing written')
+        doe(deform, os.path.join(work, 'exodus', 'doe'), '.exo', fem=True)  # Exodus: a structural solver's mesh
+    if opener is CGNSSeriesReader:
+        doe(deform, os.path.join(work, 'cgns', 'doe'), '.cgns', fem=False)
 
 # Fluent (OpenFOAM's foamMeshToFluent on a blockMesh box; zones), converted back by
 # fluentMeshToFoam and checked by checkMesh: the points are the deformed ones (OpenFOAM's own

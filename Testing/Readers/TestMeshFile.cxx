@@ -234,7 +234,7 @@ TEST(VariantOfADeformation)
   CHECK(errors->count == 2 && errors->text.find("node 99 is not in") != std::string::npos && !fs::exists(dir + "/other.inp"));
   moved->GetPointData()->RemoveArray("NodeId");
   writer->Write();
-  CHECK(errors->count == 3 && errors->text.find("no point array NodeId") != std::string::npos);
+  CHECK(errors->count == 3 && errors->text.find("has no node ids (point data NodeId") != std::string::npos);
   writer->SetInputData(again->GetOutput()); // read from the variant: the variant is its source
   writer->SetFileName((dir + "/variant/solids.inp").c_str());
   writer->OverwriteOn();

@@ -295,6 +295,7 @@ private:
       const std::vector<Section> sections = this->sections(b, z, where, zone);
       this->unstructuredBCs(b, z, where, zone, sections);
     }
+    this->Out.mesh.zones.push_back({ zone.base + "/" + zone.name, zone.offset + 1, zone.nodes });
     this->Out.zones.push_back(std::move(zone));
   }
 

@@ -54,6 +54,16 @@ struct NamedSet
   std::vector<std::int64_t> ids;
 };
 
+/// Consecutive node ids a file groups under a name (a CGNS zone: "base/zone"): firstId, firstId + 1,
+/// ... count of them. A reader that gives no node ids (ParaView's CGNS reader) gives each such
+/// group as a block of that name (in a block of the base's name), its points in this order.
+struct NodeRange
+{
+  std::string name;
+  std::int64_t firstId = 0;
+  std::int64_t count = 0;
+};
+
 struct SourceMesh
 {
   std::vector<std::int64_t> nodeIds; // in file order
@@ -61,6 +71,7 @@ struct SourceMesh
   std::vector<ElementBlock> blocks;
   std::vector<NamedSet> nodeSets;
   std::vector<NamedSet> elementSets;
+  std::vector<NodeRange> zones; // formats whose nodes are numbered by position within named zones
   /// What was read but cannot be represented (an element type without a cell type): each names
   /// the file and the line; the elements are left out, their nodes are read.
   std::vector<std::string> warnings;
