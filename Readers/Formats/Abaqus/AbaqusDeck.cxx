@@ -1131,7 +1131,7 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
 }
 
 // The text of file f with each of its nodes' coordinates replaced by xyz (row: where node k's are).
-std::vector<std::string> withCoordinates(
+RewrittenText withCoordinates(
   const std::string& text, const std::vector<NodeSlot>& slots, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the nodes in file f, in file order
@@ -1179,8 +1179,8 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       throw FileError(deck.files[f], 0, "has changed since it was read: read the deck again");
     }
-    const std::vector<std::string> pieces = withCoordinates(text, deck.slots, f, row, xyz);
-    write.add(destinations[f], std::vector<std::string_view>(pieces.begin(), pieces.end()));
+    const RewrittenText variant = withCoordinates(text, deck.slots, f, row, xyz);
+    write.add(destinations[f], variant.pieces);
   }
   write.commit();
 }

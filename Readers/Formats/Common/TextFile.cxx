@@ -34,18 +34,20 @@ std::string canonicalPath(const std::string& path)
 
 std::string readFile(const std::string& path)
 {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in)
   {
     throw FileError(path, 0, "cannot be read (no such file, or no permission)");
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad())
+  // read at once into a string of the file's size (a string stream would copy it as it grows)
+  const std::streamoff size = in.tellg();
+  std::string text(size > 0 ? static_cast<std::size_t>(size) : 0, '\0');
+  in.seekg(0);
+  if (size < 0 || !in.read(text.data(), size) || in.peek() != std::char_traits<char>::eof())
   {
-    throw FileError(path, 0, "a read failed");
+    throw FileError(path, 0, "a read failed (or the file changed while it was read)");
   }
-  return text.str();
+  return text;
 }
 
 AtomicWrite::AtomicWrite(bool overwrite)

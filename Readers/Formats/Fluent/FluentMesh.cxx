@@ -1,6 +1,7 @@
 #include "Fluent/FluentMesh.h"
 
 #include "Common/IdIndex.h"
+#include "Common/Pieces.h"
 #include "Common/TextFile.h"
 #include "Common/VariantNodes.h"
 
@@ -1046,22 +1047,35 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
   const std::string& text = source.bytes;
-  std::string out;
-  out.reserve(text.size() + text.size() / 8);
-  std::size_t copied = 0, k = 0;
+  // each node's zone's precision; a coordinate a single-precision zone cannot hold is refused
+  std::vector<Precision> precision(count);
+  std::size_t k = 0;
   for (const NodeZone& zone : this->nodeZones)
   {
     for (std::size_t i = 0; i < zone.count; ++i, ++k)
     {
-      const std::size_t at = this->coordinates[k];
-      const double* value = xyz + 3 * row[k];
-      out.append(text, copied, at - copied);
-      if (zone.precision == Precision::Text)
+      precision[k] = zone.precision;
+      for (int c = 0; c < this->dimension && zone.precision == Precision::Single; ++c)
       {
-        copied = appendNumbers(out, text, at, this->dimension, value);
-        continue;
+        const double value = xyz[3 * row[k] + c];
+        if (!(std::abs(value) <= std::numeric_limits<float>::max()))
+        {
+          throw FileError(target, 0, "node " + std::to_string(this->mesh.nodeIds[k]) + "'s coordinate " + shortest(value) +
+              " is beyond the range of the single-precision numbers its zone holds");
+        }
       }
-      const std::size_t size = zone.precision == Precision::Single ? 4 : 8;
+    }
+  }
+  const RewrittenText variant = rewriteInPieces(
+    text, count, [&](std::size_t n) { return this->coordinates[n]; },
+    [&](std::string& out, std::size_t n) {
+      const std::size_t at = this->coordinates[n];
+      const double* value = xyz + 3 * row[n];
+      if (precision[n] == Precision::Text)
+      {
+        return appendNumbers(out, text, at, this->dimension, value);
+      }
+      const std::size_t size = precision[n] == Precision::Single ? 4 : 8;
       out.append(text, at, this->dimension * size);
       for (int c = 0; c < this->dimension; ++c)
       {
@@ -1070,22 +1084,15 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
         {
           replace<double>(out, number, value[c]);
         }
-        else if (std::abs(value[c]) <= std::numeric_limits<float>::max())
+        else
         {
           replace<float>(out, number, value[c]);
         }
-        else
-        {
-          throw FileError(target, 0, "node " + std::to_string(this->mesh.nodeIds[k]) + "'s coordinate " + shortest(value[c]) +
-              " is beyond the range of the single-precision numbers its zone holds");
-        }
       }
-      copied = at + this->dimension * size;
-    }
-  }
-  out.append(text, copied, std::string::npos);
+      return at + this->dimension * size;
+    });
   AtomicWrite write(overwrite);
-  write.add(target, out);
+  write.add(target, variant.pieces);
   write.commit();
 }
 } // namespace fluent

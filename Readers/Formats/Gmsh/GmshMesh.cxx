@@ -1331,10 +1331,10 @@ void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, c
   }
   else
   {
-    const std::vector<std::string> pieces = rewriteInPieces(
+    const RewrittenText variant = rewriteInPieces(
       text, count, [&](std::size_t k) { return this->coordinates[k]; },
       [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]); });
-    write.add(target, std::vector<std::string_view>(pieces.begin(), pieces.end()));
+    write.add(target, variant.pieces);
   }
   write.commit();
 }

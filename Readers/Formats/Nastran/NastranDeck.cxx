@@ -1,6 +1,7 @@
 #include "Nastran/NastranDeck.h"
 
 #include "Common/IdIndex.h"
+#include "Common/Pieces.h"
 #include "Common/TextFile.h"
 #include "Common/VariantNodes.h"
 
@@ -1339,66 +1340,69 @@ void appendLine(
 }
 
 // The text of file f with each moved grid's coordinates replaced (row: where grid k's are in xyz).
-std::string withCoordinates(
+RewrittenText withCoordinates(
   const Deck& deck, const std::string& text, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
 {
-  std::string out;
-  out.reserve(text.size() + text.size() / 16);
-  std::size_t copied = 0;
-  Entry entry;
-  std::vector<std::pair<const Field*, std::string>> replaced;
+  std::vector<std::size_t> mine; // the grids in file f, in file order
   for (std::size_t k = 0; k < deck.slots.size(); ++k)
   {
-    const GridSlot& slot = deck.slots[k];
-    if (slot.file != f)
+    if (deck.slots[k].file == f)
     {
-      continue;
-    }
-    readEntry(text, slot.offset, 0, deck.files[f], entry);
-    const CoordinateSystem& system = deck.systems[slot.system];
-    double old[3], basic[3], local[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      old[c] = 0;
-      parseNastranReal(entry.fields[2 + c].text, old[c]);
-      basic[c] = old[c];
-    }
-    if (slot.system != 0)
-    {
-      toBasic(system, basic);
-    }
-    const double* moved = xyz + 3 * row[k];
-    if (basic[0] == moved[0] && basic[1] == moved[1] && basic[2] == moved[2])
-    {
-      continue;
-    }
-    std::copy(moved, moved + 3, local);
-    if (slot.system != 0)
-    {
-      toLocal(system, local, old);
-    }
-    for (std::uint32_t l = 0; l < entry.lines.size(); ++l)
-    {
-      const EntryLine& line = entry.lines[l];
-      replaced.clear();
-      for (int c = 0; c < 3; ++c)
-      {
-        const Field& field = entry.fields[2 + c];
-        if (field.line == l && old[c] != local[c])
-        {
-          replaced.emplace_back(&field, nastranReal(local[c], line.free ? 32 : line.large ? 16 : 8));
-        }
-      }
-      if (!replaced.empty())
-      {
-        out.append(text, copied, line.begin - copied);
-        appendLine(out, text, line, replaced);
-        copied = line.end;
-      }
+      mine.push_back(k);
     }
   }
-  out.append(text, copied, std::string::npos);
-  return out;
+  return rewriteInPieces(
+    text, mine.size(), [&](std::size_t i) { return deck.slots[mine[i]].offset; },
+    [&](std::string& out, std::size_t i) {
+      const std::size_t k = mine[i];
+      const GridSlot& slot = deck.slots[k];
+      std::size_t copied = slot.offset;
+      thread_local Entry entry;
+      thread_local std::vector<std::pair<const Field*, std::string>> replaced;
+      readEntry(text, slot.offset, 0, deck.files[f], entry);
+      const CoordinateSystem& system = deck.systems[slot.system];
+      double old[3], basic[3], local[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        old[c] = 0;
+        parseNastranReal(entry.fields[2 + c].text, old[c]);
+        basic[c] = old[c];
+      }
+      if (slot.system != 0)
+      {
+        toBasic(system, basic);
+      }
+      const double* moved = xyz + 3 * row[k];
+      if (basic[0] == moved[0] && basic[1] == moved[1] && basic[2] == moved[2])
+      {
+        return copied;
+      }
+      std::copy(moved, moved + 3, local);
+      if (slot.system != 0)
+      {
+        toLocal(system, local, old);
+      }
+      for (std::uint32_t l = 0; l < entry.lines.size(); ++l)
+      {
+        const EntryLine& line = entry.lines[l];
+        replaced.clear();
+        for (int c = 0; c < 3; ++c)
+        {
+          const Field& field = entry.fields[2 + c];
+          if (field.line == l && old[c] != local[c])
+          {
+            replaced.emplace_back(&field, nastranReal(local[c], line.free ? 32 : line.large ? 16 : 8));
+          }
+        }
+        if (!replaced.empty())
+        {
+          out.append(text, copied, line.begin - copied);
+          appendLine(out, text, line, replaced);
+          copied = line.end;
+        }
+      }
+      return copied;
+    });
 }
 } // namespace
 
@@ -1426,7 +1430,8 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       throw FileError(this->files[f], 0, "has changed since it was read: read the deck again");
     }
-    write.add(destinations[f], withCoordinates(*this, text, f, row, xyz));
+    const RewrittenText variant = withCoordinates(*this, text, f, row, xyz);
+    write.add(destinations[f], variant.pieces);
   }
   write.commit();
 }
