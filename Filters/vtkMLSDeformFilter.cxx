@@ -69,11 +69,7 @@ SamplingParameters samplingParameters(vtkMLSDeformFilter* filter)
   SamplingParameters parameters;
   parameters.numberOfVolumeSamples = static_cast<int>(std::lround(filter->GetVolumeSampleFraction() * filter->GetNumberOfSamples()));
   parameters.numberOfSurfaceSamples = filter->GetNumberOfSamples() - parameters.numberOfVolumeSamples;
-  parameters.integrationPointRatio = filter->GetIntegrationPointRatio();
-  parameters.lloydIterations = filter->GetLloydIterations();
-  parameters.cover = filter->GetCover();
-  parameters.randomSeed = static_cast<std::uint64_t>(filter->GetRandomSeed());
-  parameters.followMeshGrading = filter->GetFollowMeshGrading() != 0;
+  mlsvtk::copySamplingProperties(filter, parameters);
   return parameters;
 }
 }
@@ -148,12 +144,8 @@ void vtkMLSDeformFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n"
-     << indent << "VolumeSampleFraction: " << this->VolumeSampleFraction << "\n"
-     << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"
-     << indent << "LloydIterations: " << this->LloydIterations << "\n"
-     << indent << "Cover: " << this->Cover << "\n"
-     << indent << "RandomSeed: " << this->RandomSeed << "\n"
-     << indent << "FollowMeshGrading: " << this->FollowMeshGrading << "\n"
-     << indent << "Basis: " << this->Basis << "\n"
+     << indent << "VolumeSampleFraction: " << this->VolumeSampleFraction << "\n";
+  mlsvtk::printSamplingProperties(this, os, indent);
+  os << indent << "Basis: " << this->Basis << "\n"
      << indent << "EnergyDiscretization: " << this->EnergyDiscretization << "\n";
 }

@@ -32,6 +32,7 @@
 #ifndef vtkMLSDeformFilter_h
 #define vtkMLSDeformFilter_h
 
+#include "Adapters/SamplingProperties.h"
 #include "vtkSubspaceDeformFilter.h"
 
 class MLSDEFORMFILTERS_EXPORT vtkMLSDeformFilter : public vtkSubspaceDeformFilter
@@ -53,37 +54,8 @@ public:
   vtkGetMacro(VolumeSampleFraction, double);
   ///@}
 
-  ///@{
-  /// Internal sampling: integration points per sample, N / k (default 4).
-  vtkSetClampMacro(IntegrationPointRatio, double, 1.0, 100.0);
-  vtkGetMacro(IntegrationPointRatio, double);
-  ///@}
-
-  ///@{
-  /// Internal sampling: Lloyd relaxation steps (default 5).
-  vtkSetClampMacro(LloydIterations, int, 0, 1000);
-  vtkGetMacro(LloydIterations, int);
-  ///@}
-
-  ///@{
-  /// Internal sampling: cover s, the least number of supports covering a position (default 5).
-  vtkSetClampMacro(Cover, double, 4.0, 100.0);
-  vtkGetMacro(Cover, double);
-  ///@}
-
-  ///@{
-  /// Internal sampling: random seed (default 0).
-  vtkSetClampMacro(RandomSeed, int, 0, VTK_INT_MAX);
-  vtkGetMacro(RandomSeed, int);
-  ///@}
-
-  ///@{
-  /// Internal sampling: sample density follows the mesh's element density (default on; see
-  /// vtkMLSSampler::FollowMeshGrading).
-  vtkSetMacro(FollowMeshGrading, vtkTypeBool);
-  vtkGetMacro(FollowMeshGrading, vtkTypeBool);
-  vtkBooleanMacro(FollowMeshGrading, vtkTypeBool);
-  ///@}
+  /// Internal sampling (without the Samples and IntegrationPoints inputs): as MLS Sampler's.
+  mlsSamplingPropertiesMacro();
 
   enum Bases
   {
@@ -124,11 +96,6 @@ protected:
 
   int NumberOfSamples = 1000;
   double VolumeSampleFraction = 0.25;
-  double IntegrationPointRatio = 4.0;
-  int LloydIterations = 5;
-  double Cover = 5.0;
-  int RandomSeed = 0;
-  vtkTypeBool FollowMeshGrading = 1;
   int Basis = MLS;
   int EnergyDiscretization = Volumetric;
 

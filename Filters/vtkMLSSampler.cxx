@@ -40,14 +40,10 @@ int vtkMLSSampler::RequestData(vtkInformation*, vtkInformationVector** inputVect
   mlsdeform::SamplingParameters parameters;
   parameters.numberOfSurfaceSamples = this->NumberOfSurfaceSamples;
   parameters.numberOfVolumeSamples = this->NumberOfVolumeSamples;
-  parameters.integrationPointRatio = this->IntegrationPointRatio;
-  parameters.lloydIterations = this->LloydIterations;
-  parameters.cover = this->Cover;
-  parameters.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+  mlsvtk::copySamplingProperties(this, parameters);
   parameters.surfaceWeight = this->SurfaceWeight;
   parameters.denseSamplesPerSample = this->DenseSamplesPerSample;
   parameters.boundsPadding = this->BoundsPadding;
-  parameters.followMeshGrading = this->FollowMeshGrading != 0;
   try
   {
     // Split over processes, the samples of the whole input are computed by all of them together
@@ -83,13 +79,9 @@ void vtkMLSSampler::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfSurfaceSamples: " << this->NumberOfSurfaceSamples << "\n"
-     << indent << "NumberOfVolumeSamples: " << this->NumberOfVolumeSamples << "\n"
-     << indent << "IntegrationPointRatio: " << this->IntegrationPointRatio << "\n"
-     << indent << "LloydIterations: " << this->LloydIterations << "\n"
-     << indent << "Cover: " << this->Cover << "\n"
-     << indent << "RandomSeed: " << this->RandomSeed << "\n"
-     << indent << "SurfaceWeight: " << this->SurfaceWeight << "\n"
+     << indent << "NumberOfVolumeSamples: " << this->NumberOfVolumeSamples << "\n";
+  mlsvtk::printSamplingProperties(this, os, indent);
+  os << indent << "SurfaceWeight: " << this->SurfaceWeight << "\n"
      << indent << "DenseSamplesPerSample: " << this->DenseSamplesPerSample << "\n"
-     << indent << "BoundsPadding: " << this->BoundsPadding << "\n"
-     << indent << "FollowMeshGrading: " << this->FollowMeshGrading << "\n";
+     << indent << "BoundsPadding: " << this->BoundsPadding << "\n";
 }

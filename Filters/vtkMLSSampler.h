@@ -28,6 +28,7 @@
 #ifndef vtkMLSSampler_h
 #define vtkMLSSampler_h
 
+#include "Adapters/SamplingProperties.h"
 #include "MLSDeformFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
@@ -50,29 +51,7 @@ public:
   vtkGetMacro(NumberOfVolumeSamples, int);
   ///@}
 
-  ///@{
-  /// Integration points per MLS sample, N / k (default 4).
-  vtkSetClampMacro(IntegrationPointRatio, double, 1.0, 100.0);
-  vtkGetMacro(IntegrationPointRatio, double);
-  ///@}
-
-  ///@{
-  /// Lloyd relaxation steps (default 5).
-  vtkSetClampMacro(LloydIterations, int, 0, 1000);
-  vtkGetMacro(LloydIterations, int);
-  ///@}
-
-  ///@{
-  /// Cover s: every sampled position lies in the supports of at least s samples (default 5).
-  vtkSetClampMacro(Cover, double, 4.0, 100.0);
-  vtkGetMacro(Cover, double);
-  ///@}
-
-  ///@{
-  /// Seed of the random dense sampling (default 0); the same seed gives the same samples.
-  vtkSetClampMacro(RandomSeed, int, 0, VTK_INT_MAX);
-  vtkGetMacro(RandomSeed, int);
-  ///@}
+  mlsSamplingPropertiesMacro();
 
   ///@{
   /// Weight of a dense surface sample relative to a volume one in the Lloyd step (default 10).
@@ -93,13 +72,6 @@ public:
   vtkGetMacro(BoundsPadding, double);
   ///@}
 
-  ///@{
-  /// Sample density follows the mesh's element density (default on); off: uniform.
-  vtkSetMacro(FollowMeshGrading, vtkTypeBool);
-  vtkGetMacro(FollowMeshGrading, vtkTypeBool);
-  vtkBooleanMacro(FollowMeshGrading, vtkTypeBool);
-  ///@}
-
 protected:
   vtkMLSSampler();
   ~vtkMLSSampler() override = default;
@@ -109,11 +81,6 @@ protected:
 
   int NumberOfSurfaceSamples = 800;
   int NumberOfVolumeSamples = 200;
-  double IntegrationPointRatio = 4.0;
-  int LloydIterations = 5;
-  double Cover = 5.0;
-  vtkTypeBool FollowMeshGrading = 1;
-  int RandomSeed = 0;
   double SurfaceWeight = 10.0;
   int DenseSamplesPerSample = 10;
   double BoundsPadding = 0.1;
