@@ -5,9 +5,11 @@
 #include "Session/SolutionReport.h"
 
 #include <vtkDataArray.h>
+#include <vtkNew.h>
 #include <vtkObject.h>
 #include <vtkPoints.h>
 #include <vtkPointSet.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <cmath>
@@ -88,12 +90,24 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
     {
       // the deformation stands; this mesh's quality is not reported (said once per mesh)
       Quality.clear();
-      vtkWarningWithObjectMacro(owner, << "The mesh quality is not reported: " << problem
-                                       << ". (ParaView's OpenFOAM reader with Decompose polyhedra on makes such cells; turn it off to "
-                                          "measure OpenFOAM's own cells.)");
+      Problem = problem + ". (ParaView's OpenFOAM reader with Decompose polyhedra on makes such cells: turn it off to measure "
+                          "OpenFOAM's own cells.)";
+      vtkWarningWithObjectMacro(owner, << "The mesh quality is not reported: " << Problem);
+    }
+    else
+    {
+      Problem.clear();
     }
     Quality.resize(inSets.size());
     Measured = std::move(stamp);
+  }
+  if (!Problem.empty())
+  {
+    // why there are no figures, for whoever reads them (a design of experiments' error)
+    vtkNew<vtkStringArray> why;
+    why->SetName("MeshQualityProblem");
+    why->InsertNextValue(Problem);
+    field->AddArray(why);
   }
   QualitySummary deformed;
   bool measured = false;

@@ -27,7 +27,8 @@ public:
   /// QualityVerdict "FemSolver") gets the FEM solver's verdict instead of checkMesh's: InvertedCells
   /// by the elements' Jacobian, MinScaledJacobian, and no face measures. Split over processes, each measures its own piece
   /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
-  /// it cannot measure give a warning (from owner) once per input mesh; the deformation stands.
+  /// it cannot measure give a warning (from owner) once per input mesh and the field data
+  /// MeshQualityProblem (why) on every update; the deformation stands.
   /// casePath: the OpenFOAM case folder the input was read from (or ""), whose own faces a grid
   /// that is its mesh is measured on (VolumeMeshQuality). femSource: the input came from a
   /// structural solver's mesh file through a reader that does not say so (femReaderUpstream).
@@ -44,6 +45,7 @@ private:
   static Stamp stampOf(const std::vector<vtkPointSet*>& inSets);
 
   Stamp Measured; // of the cells and points the faces and the original's measures come from
+  std::string Problem; // why Measured's cells are not measured (field data MeshQualityProblem), or ""
   std::vector<std::unique_ptr<VolumeMeshQuality>> Quality;
   QualitySummary Original;
 };

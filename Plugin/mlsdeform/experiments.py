@@ -61,7 +61,14 @@ def meshQuality(dvs):
     for key in FEM_QUALITY if _fem(dvs) else QUALITY:
         array = output.GetArray(key)
         if array is None:
-            raise RuntimeError(f"MLS Deform reports no {key}: turn its MeshQuality on and give it a volume mesh")
+            problem = output.GetAbstractArray('MeshQualityProblem')
+            if not dvs._algorithm.GetMeshQuality():
+                raise RuntimeError("MLS Deform's MeshQuality is off, so a variant has no verdict: turn it on "
+                                   "(deform.MeshQuality = 1)")
+            if problem is not None and problem.GetNumberOfValues():
+                raise RuntimeError(f"MLS Deform could not measure the mesh quality: {problem.GetValue(0)}")
+            raise RuntimeError(f"MLS Deform reports no {key}: its input has no volume cells (give it the volume mesh, "
+                               f"e.g. the OpenFOAM reader's internalMesh, not only the patches)")
         figures[key] = array.GetTuple1(0)
     figures['InvertedCells'] = int(figures['InvertedCells'])
     return figures

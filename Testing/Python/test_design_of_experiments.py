@@ -132,6 +132,38 @@ raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), sam
 raises(lambda: mlsdeform.designOfExperiments(dvs, os.path.join(work, 'bad'), samples=2, thresholds={'Volume': 1}),
        'unknown threshold', 'an unknown threshold')
 
+# A mesh whose quality cannot be measured: a face shared by three cells (as ParaView's OpenFOAM
+# reader makes with Decompose polyhedra on). MeshQuality is on; the verdict's error names the cause
+# and what to change, not "turn MeshQuality on".
+from paraview import servermanager  # noqa: E402
+from paraview.simple import MLSDeform, ConstraintRegion  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkUnstructuredGrid  # noqa: E402
+fan = vtkUnstructuredGrid()
+fan_points = vtkPoints()
+for p in ((0, 0, 0), (1, 0, 0), (0, 1, 0), (0.3, 0.3, 1), (0.3, 0.3, -1), (0.2, 0.2, 2)):
+    fan_points.InsertNextPoint(p)
+fan.SetPoints(fan_points)
+for apex in (3, 4, 5):
+    fan.InsertNextCell(VTK_TETRA, 4, [0, 1, 2, apex])
+producer = servermanager.sources.PVTrivialProducer()
+producer.GetClientSideObject().SetOutput(fan)
+tip = ConstraintRegion(Input=producer, Role='Handle', Translation=[0.05, 0, 0])
+tip.Region = 'Sphere'
+tip.Region.Center, tip.Region.Radius = [0.2, 0.2, 2], 0.1
+foot = ConstraintRegion(Input=producer, Role='Fixed')
+foot.Region = 'Sphere'
+foot.Region.Center, foot.Region.Radius = [0.3, 0.3, -1], 0.1
+fan_deform = MLSDeform(Input=producer, Regions=[foot, tip], NumberOfSamples=20)
+fan_deform.UpdatePipeline()
+try:
+    mlsdeform.meshQuality(mlsdeform.DesignVariables(fan_deform))
+    raised = ''
+except RuntimeError as error:
+    raised = str(error)
+check('more than two cells' in raised and 'Decompose polyhedra' in raised and 'MeshQuality on' not in raised,
+      'a mesh MLS Deform cannot measure: the verdict\'s error names the cause: "%s"' % raised)
+
 # the command line: a design file (relative case path), a Latin hypercube, a progress line per
 # variant, the report; in Debian's python3 (a plain VTK pipeline, mlsdeform.vtkfoam) and in pvpython
 # the same variants as the package's designOfExperiments on paraview.simple proxies, bit for bit;
