@@ -2,6 +2,7 @@
 
 #include "Common/IdIndex.h"
 #include "Common/Pieces.h"
+#include "Common/TextCursor.h"
 #include "Common/TextFile.h"
 #include "Common/VariantNodes.h"
 
@@ -172,12 +173,12 @@ struct TypeGroup
   std::vector<std::uint64_t> offsets; // where an element is in the file
 };
 
-class Reader
+class Reader : TextCursor
 {
 public:
   Reader(const std::string& path, bool layoutOnly)
-    : LayoutOnly(layoutOnly)
-    , Text(readFile(path))
+    : TextCursor(path)
+    , LayoutOnly(layoutOnly)
   {
     this->Out.path = path;
     this->Out.hash = std::hash<std::string>()(this->Text);
@@ -235,9 +236,6 @@ public:
 
 private:
   bool LayoutOnly;
-  const std::string Text;
-  std::size_t At = 0;   // the next byte to read
-  std::size_t Mark = 0; // where the line or the binary record read last starts: errors name it
   bool Binary = false;
   bool Version2 = false; // MSH 2.2 (else 4.1)
   std::string Section;
@@ -256,12 +254,6 @@ private:
 
   // ---- errors ----------------------------------------------------------------------------------
 
-  std::size_t lineOf(std::size_t offset) const
-  {
-    offset = std::min(offset, this->Text.empty() ? 0 : this->Text.size() - 1);
-    return 1 + static_cast<std::size_t>(std::count(this->Text.begin(), this->Text.begin() + offset, '\n'));
-  }
-
   // "file:line" of the byte at offset; a binary file's: "file: $Section, byte offset".
   std::string where(std::size_t offset) const
   {
@@ -269,45 +261,19 @@ private:
                         : this->Out.path + ":" + std::to_string(this->lineOf(offset));
   }
 
-  [[noreturn]] void failAt(std::size_t offset, const std::string& reason) const
+  // a binary file's errors name the section and the byte
+  FileError errorAt(std::size_t offset, const std::string& reason) const override
   {
-    if (this->Binary)
-    {
-      throw FileError(this->Out.path, 0, this->Section + ", byte " + std::to_string(offset) + ": " + reason);
-    }
-    throw FileError(this->Out.path, this->lineOf(offset), reason);
+    return this->Binary ? FileError(this->Out.path, 0, this->Section + ", byte " + std::to_string(offset) + ": " + reason)
+                        : TextCursor::errorAt(offset, reason);
   }
-
-  [[noreturn]] void fail(const std::string& reason) const { this->failAt(this->Mark, reason); }
 
   [[noreturn]] void truncated() const
   {
     this->failAt(this->Text.size(), "the file ends inside " + this->Section + " (it is cut short)");
   }
 
-  // A count read from the file is at most what the rest of the file holds at bytesEach (at least)
-  // an item: a huge count is refused before anything is allocated for it.
-  void room(std::uint64_t count, std::uint64_t bytesEach, const std::string& what) const
-  {
-    if (count > (this->Text.size() - this->At) / bytesEach)
-    {
-      this->fail(std::to_string(count) + " " + what + ": more than the rest of the file holds (is it cut short?)");
-    }
-  }
-
   // ---- text --------------------------------------------------------------------------------------
-
-  // The next line (without "\n" or "\r\n"), or false at the end of the file.
-  bool nextLine(std::string_view& line)
-  {
-    const std::size_t at = this->At;
-    if (!mlsformats::nextLine(this->Text, this->At, line))
-    {
-      return false;
-    }
-    this->Mark = at; // where the line read starts (an error's line number)
-    return true;
-  }
 
   // The next line that is not blank, inside the section's data.
   std::string_view record()

@@ -1,6 +1,7 @@
 #include "SU2/SU2Mesh.h"
 
 #include "Common/Pieces.h"
+#include "Common/TextCursor.h"
 #include "Common/TextFile.h"
 #include "Common/VariantNodes.h"
 
@@ -131,12 +132,12 @@ struct Unknown
   std::size_t count;
 };
 
-class Reader
+class Reader : TextCursor
 {
 public:
   Reader(const std::string& path, bool layoutOnly)
-    : LayoutOnly(layoutOnly)
-    , Text(readFile(path))
+    : TextCursor(path)
+    , LayoutOnly(layoutOnly)
   {
     this->Out.path = path;
     this->Out.hash = std::hash<std::string>()(this->Text);
@@ -181,9 +182,6 @@ public:
 
 private:
   const bool LayoutOnly;
-  const std::string Text;
-  std::size_t At = 0;   // the next byte to read
-  std::size_t Mark = 0; // where the line read last starts: errors name it
   std::string_view Record;
   std::vector<std::string_view> Fields;
   int ZoneCount = 0; // NZONE=, 0 without it
@@ -198,19 +196,6 @@ private:
 
   // ---- errors ----------------------------------------------------------------------------------
 
-  std::size_t lineOf(std::size_t offset) const
-  {
-    offset = std::min(offset, this->Text.empty() ? 0 : this->Text.size() - 1);
-    return 1 + static_cast<std::size_t>(std::count(this->Text.begin(), this->Text.begin() + offset, '\n'));
-  }
-
-  [[noreturn]] void failAt(std::size_t offset, const std::string& reason) const
-  {
-    throw FileError(this->Out.path, this->lineOf(offset), reason);
-  }
-
-  [[noreturn]] void fail(const std::string& reason) const { this->failAt(this->Mark, reason); }
-
   // What a zone lacks: a file of one zone's, or (several) its IZONE= line's.
   [[noreturn]] void zoneFails(const std::string& reason) const
   {
@@ -221,29 +206,7 @@ private:
     throw FileError(this->Out.path, 0, reason);
   }
 
-  // A count read from the file is at most what the rest of the file holds at bytesEach (at least)
-  // a line: a huge count is refused before anything is allocated for it.
-  void room(std::uint64_t count, std::uint64_t bytesEach, const std::string& what) const
-  {
-    if (count > (this->Text.size() - this->At) / bytesEach)
-    {
-      this->fail(std::to_string(count) + " " + what + ": more than the rest of the file holds (is it cut short?)");
-    }
-  }
-
   // ---- text --------------------------------------------------------------------------------------
-
-  // The next line (without "\n" or "\r\n"), or false at the end of the file.
-  bool nextLine(std::string_view& line)
-  {
-    const std::size_t at = this->At;
-    if (!mlsformats::nextLine(this->Text, this->At, line))
-    {
-      return false;
-    }
-    this->Mark = at; // where the line read starts (an error's line number)
-    return true;
-  }
 
   // The line of item index of the count that key announces, into Fields: SU2 reads them one a
   // line, so a blank line or a keyword there is an error.
