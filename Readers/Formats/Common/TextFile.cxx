@@ -166,6 +166,30 @@ std::string_view trim(std::string_view text)
   return text;
 }
 
+void splitBlanks(std::string_view text, std::vector<std::string_view>& fields)
+{
+  fields.clear();
+  std::size_t begin = 0;
+  while (true)
+  {
+    while (begin < text.size() && isBlank(text[begin]))
+    {
+      ++begin;
+    }
+    if (begin == text.size())
+    {
+      return;
+    }
+    std::size_t end = begin;
+    while (end < text.size() && !isBlank(text[end]))
+    {
+      ++end;
+    }
+    fields.push_back(text.substr(begin, end - begin));
+    begin = end;
+  }
+}
+
 std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t begin, int count, const double* xyz)
 {
   std::size_t end = begin;

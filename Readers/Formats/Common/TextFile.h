@@ -69,6 +69,9 @@ inline bool isBlank(char c)
 /// text without its leading and trailing blanks.
 std::string_view trim(std::string_view text);
 
+/// The fields of text between blanks (spaces and tabs), into fields.
+void splitBlanks(std::string_view text, std::vector<std::string_view>& fields);
+
 /// Appends the count numbers separated by blanks or line ends that start at text[begin] (a number
 /// also ends at a parenthesis: Fluent's "0 0 1))") with the values xyz: a number whose value changed becomes appendShortest's text of the new one, the
 /// others and what separates them stay as they were. Returns where the last number's text ends.

@@ -295,27 +295,7 @@ private:
   // The next data line's fields (between blanks), into Fields.
   void fields()
   {
-    const std::string_view line = this->record();
-    this->Fields.clear();
-    std::size_t begin = 0;
-    while (true)
-    {
-      while (begin < line.size() && isBlank(line[begin]))
-      {
-        ++begin;
-      }
-      if (begin == line.size())
-      {
-        return;
-      }
-      std::size_t end = begin;
-      while (end < line.size() && !isBlank(line[end]))
-      {
-        ++end;
-      }
-      this->Fields.push_back(line.substr(begin, end - begin));
-      begin = end;
-    }
+    splitBlanks(this->record(), this->Fields);
   }
 
   // The next data line's fields, which must be count.

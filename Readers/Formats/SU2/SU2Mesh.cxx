@@ -44,31 +44,6 @@ const ElementKind* elementKind(std::int64_t number)
   return nullptr;
 }
 
-// The fields of text between blanks.
-void split(std::string_view text, std::vector<std::string_view>& fields)
-{
-  fields.clear();
-  std::size_t begin = 0;
-  while (true)
-  {
-    while (begin < text.size() && isBlank(text[begin]))
-    {
-      ++begin;
-    }
-    if (begin == text.size())
-    {
-      return;
-    }
-    std::size_t end = begin;
-    while (end < text.size() && !isBlank(text[end]))
-    {
-      ++end;
-    }
-    fields.push_back(text.substr(begin, end - begin));
-    begin = end;
-  }
-}
-
 // The keyword of a line "NAME= value" (NAME of capitals, digits and '_'), and its value trimmed;
 // "" when the line is not a keyword's.
 std::string_view keyword(std::string_view line, std::string_view& value)
@@ -217,7 +192,7 @@ private:
     {
       this->failAt(this->Text.size(), "the file ends after " + std::to_string(index) + announced() + " (it is cut short)");
     }
-    split(this->Record, this->Fields);
+    splitBlanks(this->Record, this->Fields);
     if (this->Fields.empty() || this->Fields[0][0] == '%' || this->Fields[0].find('=') != std::string_view::npos)
     {
       this->fail((this->Fields.empty() ? std::string("a blank line") : quoted(trim(this->Record))) + " where " + item + " " +
@@ -309,7 +284,7 @@ private:
         this->fail("NPOIN= before NDIME= (the number of a point's coordinates)");
       }
       // "NPOIN= points [owned]": a partition's file also gives the points it owns
-      split(value, this->Fields);
+      splitBlanks(value, this->Fields);
       if (this->Fields.empty() || this->Fields.size() > 2)
       {
         this->fail("NPOIN= " + quoted(value) + " is not \"points\" or \"points owned-points\"");
