@@ -21,21 +21,13 @@ using testing::contains;
 using testing::find;
 using testing::writeFile;
 
-std::string folder(const std::string& name)
-{
-  return testing::freshFolder("abaqus", name);
-}
+const testing::TestFolders folder{ "abaqus" };
+const testing::ReadErrors readError{ abaqus::readDeck };
 
 std::vector<std::int64_t> sorted(std::vector<std::int64_t> ids)
 {
   std::sort(ids.begin(), ids.end());
   return ids;
-}
-
-// The error message of reading path, "" if it reads.
-std::string readError(const std::string& path)
-{
-  return testing::readError([&] { abaqus::readDeck(path); });
 }
 
 // A deck of one hexahedron C3D20 (nodes 1-20 of the unit cube), a C3D10 tetrahedron on its side,
@@ -286,42 +278,12 @@ TEST(VariantRefusesOtherDataAndNeverHalfWrites)
   const std::string dir = folder("refuse");
   const std::string source = cubeDeck(dir);
   const abaqus::Deck deck = abaqus::readDeck(source);
-  const std::size_t count = deck.mesh.nodeIds.size();
-  const std::int64_t* ids = deck.mesh.nodeIds.data();
-  const double* xyz = deck.mesh.xyz.data();
-  auto leftNothing = [&](const std::string& target) {
-    bool none = !fs::exists(target);
-    for (const auto& entry : fs::recursive_directory_iterator(dir))
-    {
-      none = none && entry.path().string().find(".writing-") == std::string::npos;
-    }
-    return none;
-  };
-  // another node count, another node id, a node twice
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.inp", ids, xyz, count - 1, false), FileError);
-  std::vector<std::int64_t> other(ids, ids + count);
-  other[3] = 99;
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.inp", other.data(), xyz, count, false), FileError);
-  other[3] = 1;
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.inp", other.data(), xyz, count, false), FileError);
-  std::vector<double> nan(xyz, xyz + 3 * count);
-  nan[5] = std::nan("");
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.inp", ids, nan.data(), count, false), FileError);
-  // onto the source, or with an include onto the source's include
-  CHECK_THROWS(deck.writeVariant(source, ids, xyz, count, true), FileError);
-  CHECK_THROWS(deck.writeVariant(dir + "/other.inp", ids, xyz, count, true), FileError);
+  // a variant whose include would go onto the source's include
+  CHECK(contains(testing::writeError(deck, dir + "/other.inp", deck.mesh.nodeIds, deck.mesh.xyz, true),
+    dir + "/mesh/nodes.inp: is a file of the source " + source + ": a variant is written elsewhere"));
   CHECK(!fs::exists(dir + "/other.inp"));
-  // an existing variant stays unless overwrite is set
-  deck.writeVariant(dir + "/b/v.inp", ids, xyz, count, false);
-  writeFile(dir + "/b/v.inp", "kept");
-  CHECK_THROWS(deck.writeVariant(dir + "/b/v.inp", ids, xyz, count, false), FileError);
-  CHECK(readFile(dir + "/b/v.inp") == "kept");
-  deck.writeVariant(dir + "/b/v.inp", ids, xyz, count, true);
-  CHECK(readFile(dir + "/b/v.inp") == readFile(source));
-  // a source changed since it was read
-  writeFile(dir + "/mesh/nodes.inp", std::string(cubeNodes) + "** edited\n");
-  CHECK_THROWS(deck.writeVariant(dir + "/c/v.inp", ids, xyz, count, false), FileError);
-  CHECK(leftNothing(dir + "/a/v.inp") && leftNothing(dir + "/c/v.inp"));
+  // the refusals of every format; the nodes' include changed since it was read
+  testing::checkVariantRefusals(deck, source, dir, "** edited\n", dir + "/mesh/nodes.inp");
 }
 
 TEST(TwoDimensionalDeckKeepsTwoCoordinates)

@@ -25,21 +25,15 @@ namespace
 {
 using testing::contains;
 using testing::find;
+using testing::Point;
+using testing::position;
+using testing::sameMesh;
+using testing::tripleProduct;
 using testing::writeFile;
 
-std::string folder(const std::string& name)
-{
-  return testing::freshFolder("fluent", name);
-}
+const testing::TestFolders folder{ "fluent" };
+const testing::ReadErrors readError{ fluent::readFluent };
 
-// The error message of reading path, "" if it reads.
-std::string readError(const std::string& path)
-{
-  return testing::readError([&] { fluent::readFluent(path); });
-}
-
-using testing::Point;
-using testing::tripleProduct;
 using Nodes = std::vector<std::int64_t>;
 
 // A mesh to write as a Fluent file: its nodes (ids from 1, in two node zones: up to split and the
@@ -304,26 +298,6 @@ bool cellsAreTheSamples(const SourceMesh& mesh, const Sample& sample)
   return cells == sample.cells.size();
 }
 
-bool sameSets(const std::vector<NamedSet>& a, const std::vector<NamedSet>& b)
-{
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
-    [](const NamedSet& x, const NamedSet& y) { return x.name == y.name && x.ids == y.ids; });
-}
-
-bool sameMesh(const SourceMesh& a, const SourceMesh& b)
-{
-  return a.nodeIds == b.nodeIds && a.xyz == b.xyz && sameSets(a.nodeSets, b.nodeSets) && sameSets(a.elementSets, b.elementSets) &&
-    std::equal(a.blocks.begin(), a.blocks.end(), b.blocks.begin(), b.blocks.end(), [](const ElementBlock& x, const ElementBlock& y) {
-      return x.name == y.name && x.type == y.type && x.ids == y.ids && x.nodes == y.nodes;
-    });
-}
-
-Point position(const SourceMesh& mesh, std::int64_t id)
-{
-  const std::size_t at = static_cast<std::size_t>(std::find(mesh.nodeIds.begin(), mesh.nodeIds.end(), id) - mesh.nodeIds.begin());
-  return { mesh.xyz[3 * at], mesh.xyz[3 * at + 1], mesh.xyz[3 * at + 2] };
-}
-
 // The three files of a sample in dir: ASCII, single and double precision binary.
 std::array<std::string, 3> threeFiles(const std::string& dir, const std::string& name, const Sample& sample)
 {
@@ -489,50 +463,22 @@ TEST(VariantRefusesOtherDataAndNeverHalfWrites)
   for (const std::string& source : threeFiles(dir, "solid", solid()))
   {
     const fluent::MeshFile file = fluent::readFluent(source);
-    const std::size_t count = file.mesh.nodeIds.size();
-    const std::int64_t* ids = file.mesh.nodeIds.data();
-    const double* xyz = file.mesh.xyz.data();
-    const std::string target = dir + "/v/" + fs::path(source).filename().string();
-    // another node count, another node id, a node twice, NaN
-    CHECK_THROWS(file.writeVariant(target, ids, xyz, count - 1, false), FileError);
-    Nodes other(ids, ids + count);
-    other[3] = 99;
-    CHECK_THROWS(file.writeVariant(target, other.data(), xyz, count, false), FileError);
-    other[3] = 1;
-    CHECK_THROWS(file.writeVariant(target, other.data(), xyz, count, false), FileError);
-    std::vector<double> moved(xyz, xyz + 3 * count);
-    moved[4] = std::numeric_limits<double>::quiet_NaN();
-    CHECK_THROWS(file.writeVariant(target, ids, moved.data(), count, false), FileError);
-    // a coordinate beyond a float's range: refused where the file holds floats, written where doubles
+    const std::string name = fs::path(source).filename().string();
+    // a coordinate beyond a float's range: refused where the file holds floats (nothing written:
+    // checkVariantRefusals finds no dir/v/name), written where doubles
+    std::vector<double> moved = file.mesh.xyz;
     moved[4] = 1e39;
     if (file.nodeZones[0].precision == fluent::Precision::Single)
     {
-      CHECK(contains(testing::readError([&] { file.writeVariant(target, ids, moved.data(), count, false); }),
+      CHECK(contains(testing::writeError(file, dir + "/v/" + name, file.mesh.nodeIds, moved),
         "node 2's coordinate 1e+39 is beyond the range of the single-precision numbers its zone holds"));
     }
     else
     {
-      file.writeVariant(dir + "/wide/" + fs::path(source).filename().string(), ids, moved.data(), count, false);
-      CHECK(position(fluent::readFluent(dir + "/wide/" + fs::path(source).filename().string()).mesh, 2)[1] == 1e39);
+      file.writeVariant(dir + "/wide/" + name, file.mesh.nodeIds.data(), moved.data(), moved.size() / 3, false);
+      CHECK(position(fluent::readFluent(dir + "/wide/" + name).mesh, 2)[1] == 1e39);
     }
-    // onto the source, by its name or another spelling of it
-    CHECK_THROWS(file.writeVariant(source, ids, xyz, count, true), FileError);
-    CHECK_THROWS(file.writeVariant(dir + "/./" + fs::path(source).filename().string(), ids, xyz, count, true), FileError);
-    CHECK(!fs::exists(target));
-    // an existing variant stays unless overwrite is set
-    writeFile(target, "kept");
-    CHECK_THROWS(file.writeVariant(target, ids, xyz, count, false), FileError);
-    CHECK(readFile(target) == "kept");
-    file.writeVariant(target, ids, xyz, count, true);
-    CHECK(readFile(target) == readFile(source));
-    // a source changed since it was read
-    writeFile(source, readFile(source) + "(0 \"edited\")\n");
-    CHECK_THROWS(file.writeVariant(dir + "/c/" + fs::path(source).filename().string(), ids, xyz, count, false), FileError);
-    CHECK(!fs::exists(dir + "/c/" + fs::path(source).filename().string()));
-  }
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-  {
-    CHECK(entry.path().string().find(".writing-") == std::string::npos);
+    testing::checkVariantRefusals(file, source, dir, "(0 \"edited\")\n");
   }
 }
 

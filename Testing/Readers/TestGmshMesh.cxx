@@ -24,19 +24,12 @@ using testing::find;
 using testing::midsideNodesOnTheirEdges;
 using testing::Point;
 using testing::position;
+using testing::sameMesh;
 using testing::tripleProduct;
 using testing::writeFile;
 
-std::string folder(const std::string& name)
-{
-  return testing::freshFolder("gmsh", name);
-}
-
-// The error message of reading path, "" if it reads.
-std::string readError(const std::string& path)
-{
-  return testing::readError([&] { gmsh::readMsh(path); });
-}
+const testing::TestFolders folder{ "gmsh" };
+const testing::ReadErrors readError{ gmsh::readMsh };
 
 // The bytes of a binary file's numbers, in this machine's order (as Gmsh writes them).
 template <class T>
@@ -154,20 +147,6 @@ std::array<std::string, 4> fourFiles(const std::string& dir)
     writeFile(dir + "/b41.msh", binary41()) };
 }
 
-bool sameSets(const std::vector<NamedSet>& a, const std::vector<NamedSet>& b)
-{
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
-    [](const NamedSet& x, const NamedSet& y) { return x.name == y.name && x.ids == y.ids; });
-}
-
-bool sameMesh(const SourceMesh& a, const SourceMesh& b)
-{
-  return a.nodeIds == b.nodeIds && a.xyz == b.xyz && sameSets(a.nodeSets, b.nodeSets) && sameSets(a.elementSets, b.elementSets) &&
-    std::equal(a.blocks.begin(), a.blocks.end(), b.blocks.begin(), b.blocks.end(), [](const ElementBlock& x, const ElementBlock& y) {
-      return x.name == y.name && x.type == y.type && x.ids == y.ids && x.nodes == y.nodes;
-    });
-}
-
 } // namespace
 
 TEST(FourVariantsReadAlike)
@@ -282,39 +261,7 @@ TEST(VariantRefusesOtherDataAndNeverHalfWrites)
   const std::string dir = folder("refuse");
   for (const std::string& source : fourFiles(dir))
   {
-    const gmsh::MshFile file = gmsh::readMsh(source);
-    const std::size_t count = file.mesh.nodeIds.size();
-    const std::int64_t* ids = file.mesh.nodeIds.data();
-    const double* xyz = file.mesh.xyz.data();
-    const std::string target = dir + "/v/" + fs::path(source).filename().string();
-    // another node count, another node id, a node twice, NaN
-    CHECK_THROWS(file.writeVariant(target, ids, xyz, count - 1, false), FileError);
-    std::vector<std::int64_t> other(ids, ids + count);
-    other[3] = 99;
-    CHECK_THROWS(file.writeVariant(target, other.data(), xyz, count, false), FileError);
-    other[3] = 1;
-    CHECK_THROWS(file.writeVariant(target, other.data(), xyz, count, false), FileError);
-    std::vector<double> nan(xyz, xyz + 3 * count);
-    nan[4] = std::numeric_limits<double>::quiet_NaN();
-    CHECK_THROWS(file.writeVariant(target, ids, nan.data(), count, false), FileError);
-    // onto the source, by its name or another spelling of it
-    CHECK_THROWS(file.writeVariant(source, ids, xyz, count, true), FileError);
-    CHECK_THROWS(file.writeVariant(dir + "/./" + fs::path(source).filename().string(), ids, xyz, count, true), FileError);
-    CHECK(!fs::exists(target));
-    // an existing variant stays unless overwrite is set
-    writeFile(target, "kept");
-    CHECK_THROWS(file.writeVariant(target, ids, xyz, count, false), FileError);
-    CHECK(readFile(target) == "kept");
-    file.writeVariant(target, ids, xyz, count, true);
-    CHECK(readFile(target) == readFile(source));
-    // a source changed since it was read
-    writeFile(source, readFile(source) + "$Comments\nedited\n$EndComments\n");
-    CHECK_THROWS(file.writeVariant(dir + "/c/" + fs::path(source).filename().string(), ids, xyz, count, false), FileError);
-    CHECK(!fs::exists(dir + "/c/" + fs::path(source).filename().string()));
-  }
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-  {
-    CHECK(entry.path().string().find(".writing-") == std::string::npos);
+    testing::checkVariantRefusals(gmsh::readMsh(source), source, dir, "$Comments\nedited\n$EndComments\n");
   }
 }
 

@@ -24,15 +24,8 @@ using testing::contains;
 using testing::find;
 using testing::writeFile;
 
-std::string folder(const std::string& name)
-{
-  return testing::freshFolder("nastran", name);
-}
-
-std::string readError(const std::string& path)
-{
-  return testing::readError([&] { nastran::readDeck(path); });
-}
+const testing::TestFolders folder{ "nastran" };
+const testing::ReadErrors readError{ nastran::readDeck };
 
 // A small-field entry: 8 columns a field, 8 fields a line, continued on lines marked "+".
 std::string smallEntry(const std::string& name, const std::vector<std::string>& fields)
@@ -603,37 +596,12 @@ TEST(VariantRefusesOtherDataAndNeverHalfWrites)
   writeFile(dir + "/mesh/grids.bdf", "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n");
   const std::string source = writeFile(dir + "/deck.bdf", "INCLUDE 'mesh/grids.bdf'\nCROD,1,1,1,2\n");
   const nastran::Deck deck = nastran::readDeck(source);
-  const std::int64_t* ids = deck.mesh.nodeIds.data();
-  const double* xyz = deck.mesh.xyz.data();
-  auto leftNothing = [&](const std::string& target) {
-    bool none = !fs::exists(target);
-    for (const auto& entry : fs::recursive_directory_iterator(dir))
-    {
-      none = none && entry.path().string().find(".writing-") == std::string::npos;
-    }
-    return none;
-  };
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.bdf", ids, xyz, 1, false), FileError);
-  const std::int64_t other[2] = { 1, 3 }, twice[2] = { 1, 1 };
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.bdf", other, xyz, 2, false), FileError);
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.bdf", twice, xyz, 2, false), FileError);
-  const double nan[6] = { 0, 0, std::nan(""), 1, 0, 0 };
-  CHECK_THROWS(deck.writeVariant(dir + "/a/v.bdf", ids, nan, 2, false), FileError);
-  // onto the source, or with its include onto the source's include
-  CHECK_THROWS(deck.writeVariant(source, ids, xyz, 2, true), FileError);
-  CHECK_THROWS(deck.writeVariant(dir + "/other.bdf", ids, xyz, 2, true), FileError);
+  // a variant whose include would go onto the source's include
+  CHECK(contains(testing::writeError(deck, dir + "/other.bdf", deck.mesh.nodeIds, deck.mesh.xyz, true),
+    dir + "/mesh/grids.bdf: is a file of the source " + source + ": a variant is written elsewhere"));
   CHECK(!fs::exists(dir + "/other.bdf"));
-  // an existing variant stays unless overwrite is set
-  deck.writeVariant(dir + "/b/v.bdf", ids, xyz, 2, false);
-  writeFile(dir + "/b/v.bdf", "kept");
-  CHECK_THROWS(deck.writeVariant(dir + "/b/v.bdf", ids, xyz, 2, false), FileError);
-  CHECK(readFile(dir + "/b/v.bdf") == "kept");
-  deck.writeVariant(dir + "/b/v.bdf", ids, xyz, 2, true);
-  CHECK(readFile(dir + "/b/v.bdf") == readFile(source));
-  // a source changed since it was read
-  writeFile(dir + "/mesh/grids.bdf", "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n$ edited\n");
-  CHECK_THROWS(deck.writeVariant(dir + "/c/v.bdf", ids, xyz, 2, false), FileError);
-  CHECK(leftNothing(dir + "/a/v.bdf") && leftNothing(dir + "/c/v.bdf"));
+  // the refusals of every format; the grids' include changed since it was read
+  testing::checkVariantRefusals(deck, source, dir, "$ edited\n", dir + "/mesh/grids.bdf");
   // grids in an include named by its absolute path
   const std::string absolute = writeFile(dir + "/absolute.bdf", "INCLUDE '" + fs::absolute(dir + "/mesh/grids.bdf").string() + "'\n");
   const nastran::Deck outside = nastran::readDeck(absolute);

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <limits>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -21,25 +20,14 @@ namespace
 {
 using testing::contains;
 using testing::find;
+using testing::Point;
+using testing::position;
+using testing::tripleProduct;
+using testing::writeError;
 using testing::writeFile;
 
-std::string folder(const std::string& name)
-{
-  return testing::freshFolder("su2", name);
-}
-
-// The error message of reading path, "" if it reads.
-std::string readError(const std::string& path)
-{
-  return testing::readError([&] { su2::readSu2(path); });
-}
-
-// The error message of writing the variant, "" if it is written.
-std::string writeError(const su2::MeshFile& file, const std::string& target, const std::vector<std::int64_t>& ids,
-  const std::vector<double>& xyz, bool overwrite = false)
-{
-  return testing::readError([&] { file.writeVariant(target, ids.data(), xyz.data(), ids.size(), overwrite); });
-}
+const testing::TestFolders folder{ "su2" };
+const testing::ReadErrors readError{ su2::readSu2 };
 
 // A 2D mesh as SU2's documentation writes one, with comments, tabs, indices on some lines only and
 // numbers that are not their shortest text: two triangles and a quadrilateral, two markers.
@@ -66,21 +54,6 @@ const char* const zones = "NZONE= 2\n\nIZONE= 1\nNDIME= 2\nNELEM= 2\n5 0 1 2\n5 
                           "NMARK= 2\nMARKER_TAG= interface\nMARKER_ELEMS= 1\n3 1 2\nMARKER_TAG= wall\nMARKER_ELEMS= 1\n3 0 1\n\n"
                           "IZONE= 2\nNDIME= 2\nNELEM= 1\n5 0 1 2\nNPOIN= 3\n1 0\n2 0\n1 1\n"
                           "NMARK= 2\nMARKER_TAG= interface\nMARKER_ELEMS= 1\n3 2 0\nMARKER_TAG= farfield\nMARKER_ELEMS= 1\n3 0 1\n";
-
-using Point = std::array<double, 3>;
-
-Point position(const SourceMesh& mesh, std::int64_t id)
-{
-  return { mesh.xyz[3 * id], mesh.xyz[3 * id + 1], mesh.xyz[3 * id + 2] };
-}
-
-// (p1 - p0) x (p2 - p0) . (p3 - p0)
-double tripleProduct(const Point& p0, const Point& p1, const Point& p2, const Point& p3)
-{
-  const Point a{ p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] }, b{ p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] },
-    c{ p3[0] - p0[0], p3[1] - p0[1], p3[2] - p0[2] };
-  return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] + (a[0] * b[1] - a[1] * b[0]) * c[2];
-}
 
 // text with its first from replaced by to.
 std::string replaced(std::string text, const std::string& from, const std::string& to)
@@ -230,31 +203,12 @@ TEST(VariantRefusals)
   const std::string dir = folder("refusals");
   const std::string source = writeFile(dir + "/plane.su2", plane);
   const su2::MeshFile file = su2::readSu2(source);
-  const std::vector<std::int64_t>& ids = file.mesh.nodeIds;
-  const std::vector<double>& xyz = file.mesh.xyz;
-  // the source itself, however named
-  CHECK(contains(writeError(file, source, ids, xyz, true), "is the source mesh: a variant is written elsewhere"));
-  CHECK(contains(writeError(file, dir + "/./plane.su2", ids, xyz, true), "is the source mesh"));
-  CHECK(contains(writeError(file, dir + "/sub/../plane.su2", ids, xyz, true), "is the source mesh"));
+  // the source itself by a third spelling (the other refusals: checkVariantRefusals)
+  CHECK(contains(writeError(file, dir + "/sub/../plane.su2", file.mesh.nodeIds, file.mesh.xyz, true), "is the source mesh"));
   CHECK(readFile(source) == plane);
-  // not the source's nodes, or not finite
-  CHECK(contains(writeError(file, dir + "/v.su2", { 0, 1, 2 }, { 0, 0, 0, 1, 0, 0, 2, 0, 0 }), "the data has 3 points; " + source + " has 6 nodes"));
-  std::vector<std::int64_t> other = ids;
-  other[5] = 6;
-  CHECK(contains(writeError(file, dir + "/v.su2", other, xyz), "node 6 is not in " + source));
-  std::vector<double> nan = xyz;
-  nan[4] = std::numeric_limits<double>::quiet_NaN();
-  CHECK(contains(writeError(file, dir + "/v.su2", ids, nan), "node 1 has a coordinate that is not finite"));
-  // a target that exists, unless told to overwrite it
-  writeFile(dir + "/exists.su2", "old");
-  CHECK(contains(writeError(file, dir + "/exists.su2", ids, xyz), "exists.su2: exists already"));
-  CHECK(readFile(dir + "/exists.su2") == "old");
-  CHECK(writeError(file, dir + "/exists.su2", ids, xyz, true).empty() && readFile(dir + "/exists.su2") == plane);
-  // a source changed since it was read
-  writeFile(source, std::string(plane) + "% changed\n");
-  CHECK(contains(writeError(file, dir + "/v.su2", ids, xyz), "plane.su2: has changed since it was read: read the mesh again"));
-  // nothing written, nothing left aside
-  CHECK(holdsOnly(dir, { "plane.su2", "exists.su2" }));
+  testing::checkVariantRefusals(file, source, dir, "% changed\n");
+  // nothing written but the variant written on purpose (dir/v/plane.su2), nothing left aside
+  CHECK(holdsOnly(dir, { "plane.su2", "v" }) && holdsOnly(dir + "/v", { "plane.su2" }));
 }
 
 TEST(ZonesNumberTheirPointsOnward)
