@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <map>
 
@@ -838,6 +839,25 @@ void overwriteCoordinates(const std::string& path, const std::string& target, co
     throw FileError(target, 0, "cannot be closed after writing its coordinates: " + cgioError());
   }
 }
+
+// An ADF file's header holds the time it was last modified ("AdF1" and 28 characters), which the
+// library sets as it writes the coordinates: the source's is put back, so that a variant differs
+// from its source only in coordinates (and the same variant is the same bytes whenever written).
+void keepModificationDate(const std::string& path, const std::string& target, const std::string& source)
+{
+  const std::size_t field = source.compare(4, 20, "ADF Database Version") == 0 ? source.find("AdF1") : std::string::npos;
+  if (field == std::string::npos || field > 256 || field + 4 + 28 > source.size())
+  {
+    return; // HDF5: no such field
+  }
+  std::fstream file(path, std::ios::binary | std::ios::in | std::ios::out);
+  file.seekp(static_cast<std::streamoff>(field + 4));
+  file.write(source.data() + field + 4, 28);
+  if (!file.flush())
+  {
+    throw FileError(target, 0, "cannot be written (its header)");
+  }
+}
 } // namespace
 
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
@@ -890,7 +910,9 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   // the source's bytes written aside, their coordinates overwritten there, renamed into place
   AtomicWrite write(overwrite);
-  overwriteCoordinates(write.add(target, bytes), target, arrays);
+  const std::string aside = write.add(target, bytes);
+  overwriteCoordinates(aside, target, arrays);
+  keepModificationDate(aside, target, bytes);
   write.commit();
 }
 } // namespace cgns
