@@ -358,7 +358,7 @@ def readFoamSensitivity(deformed, field='pointSensVecadjS1ESI', time='latest', c
         import warnings
         warnings.warn(f"{field}: the face sensitivities of adjointOptimisationFoam's `surface` type leave out how a face's "
                       "area and normal change with its points; on the NACA 0012 validation their dJ/dp was 0.3-0.65 of the "
-                      "finite differences (README): prefer `type surfacePoints` and its pointSensVec field", stacklevel=2)
+                      "finite differences (Plugin/mlsdeform/README.md): prefer `type surfacePoints` and its pointSensVec field", stacklevel=2)
     sensitivity_type, patches, area_included = _sensitivity_settings(case)
     folder = _field_time(case, field, time)
     mesh, values, faces = _read_case(case, patches, field, folder, kind)

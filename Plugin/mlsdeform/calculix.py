@@ -26,7 +26,7 @@ nodes of quadratic faces, where that integral is zero: not a derivative, so the 
 read. Hence dJ/dX_i = raw_i n_i on the surface design nodes, 0 elsewhere; interior nodes are left
 out of the design set by ccx. Chained with a morph that moves every node, this leaves out what
 moving the interior nodes, sliding the surface nodes along the surface and the averaged normals at
-edges change in J: a discretization error that shrinks with the mesh size (README, the structural
+edges change in J: a discretization error that shrinks with the mesh size (Plugin/mlsdeform/README.md, the CalculiX
 example's validation against central differences). ccx 2.20's STRAINENERGY coordinate sensitivity
 leaves out the change of the elements' volume (objective_shapeener_dx.f) and is 70-80% off.
 """
