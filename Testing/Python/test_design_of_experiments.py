@@ -260,4 +260,18 @@ for settings, message in (({'Basis': 'Linear'}, 'neither a number nor a name'), 
     run = subprocess.run([python3] + command, capture_output=True, text=True)
     check(run.returncode == 2 and message in run.stderr, 'a bad setting %s exits with 2 (%s)' % (settings, run.stderr.strip()[-200:]))
 
+
+# The README's design of experiments (its Tour 3) runs as written, but for its paths
+readme = open(os.path.join(examples, '..', '..', 'README.md')).read()
+snippet = re.search(r"```python\n(from paraview.simple import LoadPlugin\n.*?designOfExperiments.*?)```", readme, re.S).group(1)
+readme_work = os.path.join(work, 'readme-doe')
+snippet = snippet.replace('build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so', plugin).replace(
+    '/tmp/sphere/case.foam', os.path.join(case, 'case.foam')).replace('/tmp/sphere-doe', readme_work)
+namespace = {}
+exec(snippet, namespace)
+check(len(namespace['report']) == 3 and all(os.path.exists(os.path.join(os.path.dirname(r['path']), 'constant', 'polyMesh', 'points'))
+                                              for r in namespace['report'] if r['ok']) and
+      os.path.exists(os.path.join(readme_work, 'report.csv')), "the README's design of experiments runs as written: %s" %
+      [(r['variant'], r['ok']) for r in namespace['report']])
+
 finish()
