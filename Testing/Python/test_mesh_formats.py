@@ -172,6 +172,9 @@ for source, opener, ids_name, tolerance in ((exodus, IOSSReader, 'ids', 6e-8), (
     deform = MLSDeform(Input=[reader], Regions=[still, moving])  # noqa: F821
     moved = merged_points(deform, ids_name)
     variant = os.path.join(work, name, os.path.basename(source))
+    offered = sm.vtkSMProxyManager.GetProxyManager().GetWriterFactory().GetSupportedFileTypes(deform.SMProxy, 0)
+    check('Solver mesh file (variant of the source deck or mesh)' in offered,
+          "Save Data offers the variant writer for a deformation of what ParaView's %s read" % name)
     writer = sm.writers.MeshFileVariant(Input=deform, FileName=variant)
     writer.UpdatePipeline()
     back = merged_points(opener(FileName=variant) if opener is not CGNSSeriesReader else CGNSSeriesReader(FileNames=[variant]), ids_name)
