@@ -18,6 +18,7 @@
 #include <vtkStringArray.h>
 #include "Common/BoundingBox.h"
 #include "Vocabulary/FieldNames.h"
+#include "Vocabulary/RegionRoles.h"
 #include <vtkErrorCode.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -204,6 +205,15 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       vtkWarningMacro(<< "The constraints contradict each other or the targets: Regions inputs " << session.constraintConflicts()
                       << " cannot all hold exactly; the output keeps the targets and is the soft (least-squares) compromise "
                          "of the constraints there (ConstraintResidual says by how much).");
+    }
+    const auto hasRole = [&](int role) {
+      return std::any_of(session.regions().begin(), session.regions().end(), [&](const auto& region) { return region.role == role; });
+    };
+    if ((figures.resampled || figures.refactorized) && hasRole(mlsvtk::roles::Handle) && !hasRole(mlsvtk::roles::Fixed))
+    {
+      // nothing holds the model: the least-energy motion is the Handle's motion everywhere
+      vtkWarningMacro(<< "No Fixed region: nothing holds the model, so the Handle moves all of it (a rigid motion). Add a Fixed "
+                         "region (e.g. a CFD case's inlet and outlet, a deck's supports) to deform it.");
     }
     if (!solution.converged)
     {

@@ -404,6 +404,7 @@ int vtkOpenFOAMCaseWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkOpenFOAMCaseWriter::WriteData()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
+  this->LastError.clear();
   const mlsvtk::ProcessCollective group;
   const bool first = group.rank() == 0;
   fs::path partial;
@@ -420,6 +421,13 @@ void vtkOpenFOAMCaseWriter::WriteData()
       if (this->FileName.empty())
       {
         throw std::runtime_error("no FileName: give the new case's .foam file, e.g. variant/case.foam");
+      }
+      const std::string extension = fs::path(this->FileName).extension().string();
+      if (extension != ".foam" && extension != ".OpenFOAM")
+      {
+        // its folder becomes the case: a folder named here would have its parent replaced
+        throw std::runtime_error("the FileName is not a .foam file: name the new case's .foam file, e.g. " +
+          (fs::path(this->FileName) / "case.foam").string());
       }
       vtkDataObject* data = this->GetInput();
       if (auto* failure = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(mlsvtk::fields::Error)))
@@ -454,6 +462,11 @@ void vtkOpenFOAMCaseWriter::WriteData()
       if (first && fs::exists(target) && !this->Overwrite)
       {
         throw std::runtime_error(target.string() + " exists; choose a new folder or set Overwrite");
+      }
+      if (first && fs::exists(target) && !fs::exists(target / "system" / "controlDict"))
+      {
+        throw std::runtime_error(target.string() + " exists and is not an OpenFOAM case (no system/controlDict): it is not "
+                                                   "replaced; choose a new folder");
       }
       if (!fs::is_directory(source))
       {
@@ -606,7 +619,8 @@ void vtkOpenFOAMCaseWriter::WriteData()
       fs::remove_all(partial, ignored);
     }
     this->SetErrorCode(vtkErrorCode::UserError);
-    vtkErrorMacro(<< "Cannot write the OpenFOAM case " << this->FileName << ": " << e.what() << ". Nothing was written.");
+    this->LastError = "Cannot write the OpenFOAM case " + this->FileName + ": " + e.what() + ". Nothing was written.";
+    vtkErrorMacro(<< this->LastError);
   }
 }
 

@@ -20,9 +20,10 @@
  * assembles the case; the ranks agree on every step, so an error on one stops all.
  *
  * Nothing partial is written: the case is assembled in a sibling folder and renamed into place.
- * Errors (no CasePath, a point count or positions that do not match the case, an existing target
- * without Overwrite, the source itself as target, an unwritable folder) leave the target
- * untouched, are reported in the output window and set the error code.
+ * Errors (no CasePath, a point count or positions that do not match the case, a FileName that is
+ * not a .foam file, an existing target without Overwrite or that is not an OpenFOAM case, the
+ * source itself as target, an unwritable folder) leave the target untouched, are reported in the
+ * output window and by LastError, and set the error code.
  */
 #ifndef vtkOpenFOAMCaseWriter_h
 #define vtkOpenFOAMCaseWriter_h
@@ -52,7 +53,8 @@ public:
   ///@}
 
   ///@{
-  /// Replace an existing target case folder (default off: an existing target is an error).
+  /// Replace an existing target case folder (default off: an existing target is an error). Only
+  /// a folder that is an OpenFOAM case (system/controlDict) is replaced, never any other folder.
   vtkSetMacro(Overwrite, vtkTypeBool);
   vtkGetMacro(Overwrite, vtkTypeBool);
   vtkBooleanMacro(Overwrite, vtkTypeBool);
@@ -69,6 +71,9 @@ public:
   vtkBooleanMacro(LinkUnchangedFiles, vtkTypeBool);
   ///@}
 
+  /// Why the last write wrote nothing, or "" when it wrote the case (the error code is then 0).
+  vtkGetCharFromStdStringMacro(LastError);
+
 protected:
   vtkOpenFOAMCaseWriter() = default;
   ~vtkOpenFOAMCaseWriter() override = default;
@@ -80,6 +85,7 @@ protected:
   std::string SourceCase;
   vtkTypeBool Overwrite = 0;
   vtkTypeBool LinkUnchangedFiles = 0;
+  std::string LastError;
 
 private:
   vtkOpenFOAMCaseWriter(const vtkOpenFOAMCaseWriter&) = delete;

@@ -13,6 +13,16 @@ import sys
 _ROW = 8   # name, kind, axis x, y, z, value, lower, upper: one DesignVariables property row
 
 
+def check_foam_file(foam_file, local=True):
+    """Raises ValueError unless foam_file names a case's .foam file (local: and the case is on
+    this machine, with a constant/ folder)."""
+    if os.path.splitext(foam_file)[1] not in ('.foam', '.OpenFOAM'):
+        raise ValueError(f"{foam_file} is not a .foam file: name the case's .foam file, e.g. "
+                         f"{os.path.join(foam_file, 'case.foam')} (an empty file of that name in the case folder)")
+    if local and not os.path.isdir(os.path.join(os.path.dirname(os.path.abspath(foam_file)), 'constant')):
+        raise ValueError(f"{foam_file}: its folder is not an OpenFOAM case (it has no constant/ folder)")
+
+
 def _load_wrapping(readers=False):
     """The Python wrapping of the plugin's filters (or of its case writer: readers), built beside
     the plugin as mlsdeform_wrapping: it makes the MLS Deform VTK object's sensitivity methods

@@ -3,17 +3,34 @@ reader, make one Constraint Region per role of its patches (by name, pattern or 
 deform the internal mesh and the patches in one MLS Deform, and save the variant case (the plugin's OpenFOAM case writer): mlsdeform.foam, once
 the plugin is loaded (paraview.simple.LoadPlugin(path, remote=False): its proxies join
 paraview.simple)."""
+import os
+
 import paraview.simple as pvs
+from paraview import servermanager
 
-from .deformer import disjoint_roles, entries, handle_bodies, mesh_regions, read_faces_ahead
+from .deformer import _load_wrapping, check_foam_file, disjoint_roles, entries, handle_bodies, mesh_regions, read_faces_ahead
 
 
-def open_case(foam_file, patches, decompose_polyhedra=True):
+def _plugin(name):
+    """paraview.simple's constructor of the plugin's proxy name, also when LoadPlugin put the
+    constructors into the caller's namespace (ns=globals()) instead of paraview.simple's."""
+    if not hasattr(pvs, name):
+        pvs._add_functions(vars(pvs))
+    if not hasattr(pvs, name):
+        raise RuntimeError("mlsdeform.foam makes ParaView proxies: LoadPlugin('.../MLSDeform.so', remote=False) first "
+                           "(without ParaView's server manager, use mlsdeform.vtkfoam)")
+    return getattr(pvs, name)
+
+
+def open_case(foam_file, patches, decompose_polyhedra=False):
     """The case's internal mesh and the named patches (names, patterns, patch groups:
     mlsdeform.deformer.mesh_regions), as ParaView's OpenFOAM reader reads them, updated; in a
     builtin session (the reader in this process) a background thread meanwhile reads the case's
-    faces for MLS Deform's mesh quality (mlsdeform.deformer.read_faces_ahead). Raises ValueError
-    naming a patch the case does not have."""
+    faces for MLS Deform's mesh quality (mlsdeform.deformer.read_faces_ahead). Polyhedra are
+    kept as OpenFOAM's cells (decompose_polyhedra False): the mesh quality is then checkMesh's.
+    Raises ValueError naming a patch the case does not have, or a file that is no case's."""
+    remote = servermanager.ActiveConnection is not None and servermanager.ActiveConnection.IsRemote()
+    check_foam_file(foam_file, local=not remote)
     reader = pvs.OpenFOAMReader(FileName=foam_file)
     reader.UpdatePipelineInformation()
     try:
@@ -32,7 +49,7 @@ def patch_region(reader, patches, role, **properties):
     """A Constraint Region of the given role holding every point of the named patches (names,
     patterns, patch groups: its Blocks); a Handle moves them as one body, a Slip region keeps each
     on its plane."""
-    return pvs.ConstraintRegion(Input=reader, Role=role, SelectionMode='Blocks', Blocks=entries(patches), **properties)
+    return _plugin('ConstraintRegion')(Input=reader, Role=role, SelectionMode='Blocks', Blocks=entries(patches), **properties)
 
 
 def layer_region(reader, patch, layers):
@@ -40,7 +57,7 @@ def layer_region(reader, patch, layers):
     (its boundary-layer cells, paper section 7.3)."""
     internal = pvs.ExtractBlock(Input=reader, Selectors=['/Root/internalMesh'])
     wall = pvs.ExtractBlock(Input=reader, Selectors=['/Root/boundary/' + patch])
-    return pvs.ConstraintRegion(Input=internal, Surface=wall, Role='Rigid', SelectionMode='CellLayers',
+    return _plugin('ConstraintRegion')(Input=internal, Surface=wall, Role='Rigid', SelectionMode='CellLayers',
                                 NumberOfLayers=layers, CellSets=1)
 
 
@@ -62,7 +79,7 @@ def morph(reader, handle, translation, fixed=(), slip=(), rigid_layers=0, **sett
     regions = [region for _, region in labelled]
     if rigid_layers > 0:
         regions += [layer_region(reader, p, rigid_layers) for patches in bodies.values() for p in entries(patches)]
-    deformed = pvs.MLSDeform(Input=reader, Regions=regions, **settings)
+    deformed = _plugin('MLSDeform')(Input=reader, Regions=regions, **settings)
     deformed.UpdatePipeline()
     error = deformed.GetDataInformation().GetFieldDataInformation().GetArrayInformation('DeformationError')
     if error is not None:
@@ -72,9 +89,13 @@ def morph(reader, handle, translation, fixed=(), slip=(), rigid_layers=0, **sett
 
 def save_variant(deformed, foam_file, overwrite=False, link=False):
     """Writes the variant case whose .foam file is foam_file (link: its own points only, links to
-    the source's unchanged files); raises RuntimeError if nothing was written (the writer's
-    message is in the output window)."""
-    import os
-    pvs.SaveData(foam_file, proxy=deformed, Overwrite=1 if overwrite else 0, LinkUnchangedFiles=1 if link else 0)
-    if not os.path.exists(foam_file):
-        raise RuntimeError('the variant case %s was not written' % os.path.dirname(foam_file))
+    the source's unchanged files); raises ValueError for a name that is not a .foam file and
+    RuntimeError with the writer's reason if nothing was written."""
+    check_foam_file(foam_file, local=False)
+    _load_wrapping(readers=True)  # the writer's VTK object as its own class (its LastError)
+    writer = pvs.CreateWriter(foam_file, proxy=deformed, Overwrite=1 if overwrite else 0, LinkUnchangedFiles=1 if link else 0)
+    writer.UpdatePipeline()
+    local = writer.GetClientSideObject()
+    reason = local.GetLastError() if local is not None else ''
+    if reason or not os.path.exists(foam_file):
+        raise RuntimeError(reason or f"the variant case {os.path.dirname(foam_file)} was not written")

@@ -13,18 +13,17 @@ starts faster than paraview.simple (221 MB before a script's first line in pvpyt
 """
 import os
 
-from .deformer import _load_wrapping, disjoint_roles, entries, handle_bodies, mesh_regions, read_faces_ahead
+from .deformer import _load_wrapping, check_foam_file, disjoint_roles, entries, handle_bodies, mesh_regions, read_faces_ahead
 
 
-def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
+def configured_reader(foam_file, patches, decompose_polyhedra=False, fields=()):
     """VTK's OpenFOAM reader of the case's internal mesh, the named patches (names, patterns,
     patch groups: mesh_regions) and the named fields only (point fields as point data, face fields
     as the patches' cell data), with ParaView's Skip Zero Time, no mesh cache (a variant has no
     time steps of its own) and no cell-to-point interpolation, not yet updated. Raises ValueError
     naming a patch the case does not have."""
     from vtkmodules.vtkIOGeometry import vtkOpenFOAMReader
-    if not os.path.isfile(foam_file):
-        raise ValueError(f"the case file {foam_file} does not exist")
+    check_foam_file(foam_file)
     reader = vtkOpenFOAMReader()
     reader.SetFileName(foam_file)
     reader.SetSkipZeroTime(1)
@@ -46,7 +45,7 @@ def configured_reader(foam_file, patches, decompose_polyhedra=True, fields=()):
     return reader
 
 
-def open_case(foam_file, patches, decompose_polyhedra=True):
+def open_case(foam_file, patches, decompose_polyhedra=False):
     """The case's internal mesh and the named patches (no fields), read by VTK's OpenFOAM reader
     (configured_reader), updated; meanwhile a background thread reads the case's faces for MLS
     Deform's mesh quality (read_faces_ahead). Raises ValueError naming a
@@ -128,4 +127,4 @@ def save_variant(deform, foam_file, overwrite=False, link=False):
     writer.SetLinkUnchangedFiles(1 if link else 0)
     writer.Write()
     if writer.GetErrorCode() != 0 or not os.path.exists(foam_file):
-        raise RuntimeError('the variant case %s was not written' % os.path.dirname(foam_file))
+        raise RuntimeError(writer.GetLastError() or 'the variant case %s was not written' % os.path.dirname(foam_file))

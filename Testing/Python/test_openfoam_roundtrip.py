@@ -143,6 +143,26 @@ print(example.stdout.strip())
 check(example.returncode == 0 and 'Mesh OK' in example.stdout and 'simpleFoam: ' in example.stdout,
       'morph_case.py with rigid boundary-layer cells: checkMesh and simpleFoam run on the variant')
 
+# A newcomer's mistakes say what to change: a variant written over its source raises the writer's
+# reason (not silence), a folder named instead of a .foam file is refused before anything is
+# written; and the plugin loaded with ns=globals(), as paraview.simple's documentation says, still
+# gives mlsdeform.foam its filters
+reader = openfoam_variant.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip)
+deformed = openfoam_variant.morph(reader, handle, motion, fixed, slip)
+for target, expected in ((os.path.join(case, 'case.foam'), 'is the source case itself'), (os.path.join(work, 'a-folder'), 'is not a .foam file')):
+    try:
+        openfoam_variant.save_variant(deformed, target, overwrite=True)
+        raised = ''
+    except (RuntimeError, ValueError) as error:
+        raised = str(error)
+    check(expected in raised and not os.path.exists(os.path.join(work, 'a-folder')), 'save_variant to %s raises: %s' % (target, raised))
+script = ("from paraview.simple import *\nLoadPlugin(%r, remote=False, ns=globals())\nfrom mlsdeform import foam\n"
+          "reader = foam.open_case(%r, ['body', 'inlet', 'outlet'])\nfoam.morph(reader, ['body'], (0.01, 0, 0), ['inlet', 'outlet'])\n"
+          "print('morphed')\n" % (plugin, os.path.join(case, 'case.foam')))
+loaded = subprocess.run([shutil.which('pvpython') or sys.executable, '-c', script], capture_output=True, text=True)
+check(loaded.returncode == 0 and 'morphed' in loaded.stdout, 'LoadPlugin(ns=globals()) then mlsdeform.foam.morph works (%s)' %
+      loaded.stderr.strip()[-300:])
+
 if failures:
     print('%d check(s) failed' % len(failures))
     sys.exit(1)

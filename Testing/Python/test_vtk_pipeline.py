@@ -22,9 +22,9 @@ from checks import check, finish, raises  # noqa: E402
 
 case = os.path.join(work, 'case')
 subprocess.run(['bash', os.path.join(examples, 'make-case.sh'), case], check=True)
-# Decompose polyhedra on: ParaView's default, as morph_case.py reads the case
+# open_case's default (polyhedra kept as OpenFOAM's cells), as morph_case.py reads the case
 handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']
-reader = vtkfoam.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip, decompose_polyhedra=True)
+reader = vtkfoam.open_case(os.path.join(case, 'case.foam'), handle + fixed + slip)
 deform = vtkfoam.morph(reader, handle, (0.05, 0, 0.02), fixed, slip)
 vtkfoam.save_variant(deform, os.path.join(work, 'vtk-variant', 'case.foam'), link=True)
 check('paraview.servermanager' not in sys.modules and 'paraview.simple' not in sys.modules,
@@ -47,9 +47,23 @@ try:
     vtkfoam.save_variant(deform, os.path.join(work, 'no-such-folder', 'variant', 'case.foam'))
     check(False, 'a variant in a folder that does not exist raises RuntimeError')
 except RuntimeError as e:
-    check('was not written' in str(e) and not os.path.exists(os.path.join(work, 'no-such-folder')),
+    check('Nothing was written' in str(e) and not os.path.exists(os.path.join(work, 'no-such-folder')),
           'a variant in a folder that does not exist is refused (%s), and nothing is written' % e)
 raises(lambda: vtkfoam.open_case(os.path.join(case, 'case.foam'), ['hull']), 'has no patch or patch group hull', 'a patch the case lacks')
+raises(lambda: vtkfoam.open_case(case, ['body']), 'is not a .foam file: name the case\'s .foam file', 'the case folder for its .foam file')
+# a newcomer's folder named instead of a .foam file, with overwrite: its folder (the would-be case's
+# parent) is not replaced; nor is an existing folder that is no OpenFOAM case
+mine = os.path.join(work, 'mine')
+os.makedirs(os.path.join(mine, 'old'), exist_ok=True)
+with open(os.path.join(mine, 'precious.txt'), 'w') as f:
+    f.write('kept')
+for target, message in ((os.path.join(mine, 'variantB'), 'is not a .foam file'), (os.path.join(mine, 'case.foam'), 'is not an OpenFOAM case')):
+    try:
+        vtkfoam.save_variant(deform, target, overwrite=True)
+        check(False, 'a variant to %s raises RuntimeError' % target)
+    except RuntimeError as e:
+        check(message in str(e) and sorted(os.listdir(mine)) == ['old', 'precious.txt'],
+              'a variant to %s with overwrite is refused, the folder kept (%s)' % (target, e))
 
 # design variables on the VTK filter: written to the region, read back by a new DesignVariables,
 # exact derivatives against central differences (as test_design_variables.py: translation acts
