@@ -17,6 +17,9 @@
 #include <vtkPointSet.h>
 #include <vtkSmartPointer.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -24,6 +27,49 @@
 
 namespace mlsvtk
 {
+namespace
+{
+// The edit distance (Levenshtein) of a and b, letters compared without case.
+std::size_t editDistance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+  {
+    row[j] = j;
+  }
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t above = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1) });
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The known name closest to a mistyped one: within a third of its length (at least 1 edit), else "".
+std::string closestName(const std::string& name, const std::set<std::string>& known)
+{
+  std::string best;
+  std::size_t bestDistance = std::max<std::size_t>(1, name.size() / 3) + 1;
+  for (const std::string& candidate : known)
+  {
+    const std::size_t distance = editDistance(name, candidate);
+    if (distance < bestDistance)
+    {
+      best = candidate;
+      bestDistance = distance;
+    }
+  }
+  return best;
+}
+} // namespace
+
 namespace
 {
 // An entry's kind: its prefix ("patch/", "group/") restricts what it may name.
@@ -267,21 +313,26 @@ BlockSelection selectBlocks(vtkDataObject* input, const std::vector<vtkPointSet*
     {
       for (int a = 0; a < arrays->GetNumberOfArrays(); ++a)
       {
-        if (arrays->GetArray(a) && integral(arrays->GetArray(a)) && arrays->GetArrayName(a))
+        const char* name = arrays->GetArrayName(a);
+        // the ids a mesh file's nodes and elements carry are no sets
+        if (arrays->GetArray(a) && integral(arrays->GetArray(a)) && name && std::strcmp(name, "NodeId") != 0 &&
+          std::strcmp(name, "ElementId") != 0)
         {
-          known.insert(arrays->GetArrayName(a));
+          known.insert(name);
         }
       }
     }
   }
 
-  // an entry that names nothing on any process is a mistake the user is told of
+  // an entry that names nothing on any process is a mistake the user is told of (with the name
+  // it most likely means)
   std::string unmatched;
   for (std::size_t e = 0; e < entries.size(); ++e)
   {
     if (!group.any(matched[e] != 0))
     {
-      unmatched += (unmatched.empty() ? "'" : ", '") + entries[e] + "'";
+      const std::string meant = closestName(entries[e], known);
+      unmatched += (unmatched.empty() ? "'" : ", '") + entries[e] + "'" + (meant.empty() ? "" : " (did you mean '" + meant + "'?)");
     }
   }
   if (!unmatched.empty())
@@ -291,7 +342,7 @@ BlockSelection selectBlocks(vtkDataObject* input, const std::vector<vtkPointSet*
     {
       names += (names.empty() ? "" : ", ") + name;
     }
-    throw mlsdeform::InvalidInputException("Blocks " + unmatched + " name no block, patch group or set of the input (it has: " +
+    throw mlsdeform::InvalidInputException("Blocks or Sets " + unmatched + " name no block, patch, patch group or set of the input (it has: " +
       (names.empty() ? std::string("none") : names) + (groupsUnread.empty() ? "" : "; no patch groups: " + groupsUnread) + ")");
   }
   return out;

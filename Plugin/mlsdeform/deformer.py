@@ -128,6 +128,9 @@ def _saved_as_mesh_file(algorithm, path, overwrite):
 
 
 def _checked(algorithm):
+    if algorithm.GetClassName() not in ('vtkMLSDeformFilter', 'vtkShellDeformFilter', 'vtkSubspaceDeformFilter'):
+        raise RuntimeError(f"design variables go on an MLS Deform filter, not on a {algorithm.GetClassName()} (give "
+                           f"DesignVariables the MLS Deform, e.g. the one mlsdeform.foam.morph returns)")
     if not hasattr(algorithm, "ComputeObjectiveSensitivity"):
         raise RuntimeError("the MLS Deform filter's VTK object was handed to Python before mlsdeform was imported, as a "
                            "plain VTK algorithm: import mlsdeform right after LoadPlugin (or before making the filter)")

@@ -73,6 +73,10 @@ class DesignVariables:
             raise ValueError("give exactly one of translate=, rotate= or scale=")
         kind, axes = given[0]
         regions = list(regions) if isinstance(regions, (list, tuple)) else [regions]
+        named = [r for r in regions if isinstance(r, str)]
+        if named:
+            raise ValueError(f"design variable {name!r}: its regions are MLS Deform's Handle regions (e.g. deformed.Regions[0]), "
+                             f"not patch or set names ({', '.join(map(repr, named))})")
         if not regions:
             raise ValueError("a design variable needs at least one Handle region")
         axes = np.asarray(axes, dtype=float)

@@ -24,6 +24,8 @@ def source_of(algorithm):
 def open_mesh(path):
     """The mesh file read (nodes, elements, every set as a 0/1 array), updated. Raises ValueError
     with the reader's message (file and line) when it cannot be read."""
+    if os.path.isdir(path):
+        raise ValueError(f"{path} is a folder: name the mesh file in it (e.g. its .inp deck)")
     if not os.path.isfile(path):
         raise ValueError(f"the mesh file {path} does not exist")
     reader = _load_wrapping(readers=True).vtkMeshFileReader()

@@ -154,10 +154,12 @@ TEST(NamesPatternsSelectorsAndGroups)
   region->SetSelectionMode(vtkConstraintRegion::Blocks);
   region->AddBlock("inlet");
   region->AddBlock("hul");
+  region->AddBlock("Inlett"); // a typo: the name it most likely means is said
   region->Update();
   CHECK(region->GetErrorCode() == vtkErrorCode::UserError && selected(region) == 0);
   CHECK(messages->errorContains("'hul'") && messages->errorContains("body_left") && messages->errorContains("group/bodyGroup"));
-  CHECK(!messages->errorContains("'inlet'"));
+  CHECK(messages->errorContains("'Inlett' (did you mean 'inlet'?)") && !messages->errorContains("'hul' (did you mean"));
+  CHECK(!messages->errorContains("Sets 'inlet'") && !messages->errorContains(", 'inlet'")); // inlet names a patch
   // patch/ names blocks only, group/ groups only
   for (const char* wrong : { "patch/bodyGroup", "group/inlet" })
   {

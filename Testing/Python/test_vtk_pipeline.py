@@ -51,6 +51,15 @@ except RuntimeError as e:
           'a variant in a folder that does not exist is refused (%s), and nothing is written' % e)
 raises(lambda: vtkfoam.open_case(os.path.join(case, 'case.foam'), ['hull']), 'has no patch or patch group hull', 'a patch the case lacks')
 raises(lambda: vtkfoam.open_case(case, ['body']), 'is not a .foam file: name the case\'s .foam file', 'the case folder for its .foam file')
+from mlsdeform import meshfile  # noqa: E402
+raises(lambda: meshfile.open_mesh(case), 'is a folder: name the mesh file in it', 'a folder for a mesh file')
+try:
+    mlsdeform.DesignVariables(reader)
+    check(False, 'design variables on the reader raise RuntimeError')
+except RuntimeError as e:
+    check('design variables go on an MLS Deform filter, not on a vtkOpenFOAMReader' in str(e), 'design variables on the reader: %s' % e)
+raises(lambda: mlsdeform.DesignVariables(deform).addHandleDV('dx', 'body', translate=[1, 0, 0]), 'not patch or set names',
+       'a patch name for a Handle region')
 # a newcomer's folder named instead of a .foam file, with overwrite: its folder (the would-be case's
 # parent) is not replaced; nor is an existing folder that is no OpenFOAM case
 mine = os.path.join(work, 'mine')

@@ -172,7 +172,8 @@ void SpaceDeformation::factorize(const EnergyWeights& requested)
       throw SolverException("the deformation system (eq. 14) is singular (reciprocal condition " +
         std::to_string(ReciprocalCondition) +
         "): the handle and fixed regions and the energies do not determine every MLS coefficient; "
-        "use a positive StretchWeight or BendWeight, or more integration points");
+        "use a positive StretchWeight or BendWeight, more integration points, or fewer samples (NumberOfSamples) than the "
+        "mesh's points can hold");
     }
     Factors.push_back(std::move(factor));
   }
