@@ -232,6 +232,9 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     if os.path.exists(record):
         with open(record) as f:
             earlier = json.load(f)
+        if 'deformation' not in earlier:
+            raise ValueError(f"{record} is not a design of experiments' record (a design file for mlsdeform-doe.py?): write the "
+                             f"variants to another folder, e.g. {os.path.join(folder, 'variants')}")
         differs = sorted(key for key in set(earlier) | set(design) if earlier.get(key) != json.loads(json.dumps(design)).get(key))
         if differs:
             raise ValueError(f"{folder} holds another design (its design.json differs in {', '.join(differs)}): choose "

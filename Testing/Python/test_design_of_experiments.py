@@ -102,6 +102,12 @@ check(os.path.getmtime(report[0]['path']) == first_time and again[0]['seconds'] 
 check([r['path'] for r in again] == [r['path'] for r in report], 'the resumed report lists the same variants')
 raises(lambda: mlsdeform.designOfExperiments(dvs, variants, samples=5, seed=1), 'holds another design',
        'another design in the same folder')
+own = os.path.join(work, 'own-design')  # the folder of the user's own design file for mlsdeform-doe.py
+os.makedirs(own, exist_ok=True)
+with open(os.path.join(own, 'design.json'), 'w') as f:
+    f.write('{"case": "case/case.foam", "handle": ["body"], "variables": []}')
+raises(lambda: mlsdeform.designOfExperiments(dvs, own, samples=2), "is not a design of experiments' record",
+       'variants into the folder of a design file')
 
 # the thresholds: a variant over them is reported and not written, unless asked
 strict = mlsdeform.designOfExperiments(dvs, os.path.join(work, 'strict'), samples=2, seed=1,
