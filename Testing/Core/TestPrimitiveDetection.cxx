@@ -7,6 +7,8 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 
 using namespace mlsdeform;
@@ -293,27 +295,38 @@ TEST(NoisyPartIsSegmented)
 // the noise and the detection have their own seeds.
 namespace
 {
+// The share of each generated primitive's faces that its matched detected primitive (of its
+// type, rightFraction) holds.
+std::vector<double> wholeShares(const Part& part, const Detection& d)
+{
+  std::map<int, int> match;
+  rightFraction(part, d.found, match);
+  const std::vector<int> assigned = assignedPrimitives(part, d.found);
+  std::vector<long> faces(part.primitives.size(), 0), held(part.primitives.size(), 0);
+  for (std::size_t f = 0; f < part.faces.size(); ++f)
+  {
+    const int truth = part.truth[f];
+    ++faces[truth];
+    held[truth] += match.count(truth) && assigned[f] == match[truth];
+  }
+  std::vector<double> shares;
+  for (std::size_t truth = 0; truth < part.primitives.size(); ++truth)
+    shares.push_back(static_cast<double>(held[truth]) / static_cast<double>(faces[truth]));
+  return shares;
+}
+
 void checkWholeWithNoise(double level, double legs = 0.04, unsigned noiseSeed = 1, std::uint64_t detectSeed = 0)
 {
   Part part = separatePrimitives(legs);
   addNoise(part, level * part.diagonal() / std::sqrt(3.0), noiseSeed);
   const Detection d = detect(part, detectSeed);
   checkQuality(part, d);
-  std::map<int, int> match;
-  rightFraction(part, d.found, match);
-  const std::vector<int> assigned = assignedPrimitives(part, d.found);
+  const std::vector<double> shares = wholeShares(part, d);
   for (std::size_t truth = 0; truth < part.primitives.size(); ++truth)
   {
-    long faces = 0, held = 0;
-    for (std::size_t f = 0; f < part.faces.size(); ++f)
-      if (part.truth[f] == static_cast<int>(truth))
-      {
-        ++faces;
-        held += match.count(static_cast<int>(truth)) && assigned[f] == match[static_cast<int>(truth)];
-      }
-    const double share = static_cast<double>(held) / static_cast<double>(faces);
-    std::printf("  %-8s %5ld faces, %.2f%% in one primitive\n", primitiveTypeName(part.primitives[truth].type), faces, 100 * share);
-    CHECK(share >= 0.95);
+    std::printf("  %-8s %5ld faces, %.2f%% in one primitive\n", primitiveTypeName(part.primitives[truth].type),
+      static_cast<long>(std::count(part.truth.begin(), part.truth.end(), static_cast<int>(truth))), 100 * shares[truth]);
+    CHECK(shares[truth] >= 0.95);
   }
 }
 }
@@ -348,6 +361,75 @@ TEST(CoarseSeparatePrimitivesAreWhole)
   checkWholeWithNoise(0.0002, 0.1, 4);
   // a box face whose noise a cone of a far apex fits closer than the plane
   checkWholeWithNoise(0.001, 0.1, 4, 3);
+}
+
+// Issue 57: primitives meshed the usual way (usualPrimitives: a UV sphere with fans at its
+// poles, a cone with a fan at its apex, caps with fans at their centers) come out whole at every
+// noise level from 0 to 0.3% of the diagonal in steps of 0.025%: each one detected primitive of
+// its type holding >= 95% of its faces (the issue's bound). The fans' thin triangles tilt with
+// the noise by up to 90 degrees; the other faces, of legs h, by about 2 sigma / h RMS (sigma the
+// noise per coordinate). Legs are at least 5 sigma at 0.3% (22 degrees RMS: 45% of the faces
+// beyond the normal threshold of 20): 7.3 sigma for legs 0.1 on a diagonal of 7.9, 5.1 for legs
+// 0.08 turned (diagonal 9.1), 6.5 and 7.8 for legs 0.1 and 0.12 on 8.9. Every level has its own
+// noise and detection seeds.
+namespace
+{
+Part turned(Part part, double angle, const Vec3& axis)
+{
+  rotate(part, Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix());
+  return part;
+}
+
+Part subdivided(Part part)
+{
+  subdivide(part);
+  return part;
+}
+
+// Every primitive one detected primitive holding >= 95% of its faces at every level (the least
+// share of each type printed).
+void checkWholeAtEveryLevel(const char* name, const Part& tessellation, unsigned seed)
+{
+  std::printf("%s: %zu faces\n  level    Plane Cylinder   Sphere     Cone\n", name, tessellation.faces.size());
+  for (int k = 0; k <= 12; ++k)
+  {
+    const double level = 0.00025 * k;
+    Part part = tessellation;
+    addNoise(part, level * part.diagonal() / std::sqrt(3.0), seed + k);
+    const Detection d = detect(part, seed + k);
+    const std::vector<double> shares = wholeShares(part, d);
+    std::array<double, 4> least{ 1, 1, 1, 1 };
+    for (std::size_t truth = 0; truth < shares.size(); ++truth)
+    {
+      double& l = least[static_cast<int>(part.primitives[truth].type)];
+      l = std::min(l, shares[truth]);
+      CHECK(shares[truth] >= 0.95);
+    }
+    std::printf("%6.3f%% %7.2f%% %7.2f%% %7.2f%% %7.2f%%\n", 100 * level, 100 * least[0], 100 * least[1], 100 * least[2], 100 * least[3]);
+  }
+}
+}
+
+TEST(UsualTessellationIsWholeAtEveryNoiseLevel)
+{
+  checkWholeAtEveryLevel("open cylinder and cone, legs 0.1", usualPrimitives(0.1, false), 100);
+}
+
+TEST(TurnedTessellationWithCapsIsWholeAtEveryNoiseLevel)
+{
+  checkWholeAtEveryLevel("caps, legs 0.08, turned", turned(usualPrimitives(0.08, true), 0.9, Vec3(1, 2, 3)), 200);
+}
+
+TEST(SubdividedTessellationIsWholeAtEveryNoiseLevel)
+{
+  // midpoint subdivision: each triangle of legs 0.2 in four, a fan's in a smaller fan and a ring
+  checkWholeAtEveryLevel(
+    "caps, legs 0.2 subdivided once, turned", turned(subdivided(usualPrimitives(0.2, true)), 2.2, Vec3(-2, 1, 1)), 300);
+}
+
+TEST(CoarserTessellationIsWholeAtEveryNoiseLevel)
+{
+  checkWholeAtEveryLevel("caps, legs 0.12, turned", turned(usualPrimitives(0.12, true), 2.2, Vec3(-2, 1, 1)), 400);
 }
 
 TEST(SamplesWithinTheToleranceJoinTheirPrimitive)

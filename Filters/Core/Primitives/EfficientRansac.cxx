@@ -4,6 +4,8 @@
 #include "Common/KeySort.h"
 #include "Common/ZOrder.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -230,6 +232,34 @@ std::vector<int> largestComponent(const PointList& points, const std::vector<int
     }
   }
   return largestSamples;
+}
+
+// Kasa's algebraic sphere fit ("A circle fitting procedure and its error analysis", IEEE
+// Transactions on Instrumentation and Measurement 25(1), 1976): |x|^2 = 2 c . x + d by linear
+// least squares (about the centroid), radius sqrt(d + |c|^2). A start for the geometric fit.
+Primitive algebraicSphere(const PointList& points, const std::vector<int>& subset)
+{
+  Vec3 mean = Vec3::Zero();
+  for (int i : subset)
+  {
+    mean += points[i];
+  }
+  mean /= static_cast<double>(subset.size());
+  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d b = Eigen::Vector4d::Zero();
+  for (int i : subset)
+  {
+    const Vec3 x = points[i] - mean;
+    const Eigen::Vector4d row(2 * x.x(), 2 * x.y(), 2 * x.z(), 1);
+    A += row * row.transpose();
+    b += row * x.squaredNorm();
+  }
+  const Eigen::Vector4d solution = A.ldlt().solve(b);
+  Primitive sphere;
+  sphere.type = PrimitiveType::Sphere;
+  sphere.center = mean + solution.head<3>();
+  sphere.radius = std::sqrt(std::max(0.0, solution[3] + solution.head<3>().squaredNorm()));
+  return sphere;
 }
 
 struct Candidate
@@ -604,32 +634,67 @@ private:
   }
 
   // Occam's razor by Schwarz's Bayesian information criterion ("Estimating the dimension of a
-  // model", Annals of Statistics 6(2), 1978) for nested models on the n members of a curved
+  // model", Annals of Statistics 6(2), 1978) for nested models on the n observations of a curved
   // primitive of k parameters (parameterCount): the least-squares plane explains them as well
   // unless n log(RSS_plane / RSS_curved) > (k - 3) log n (a cone of a far apex or a wide cylinder
   // lies within the tolerance of a noisy flat face and fits its noise a little closer). A
   // residual sum counts at least n (floor / jump)^2: below that deviation the forward search
   // tells no fit from another (exact samples of a flat face lie as exactly on a far cone).
-  // The criterion assumes independent residuals, but face barycenters share their vertices'
-  // noise: a cone with its apex four part diagonals away fits a noisy box face with 11% less
-  // RSS, though its surface bends there by 0.4 times the floor. A bend below the floor tells
-  // no more than a residual does, so the plane explains a curved primitive whose sagitta over
-  // its members is less than the floor.
+  // The criterion assumes independent residuals (observations: with faces, the vertices of the
+  // members' faces, both models fit to them). Its penalty also assumes a regular model, but a
+  // plane is the limit of a cone or cylinder whose apex or axis recedes anywhere, and the best of
+  // those bends fits noise closer than k - 3 parameters would: a cone of 70 degrees fits the
+  // vertices of a noisy box face with 9% less RSS, beyond the penalty, bending by 1.2 floors over
+  // it. A bend within the band the forward search admits around a fit (admissionDistance of the
+  // members' RMS distance: at least the floor, jump times the noise) tells no more than a
+  // residual does, so the plane explains a curved primitive whose sagitta over its members is
+  // less than that band.
   bool planeExplains(const Primitive& curved, const std::vector<int>& members) const
   {
     if (members.size() < 3)
     {
       return false; // no plane to compare with
     }
-    if (sagitta(curved, members) < Refinement.floor)
+    if (sagitta(curved, members) < admissionDistance(Refinement, distanceStatistics(curved, Points, members).rms))
     {
       return true;
     }
     Primitive plane;
     plane.type = PrimitiveType::Plane;
-    plane = fitLeastSquares(plane, Points, members);
-    const double n = static_cast<double>(members.size());
-    return simplerExplains(n, squaredSum(plane, members), 3, squaredSum(curved, members), parameterCount(curved.type));
+    const std::vector<int> observed = observations(members);
+    return simplerExplains(static_cast<double>(observed.size()), fitSquaredSum(plane, observed), 3, fitSquaredSum(curved, observed),
+      parameterCount(curved.type));
+  }
+
+  // The observations of the members for Schwarz's criterion (planeExplains), indices into
+  // observedPoints(): the vertices of their faces, each once, if faces are given, else the
+  // samples. The criterion assumes independent residuals. Face barycenters are not: each averages
+  // the noise of its vertices, which it shares with its neighbours, and a fan's faces all share
+  // the noise of its center, which a flat cone with its apex there fits (a cap's fan: 40% less RSS
+  // over its barycenters).
+  std::vector<int> observations(const std::vector<int>& members) const
+  {
+    if (!Mesh)
+    {
+      return members;
+    }
+    std::vector<int> observed;
+    for (int i : members)
+    {
+      observed.insert(observed.end(), Mesh->faces[i].begin(), Mesh->faces[i].end());
+    }
+    std::sort(observed.begin(), observed.end());
+    observed.erase(std::unique(observed.begin(), observed.end()), observed.end());
+    return observed;
+  }
+
+  const PointList& observedPoints() const { return Mesh ? Mesh->vertices : Points; }
+
+  // The squared sum of the distances of the observations from the least-squares fit to them,
+  // started from shape.
+  double fitSquaredSum(const Primitive& shape, const std::vector<int>& observed) const
+  {
+    return squaredSum(fitLeastSquares(shape, observedPoints(), observed), observedPoints(), observed);
   }
 
   // The sagitta of a curved primitive over samples (extent^2 / (8 radius) for an arc): the width,
@@ -660,9 +725,9 @@ private:
     return highest - lowest;
   }
 
-  double squaredSum(const Primitive& shape, const std::vector<int>& samples) const
+  double squaredSum(const Primitive& shape, const PointList& points, const std::vector<int>& subset) const
   {
-    return static_cast<double>(samples.size()) * std::pow(distanceStatistics(shape, Points, samples).rms, 2);
+    return static_cast<double>(subset.size()) * std::pow(distanceStatistics(shape, points, subset).rms, 2);
   }
 
   // The least squared sum of distances that n samples count with: n (floor / jump)^2, the
@@ -688,7 +753,7 @@ private:
   long mostPlanes(const DetectedPrimitive& curved) const
   {
     const double n = static_cast<double>(curved.members.size()), least = leastSquaredSum(n);
-    const double ratio = std::max(least, squaredSum(curved.shape, curved.members)) / least;
+    const double ratio = std::max(least, squaredSum(curved.shape, Points, curved.members)) / least;
     const double most = (parameterCount(curved.shape.type) + n * std::log(ratio) / std::log(n)) / 3;
     return std::max(1L, static_cast<long>(std::min(most, n)));
   }
@@ -741,7 +806,7 @@ private:
         for (const DetectedPrimitive& plane : planes)
         {
           held += static_cast<long>(plane.members.size());
-          planesSum += squaredSum(plane.shape, plane.members);
+          planesSum += squaredSum(plane.shape, Points, plane.members);
         }
         const long n = static_cast<long>(primitive.members.size());
         if (!planes.empty() && n - held < P.minimumSupport)
@@ -763,9 +828,9 @@ private:
               rest.push_back(i);
             }
           }
-          planesSum += squaredSum(primitive.shape, rest);
+          planesSum += squaredSum(primitive.shape, Points, rest);
           if (simplerExplains(static_cast<double>(n), planesSum, 3 * static_cast<int>(planes.size()),
-                squaredSum(primitive.shape, primitive.members), parameterCount(primitive.shape.type)))
+                squaredSum(primitive.shape, Points, primitive.members), parameterCount(primitive.shape.type)))
           {
             std::move(planes.begin(), planes.end(), std::back_inserter(split));
             continue;
@@ -804,9 +869,11 @@ private:
     Candidates = std::move(kept);
   }
 
-  bool extract(const Candidate& candidate, DetectedPrimitive& primitive, std::vector<int>& component) const
+  // Refits the shape to its compatible component while that grows (twice at most: an inexact
+  // candidate from noisy normals grows onto its surface), then the forward search refines it on
+  // the component. False when the component is smaller than the minimum support.
+  bool grow(Primitive shape, std::vector<int>& component, ForwardSearchResult& refined) const
   {
-    Primitive shape = candidate.shape;
     component = compatibleComponent(shape);
     for (int pass = 0; pass < 2 && static_cast<int>(component.size()) >= P.minimumSupport; ++pass)
     {
@@ -827,12 +894,82 @@ private:
     {
       return false;
     }
-    ForwardSearchResult refined = forwardSearch(shape, Points, Normals, component, Refinement);
-    if (refined.shape.type != PrimitiveType::Plane && P.planes && planeExplains(refined.shape, refined.members))
+    refined = forwardSearch(shape, Points, Normals, component, Refinement);
+    return true;
+  }
+
+  // The curved primitives of fewer parameters than curved fitted to its members by least
+  // squares: a sphere (started from Kasa's algebraic fit) for a cylinder or a cone, a cylinder
+  // on the cone's axis for a cone. The plausible ones.
+  std::vector<Primitive> simplerCurved(const Primitive& curved, const std::vector<int>& members) const
+  {
+    std::vector<Primitive> simpler;
+    if (P.spheres && parameterCount(PrimitiveType::Sphere) < parameterCount(curved.type))
     {
-      Primitive plane;
-      plane.type = PrimitiveType::Plane;
-      refined = forwardSearch(fitLeastSquares(plane, Points, refined.members), Points, Normals, component, Refinement);
+      simpler.push_back(fitLeastSquares(algebraicSphere(Points, members), Points, members));
+    }
+    if (P.cylinders && curved.type == PrimitiveType::Cone)
+    {
+      Primitive cylinder;
+      cylinder.type = PrimitiveType::Cylinder;
+      cylinder.axis = curved.axis;
+      cylinder.center = curved.center;
+      for (int i : members)
+      {
+        const Vec3 v = Points[i] - curved.center;
+        cylinder.radius += (v - v.dot(curved.axis) * curved.axis).norm() / static_cast<double>(members.size());
+      }
+      simpler.push_back(fitLeastSquares(cylinder, Points, members));
+    }
+    simpler.erase(std::remove_if(simpler.begin(), simpler.end(), [&](const Primitive& s) { return !plausible(s); }), simpler.end());
+    return simpler;
+  }
+
+  bool extract(const Candidate& candidate, DetectedPrimitive& primitive, std::vector<int>& component) const
+  {
+    ForwardSearchResult refined;
+    if (!grow(candidate.shape, component, refined))
+    {
+      return false;
+    }
+    // the simplest primitive that explains the members takes the candidate's place, and so on
+    // (parameters only decrease): the plane that explains them as well (planeExplains), on the
+    // component, or a curved primitive of fewer parameters that fits their observations closer,
+    // which grows anew (a cone drawn on a noisy band of a sphere, when the faces' normals scatter
+    // beyond the normal threshold: the sphere grows over the whole surface). Fewer parameters
+    // and a closer fit make the better model by any criterion. Squared sums below leastSquaredSum
+    // tell no fit from another (the vertices of a band of faces around an axis, one face high,
+    // lie on two circles, through which a sphere passes as exactly as the cone or the cylinder
+    // does), and there the candidate, drawn and grown with its normals, stays.
+    bool simplified = true;
+    while (simplified && refined.shape.type != PrimitiveType::Plane)
+    {
+      simplified = false;
+      if (P.planes && planeExplains(refined.shape, refined.members))
+      {
+        Primitive plane;
+        plane.type = PrimitiveType::Plane;
+        refined = forwardSearch(fitLeastSquares(plane, Points, refined.members), Points, Normals, component, Refinement);
+        simplified = true;
+      }
+      else if (static_cast<int>(refined.members.size()) >= P.minimumSupport)
+      {
+        const std::vector<int> observed = observations(refined.members);
+        const double least = leastSquaredSum(static_cast<double>(observed.size()));
+        const double sum = std::max(least, fitSquaredSum(refined.shape, observed));
+        for (const Primitive& simpler : simplerCurved(refined.shape, refined.members))
+        {
+          ForwardSearchResult regrown;
+          std::vector<int> regrownComponent;
+          if (std::max(least, fitSquaredSum(simpler, observed)) < sum && grow(simpler, regrownComponent, regrown))
+          {
+            refined = std::move(regrown);
+            component = std::move(regrownComponent);
+            simplified = true;
+            break;
+          }
+        }
+      }
     }
     if (static_cast<int>(refined.members.size()) < P.minimumSupport || !plausible(refined.shape))
     {
@@ -861,14 +998,43 @@ private:
     return std::clamp(Refinement.jump * rms, P.normalThreshold, M_PI / 2);
   }
 
+  // The RMS distance of the vertices of a primitive's faces from its surface: the vertex noise
+  // (its component along the normal), and for an exact mesh of a curved surface the offset of the
+  // fit to the face barycenters.
+  double vertexNoise(const DetectedPrimitive& primitive) const
+  {
+    double squared = 0;
+    long count = 0;
+    for (int i : primitive.members)
+    {
+      for (int v : Mesh->faces[i])
+      {
+        squared += std::pow(primitive.shape.distance(Mesh->vertices[v]), 2);
+        ++count;
+      }
+    }
+    return count > 0 ? std::sqrt(squared / static_cast<double>(count)) : 0;
+  }
+
   // The samples a primitive explains (Schnabel et al.'s refitting: the compatible samples of the
   // final fit, gathered again): its members and the samples within its admission distance
   // (ForwardSearch.h) and admission angle, in the connected components of its members. Increasing.
+  // A face whose vertices all lie within the admission distance of the vertex noise (the forward
+  // search's outlier rule on vertexNoise) lies on the surface as far as the noise tells, whatever
+  // its normal: a face not much wider than the noise (a fan's thin triangle at a pole or an apex)
+  // has the noise's normal, up to 90 degrees off; the normal of a face of a neighbouring surface
+  // deviates as much, but its vertices away from the common edge lie off the surface by their
+  // distance from the edge times the sine of the angle between the surfaces.
   std::vector<int> explained(const DetectedPrimitive& primitive) const
   {
     const Primitive& shape = primitive.shape;
     const double reach = admissionDistance(Refinement, primitive.rmsDistance);
     const double cosAngle = std::cos(admissionAngle(primitive));
+    const double vertexReach = Mesh ? admissionDistance(Refinement, vertexNoise(primitive)) : 0;
+    auto verticesNear = [&](int i) {
+      return Mesh && std::all_of(Mesh->faces[i].begin(), Mesh->faces[i].end(),
+                       [&](int v) { return shape.distance(Mesh->vertices[v]) <= vertexReach; });
+    };
     const long n = static_cast<long>(Valid.size());
     std::vector<char> flag(n);
 #pragma omp parallel for schedule(static) if (n >= ParallelSamples)
@@ -876,7 +1042,7 @@ private:
     {
       const int i = Valid[a];
       Vec3 normal;
-      flag[a] = shape.distance(Points[i], normal) <= reach && std::abs(Normals[i].dot(normal)) >= cosAngle;
+      flag[a] = shape.distance(Points[i], normal) <= reach && (std::abs(Normals[i].dot(normal)) >= cosAngle || verticesNear(i));
     }
     std::vector<int> admitted;
     for (long a = 0; a < n; ++a)

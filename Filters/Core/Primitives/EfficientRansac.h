@@ -21,23 +21,30 @@
 // forms within epsilon) and cones outside the angle range of Primitives.h are not kept.
 // Extraction refits the best candidate to its compatible component by least squares (twice, which
 // lets an inexact candidate from noisy normals grow onto its surface), then the forward search
-// settles its members and parameters; a curved primitive whose members a plane explains as well by
-// Schwarz's information criterion becomes that plane. A candidate whose extraction fails takes with
-// it the candidates of its type drawn in the same component whose compatible samples all lie there.
+// settles its members and parameters. The simplest primitive that explains the members as well
+// takes its place: a plane, when the curved primitive bends over them by less than the forward
+// search's admission distance or Schwarz's information criterion prefers the plane (on the
+// vertices of their faces if faces are given: the independent observations), or else a curved
+// primitive of fewer parameters that the criterion prefers (a sphere for a cone drawn on a noisy
+// band of a sphere), which grows anew. A candidate whose extraction fails takes with it the
+// candidates of its type drawn in the same component whose compatible samples all lie there.
 // After the extraction, a curved primitive whose members planes found among them explain as well
 // (the same criterion) becomes those planes (a cone tangent to two faces of a box, found before
 // their planes); then every primitive gathers again the connected samples within its admission
-// distance and its noise-aware admission angle (Schnabel et al.'s refitting); a primitive that the
-// others explain but for fewer than minimumSupport members goes (a piece of a surface that noise
-// split off, a cone tangent to two faces), and samples no primitive holds join the one that
-// explains them, or else one they are compatible with (within epsilon and the normal threshold) in
-// a connected component of its members. Then the same search runs once more on the samples left,
-// which finds what the draws over all samples missed, and its primitives are settled with the
-// others. Last, samples left just beyond epsilon of a primitive (within 2 epsilon, the vertices of
-// their faces too) are the ends of its surface that least squares left out (a blend's ends): the
-// minimax fit of its members and them replaces its shape when more of them lie within epsilon
-// of it, and they join it. Deterministic for a seed: the random draws of a search are serial; the scoring, and the
-// searches for planes among several curved primitives, run in parallel.
+// distance and either within its noise-aware admission angle or with all the vertices of their
+// faces within the admission distance of the vertex noise (a face not much wider than the noise,
+// whose normal is the noise's: a fan's thin triangle at a pole or an apex) (Schnabel et al.'s
+// refitting); a primitive that the others explain but for fewer than minimumSupport members goes
+// (a piece of a surface that noise split off, a cone tangent to two faces), and samples no
+// primitive holds join the one that explains them, or else one they are compatible with (within
+// epsilon and the normal threshold) in a connected component of its members. Then the same search
+// runs once more on the samples left, which finds what the draws over all samples missed, and its
+// primitives are settled with the others. Last, samples left just beyond epsilon of a primitive
+// (within 2 epsilon, the vertices of their faces too) are the ends of its surface that least
+// squares left out (a blend's ends): the minimax fit of its members and them replaces its shape
+// when more of them lie within epsilon of it, and they join it. Deterministic for a seed: the
+// random draws of a search are serial; the scoring, and the searches for planes among several
+// curved primitives, run in parallel.
 #pragma once
 
 #include "Primitives/ForwardSearch.h"
