@@ -55,7 +55,17 @@ def setUp(design_path):
     """The MLS Deform of the design file's case with its design variables (mlsdeform.DesignVariables)."""
     from . import DesignVariables, meshfile, vtkfoam
     with open(design_path) as f:
-        design = json.load(f)
+        try:
+            design = json.load(f)
+        except json.JSONDecodeError as e:
+            raise ValueError(f"{design_path}: not JSON: {e}") from None
+    unknown = sorted(set(design) - KEYS) if isinstance(design, dict) else []
+    if unknown:
+        import difflib
+        meant = {k: difflib.get_close_matches(k, sorted(KEYS), 1) for k in unknown}
+        raise ValueError(f"{design_path}: unknown key" + ('s ' if len(unknown) > 1 else ' ') + ', '.join(
+            repr(k) + (f" (did you mean {meant[k][0]!r}?)" if meant[k] else '') for k in unknown) +
+            f"; a design's keys are {', '.join(sorted(KEYS))}")
     if not isinstance(design, dict) or 'variables' not in design or ('case' in design) == ('deck' in design) or \
             set(design) - KEYS or ('handle' in design) == ('handles' in design):
         raise ValueError(f"{design_path}: a design needs 'variables', either 'case' (an OpenFOAM case) or 'deck' (an "

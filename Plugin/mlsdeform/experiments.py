@@ -217,6 +217,11 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
                              f"(known: {', '.join(defaults)})")
         limits[key] = float(value)
     if samples is not None:
+        unbounded = [n for n in names if None in tuple(bounds[n])]
+        if unbounded:
+            raise ValueError(f"design variable{'s' if len(unbounded) > 1 else ''} {', '.join(map(repr, unbounded))} "
+                             f"{'have' if len(unbounded) > 1 else 'has'} no lower and upper bound: a Latin hypercube needs both "
+                             f"(addHandleDV(..., lower=, upper=); a design file's \"lower\", \"upper\"), or give a table")
         points = latinHypercube([bounds[n] for n in names], samples, seed)
         values = [dict(zip(names, map(float, p))) for p in points]
         origin = {'samples': int(samples), 'seed': seed}

@@ -245,11 +245,19 @@ for bad, message in (({'handle': ['wall'], 'slip': ['ground', 'top']}, 'ground i
                      ({'handle': handle, 'handles': {'a': handle}}, "either 'handle'"),
                      ({'handles': {'a': []}}, "maps each body's name"),
                      ({'handle': handle, 'variables': [dict(variables[0], patches=['body'])]}, "move as one body now"),
-                     ({'handle': handle, 'variables': [dict(variables[0], handles=['wing'])]}, "names the bodies ['wing']")):
+                     ({'handle': handle, 'variables': [dict(variables[0], handles=['wing'])]}, "names the bodies ['wing']"),
+                     ({'handle': handle, 'slipp': slip}, "unknown key 'slipp' (did you mean 'slip'?)"),
+                     ({'handle': handle, 'variables': [{'name': 'dx', 'translate': [1, 0, 0]}]},
+                      "design variable 'dx' has no lower and upper bound")):
     with open(design, 'w') as f:
         json.dump(dict({'case': 'case/case.foam', 'variables': variables}, **bad), f)
     run = subprocess.run([python3] + command, capture_output=True, text=True)
     check(run.returncode == 2 and message in run.stderr, 'a design with %s exits with 2 (%s)' % (list(bad), run.stderr.strip()[-200:]))
+with open(design, 'w') as f:
+    f.write('{"case": "case/case.foam", }')
+run = subprocess.run([python3] + command, capture_output=True, text=True)
+check(run.returncode == 2 and 'design.json: not JSON' in run.stderr, 'a design file that is not JSON exits with 2, naming it (%s)' %
+      run.stderr.strip()[-200:])
 # settings: an enumeration value by its VTK name; an unknown name or property exits with 2
 with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip, 'variables': variables,
