@@ -20,6 +20,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <filesystem>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkMeshFileReader);
@@ -144,8 +145,12 @@ int vtkMeshFileReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
     {
       known += std::string(known.empty() ? "" : ", ") + f.name + " (." + f.extensions + ")";
     }
-    this->LastError = "'" + this->FileName + "' cannot be read (no such file) or is of none of the formats read: " + known + ".";
-    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    const bool exists = std::filesystem::is_regular_file(this->FileName);
+    this->LastError = "'" + this->FileName + "' " +
+      (exists ? "is of none of the formats read (by its extension and first bytes): " + known + "."
+              : std::string(std::filesystem::is_directory(this->FileName) ? "is a folder: name the mesh file in it."
+                                                                           : "does not exist."));
+    this->SetErrorCode(exists ? vtkErrorCode::FileFormatError : vtkErrorCode::FileNotFoundError);
     vtkErrorMacro(<< this->LastError);
     return 0;
   }

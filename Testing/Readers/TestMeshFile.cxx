@@ -263,9 +263,16 @@ TEST(ErrorsNameTheFileAndLineAndLeaveAnEmptyOutput)
   reader->Update();
   CHECK(warnings->count == 1 && warnings->text.find("beam.inp:4: element type SPRINGA is not supported") != std::string::npos);
   CHECK(reader->GetOutput()->GetNumberOfPoints() == 2 && reader->GetOutput()->GetNumberOfCells() == 0);
+  // a missing file, a folder, a file of no format read: each said as what it is
   reader->SetFileName((dir + "/none.inp").c_str());
   reader->Update();
-  CHECK(errors->count == 2);
+  CHECK(errors->count == 2 && std::string(reader->GetLastError()).find("none.inp' does not exist") != std::string::npos);
+  reader->SetFileName(dir.c_str());
+  reader->Update();
+  CHECK(errors->count == 3 && std::string(reader->GetLastError()).find("is a folder: name the mesh file in it") != std::string::npos);
+  reader->SetFileName(writeFile(dir + "/box.geo", "Box(1) = {0, 0, 0, 1, 1, 1};\n").c_str());
+  reader->Update();
+  CHECK(errors->count == 4 && std::string(reader->GetLastError()).find("box.geo' is of none of the formats read") != std::string::npos);
 }
 
 TEST(AVSReaderDeclinesDecksOnly)
