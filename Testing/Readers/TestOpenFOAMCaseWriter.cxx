@@ -524,9 +524,16 @@ TEST(BadInputWritesNothing)
   // the source itself, an existing target, a folder that cannot be written
   expect(deformedInput(source, stored, d), source, "is the source case itself", true);
   CHECK(fs::exists(source / "5" / "U")); // the source keeps its results
-  fs::create_directories(target);
+  fs::create_directories(target / "system");
   writeText(target / "marker", "kept");
+  writeText(target / "system" / "controlDict", "an earlier variant's");
   expect(deformedInput(source, stored, d), target, "exists");
+  // a folder that is no OpenFOAM case is never replaced, even with Overwrite (a folder named for
+  // the variant's .foam file would have its parent replaced)
+  const fs::path mine = Root / "not-a-case";
+  fs::create_directories(mine);
+  writeText(mine / "precious.txt", "kept");
+  expect(deformedInput(source, stored, d), mine, "is not an OpenFOAM case", true);
   expect(deformedInput(source, stored, d), "/proc/mlsdeform-variant", "cannot create");
   expect(deformedInput(source, stored, d), Root / "missing" / "variant", "does not exist");
   // a decomposed case whose processor folders hold another mesh, read reconstructed; a
