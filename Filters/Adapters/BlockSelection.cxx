@@ -112,9 +112,9 @@ bool matches(const std::string& entry, const std::string& name)
   }
 }
 
-// The patch groups of the OpenFOAM case the data came from: group -> its patches; none when the
-// data came from no case (why, in reason).
-std::map<std::string, std::set<std::string>> patchGroups(vtkDataObject* input, std::string& reason)
+// The patch groups of the OpenFOAM case the data came from: group -> its patches, and every
+// patch of the case (read or not); none when the data came from no case (why, in reason).
+std::map<std::string, std::set<std::string>> patchGroups(vtkDataObject* input, std::set<std::string>& casePatches, std::string& reason)
 {
   std::map<std::string, std::set<std::string>> groups;
   const std::string casePath = casePathOf(input);
@@ -132,6 +132,7 @@ std::map<std::string, std::set<std::string>> patchGroups(vtkDataObject* input, s
   {
     for (const mlsfoam::FoamPatch& patch : mlsfoam::readFoamBoundary(polyMesh))
     {
+      casePatches.insert(patch.name);
       for (const std::string& g : patch.groups)
       {
         groups[g].insert(patch.name);
@@ -199,13 +200,14 @@ BlockSelection selectBlocks(vtkDataObject* input, const std::vector<vtkPointSet*
   std::vector<char> matched(entries.size(), 0);
   std::set<std::string> known; // what can be named, for the error message
   std::string groupsUnread;    // why there are no patch groups, if there are none
+  std::set<std::string> casePatches; // every patch of the OpenFOAM case, read or not
 
   // blocks: by their place in ParaView's hierarchy, their names, their patches' groups
   auto* composite = vtkCompositeDataSet::SafeDownCast(input);
   vtkNew<vtkDataAssembly> hierarchy;
   if (composite && vtkDataAssemblyUtilities::GenerateHierarchy(composite, hierarchy))
   {
-    const std::map<std::string, std::set<std::string>> groups = patchGroups(input, groupsUnread);
+    const std::map<std::string, std::set<std::string>> groups = patchGroups(input, casePatches, groupsUnread);
     const bool isCase = !casePathOf(input).empty();
     const std::vector<int> nodes = hierarchy->GetChildNodes(hierarchy->GetRootNode(), true);
     std::set<unsigned int> chosen;
@@ -332,7 +334,11 @@ BlockSelection selectBlocks(vtkDataObject* input, const std::vector<vtkPointSet*
     if (!group.any(matched[e] != 0))
     {
       const std::string meant = closestName(entries[e], known);
-      unmatched += (unmatched.empty() ? "'" : ", '") + entries[e] + "'" + (meant.empty() ? "" : " (did you mean '" + meant + "'?)");
+      const std::string why = casePatches.count(entries[e]) ? " (a patch of the case that the reader did not read: tick it in the "
+                                                               "reader's Mesh Regions, or give it to mlsdeform's open_case)"
+        : meant.empty()                                      ? ""
+                                                             : " (did you mean '" + meant + "'?)";
+      unmatched += (unmatched.empty() ? "'" : ", '") + entries[e] + "'" + why;
     }
   }
   if (!unmatched.empty())

@@ -44,7 +44,7 @@ vtkSmartPointer<vtkPolyData> patch(vtkPointSet* grid, const std::function<bool(c
 
 // The case: internalMesh, boundary/{inlet, outlet, ground, top, front, back, body_left,
 // body_right} (the body: the top's left and right halves), CasePath to a folder whose boundary
-// file puts body_left and body_right in bodyGroup.
+// file puts body_left and body_right in bodyGroup (and has a patch, wake, that was not read).
 struct Case
 {
   vtkSmartPointer<vtkUnstructuredGrid> grid = tetrahedralBox(N);
@@ -78,8 +78,9 @@ struct Case
     folder = (std::filesystem::temp_directory_path() / ("mlsdeform-blocks-" + std::to_string(::getpid()))).string();
     std::filesystem::create_directories(folder + "/constant/polyMesh");
     std::ofstream(folder + "/constant/polyMesh/boundary") << "FoamFile { version 2.0; format ascii; class polyBoundaryMesh; }\n"
-                                                             "2(\n body_left { type wall; inGroups List<word> 2(wall bodyGroup); }\n"
-                                                             " body_right { type wall; inGroups 2(wall bodyGroup); }\n)\n";
+                                                             "3(\n body_left { type wall; inGroups List<word> 2(wall bodyGroup); }\n"
+                                                             " body_right { type wall; inGroups 2(wall bodyGroup); }\n"
+                                                             " wake { type patch; }\n)\n"; // a patch not read
     vtkNew<vtkCharArray> path;
     path->SetName("CasePath");
     for (char c : folder)
@@ -155,10 +156,12 @@ TEST(NamesPatternsSelectorsAndGroups)
   region->AddBlock("inlet");
   region->AddBlock("hul");
   region->AddBlock("Inlett"); // a typo: the name it most likely means is said
+  region->AddBlock("wake");   // a patch of the case the reader did not read: said so
   region->Update();
   CHECK(region->GetErrorCode() == vtkErrorCode::UserError && selected(region) == 0);
   CHECK(messages->errorContains("'hul'") && messages->errorContains("body_left") && messages->errorContains("group/bodyGroup"));
   CHECK(messages->errorContains("'Inlett' (did you mean 'inlet'?)") && !messages->errorContains("'hul' (did you mean"));
+  CHECK(messages->errorContains("'wake' (a patch of the case that the reader did not read"));
   CHECK(!messages->errorContains("Sets 'inlet'") && !messages->errorContains(", 'inlet'")); // inlet names a patch
   // patch/ names blocks only, group/ groups only
   for (const char* wrong : { "patch/bodyGroup", "group/inlet" })
