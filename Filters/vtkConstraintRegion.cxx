@@ -548,7 +548,13 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
   {
     output->Initialize();
     this->SetErrorCode(vtkErrorCode::UserError);
-    return mlsvtk::reportFailure(this, outputVector, e, "The output is empty.");
+    mlsvtk::reportFailure(this, outputVector, e, "The output is empty.");
+    // the role it was given, so that MLS Deform names the region that failed by it
+    vtkNew<vtkStringArray> roleName;
+    roleName->SetName(mlsvtk::fields::RoleName);
+    roleName->InsertNextValue(GetRoleName(this->Role));
+    output->GetFieldData()->AddArray(roleName);
+    return 1;
   }
   return 1;
 }

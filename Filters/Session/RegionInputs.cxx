@@ -72,7 +72,9 @@ void readRegions(vtkInformationVector* connections, std::vector<RegionInput>& re
     auto* failed = data ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(fields::Error)) : nullptr;
     if (failed && failed->GetNumberOfValues() > 0)
     {
-      throw InvalidInputException(which + " failed: " + failed->GetValue(0));
+      auto* roleName = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(fields::RoleName));
+      throw InvalidInputException(which + (roleName && roleName->GetNumberOfValues() > 0 ? " (" + roleName->GetValue(0) + ")" : "") +
+        " failed: " + failed->GetValue(0));
     }
     if (!role || role->GetNumberOfValues() < 1 || !displacement || displacement->GetNumberOfComponents() != 3)
     {

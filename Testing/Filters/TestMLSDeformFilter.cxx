@@ -1011,6 +1011,18 @@ TEST(RegionSelectingNoPoint)
   CHECK(!regionMessages->Warnings.empty());
 }
 
+TEST(FailedRegionIsNamedByItsRole)
+{
+  // a region that failed (a block name the plane does not have) is named by its role as well
+  vtkSmartPointer<vtkPolyData> plane = figurePlane();
+  PlaneScene scene(plane);
+  scene.fixed->SetSelectionMode(vtkConstraintRegion::Blocks);
+  scene.fixed->AddBlock("nowhere");
+  auto regionMessages = MessageCollector::watch(scene.fixed); // its own error, collected
+  expectFailure(scene, plane, "(Fixed) failed: ");
+  CHECK(regionMessages->errorContains("'nowhere'"));
+}
+
 TEST(SlipPlanesLetABodySlide)
 {
   // Issue 12: a body standing on the ground of a channel moves along the ground; the ground
