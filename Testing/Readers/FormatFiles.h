@@ -50,6 +50,19 @@ inline bool contains(const std::string& text, const std::string& part)
   return text.find(part) != std::string::npos;
 }
 
+/// Whether variant is source with some of its bytes, and at most bytes of them, changed (the
+/// same size): a binary variant rewrites only its moved coordinates' bytes.
+inline bool changedAtMost(const std::string& source, const std::string& variant, std::size_t bytes)
+{
+  std::size_t differing = 0;
+  for (std::size_t b = 0; b < source.size() && b < variant.size(); ++b)
+  {
+    differing += source[b] != variant[b] ? 1 : 0;
+  }
+  std::printf("%zu of %zu bytes differ\n", differing, source.size());
+  return variant.size() == source.size() && differing > 0 && differing <= bytes;
+}
+
 /// The set of that name, or nullptr.
 inline const mlsformats::NamedSet* find(const std::vector<mlsformats::NamedSet>& sets, const std::string& name)
 {

@@ -365,14 +365,7 @@ TEST(VariantChangesOnlyTheMovedCoordinates)
     // the same size; the bytes that differ are the moved values' (4 doubles: node 9's y and z, node
     // 27's x and z)
     const std::string before = readFile(source), after = readFile(target);
-    CHECK(after.size() == before.size());
-    std::size_t differing = 0;
-    for (std::size_t b = 0; b < before.size() && b < after.size(); ++b)
-    {
-      differing += before[b] != after[b] ? 1 : 0;
-    }
-    std::printf("%s: %zu of %zu bytes differ\n", name.c_str(), differing, before.size());
-    CHECK(differing > 0 && differing <= 4 * 8);
+    CHECK(testing::changedAtMost(before, after, 4 * 8));
     // read back: the moved nodes where they were put, exactly; the others and the rest as they were
     const cgns::MeshFile again = cgns::readCgns(target);
     CHECK(position(again.mesh, 9) == moved9 && position(again.mesh, 27) == moved27);
