@@ -391,7 +391,7 @@ private:
     const std::string text = readFile(path);
     const std::uint32_t file = static_cast<std::uint32_t>(this->Out.files.size());
     this->Out.files.push_back(path);
-    this->Out.hashes.push_back(std::hash<std::string>()(text));
+    this->Out.hashes.push_back(contentHash(text));
     this->Out.includeNames.push_back(includeName);
     const std::uint32_t includingFile = this->File;
     const std::size_t includingLine = this->Line;
@@ -1132,7 +1132,7 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
 
 // The text of file f with each of its nodes' coordinates replaced by xyz (row: where node k's are).
 RewrittenText withCoordinates(
-  const std::string& text, const std::vector<NodeSlot>& slots, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
+  std::string_view text, const std::vector<NodeSlot>& slots, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the nodes in file f, in file order
   for (std::size_t k = 0; k < slots.size(); ++k)
@@ -1146,7 +1146,7 @@ RewrittenText withCoordinates(
     text, mine.size(), [&](std::size_t i) { return slots[mine[i]].begin; },
     [&](std::string& out, std::size_t i) {
       const NodeSlot& s = slots[mine[i]];
-      appendSlot(out, std::string_view(text).substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
+      appendSlot(out, text.substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
       return static_cast<std::size_t>(s.end);
     });
 }
@@ -1174,12 +1174,12 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       continue;
     }
-    const std::string text = readFile(deck.files[f]);
-    if (std::hash<std::string>()(text) != deck.hashes[f])
+    const MappedFile text(deck.files[f]);
+    if (contentHash(text.bytes()) != deck.hashes[f])
     {
       throw FileError(deck.files[f], 0, "has changed since it was read: read the deck again");
     }
-    const RewrittenText variant = withCoordinates(text, deck.slots, f, row, xyz);
+    const RewrittenText variant = withCoordinates(text.bytes(), deck.slots, f, row, xyz);
     write.add(destinations[f], variant.pieces);
   }
   write.commit();

@@ -192,9 +192,9 @@ public:
   {
     this->Out.path = path;
     {
-      const std::string bytes = readFile(path);
-      this->Out.hash = std::hash<std::string>()(bytes);
-      if (!isCgns(bytes.substr(0, 64)))
+      const MappedFile bytes(path);
+      this->Out.hash = contentHash(bytes.bytes());
+      if (!isCgns(std::string(bytes.bytes().substr(0, 64))))
       {
         throw FileError(path, 0, "is not a CGNS file (neither HDF5 nor ADF)");
       }
@@ -843,7 +843,7 @@ void overwriteCoordinates(const std::string& path, const std::string& target, co
 // An ADF file's header holds the time it was last modified ("AdF1" and 28 characters), which the
 // library sets as it writes the coordinates: the source's is put back, so that a variant differs
 // from its source only in coordinates (and the same variant is the same bytes whenever written).
-void keepModificationDate(const std::string& path, const std::string& target, const std::string& source)
+void keepModificationDate(const std::string& path, const std::string& target, std::string_view source)
 {
   const std::size_t field = source.compare(4, 20, "ADF Database Version") == 0 ? source.find("AdF1") : std::string::npos;
   if (field == std::string::npos || field > 256 || field + 4 + 28 > source.size())
@@ -865,7 +865,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
 {
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string& bytes = source.bytes;
+  const std::string_view bytes = source.bytes.bytes();
   // the new arrays, each in its data type, before anything is written
   std::vector<Array> arrays;
   for (const Zone& zone : this->zones)

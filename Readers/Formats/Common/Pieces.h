@@ -22,10 +22,10 @@ struct RewrittenText
 /// replaced by what write(out, i) appends to out (returning where node i's old text ends),
 /// formatted in 64 pieces side by side. The result's views are into text: keep it alive.
 template <class Begin, class Write>
-RewrittenText rewriteInPieces(const std::string& text, std::size_t nodes, Begin begin, Write write)
+RewrittenText rewriteInPieces(std::string_view text, std::size_t nodes, Begin begin, Write write)
 {
   RewrittenText out;
-  const std::string_view whole(text);
+  const std::string_view whole = text;
   if (nodes == 0)
   {
     out.pieces.push_back(whole);

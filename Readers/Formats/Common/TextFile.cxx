@@ -7,6 +7,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace mlsformats
@@ -50,6 +53,53 @@ std::string readFile(const std::string& path)
   return text;
 }
 
+MappedFile::MappedFile(const std::string& path)
+{
+  const int file = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat status;
+  if (file < 0 || ::fstat(file, &status) != 0 || !S_ISREG(status.st_mode))
+  {
+    if (file >= 0)
+    {
+      ::close(file);
+    }
+    throw FileError(path, 0, "cannot be read (no such file, or no permission)");
+  }
+  this->Size = static_cast<std::size_t>(status.st_size);
+  if (this->Size > 0)
+  {
+    void* data = ::mmap(nullptr, this->Size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, file, 0);
+    if (data == MAP_FAILED)
+    {
+      ::close(file);
+      throw FileError(path, 0, "cannot be mapped into memory to be read");
+    }
+    this->Data = static_cast<const char*>(data);
+  }
+  ::close(file); // the mapping keeps the file
+}
+
+MappedFile::MappedFile(MappedFile&& other) noexcept
+  : Data(other.Data)
+  , Size(other.Size)
+{
+  other.Data = nullptr;
+  other.Size = 0;
+}
+
+MappedFile::~MappedFile()
+{
+  if (this->Data)
+  {
+    ::munmap(const_cast<char*>(this->Data), this->Size);
+  }
+}
+
+std::size_t contentHash(std::string_view bytes)
+{
+  return std::hash<std::string_view>()(bytes);
+}
+
 AtomicWrite::AtomicWrite(bool overwrite)
   : Overwrite(overwrite)
 {
@@ -64,9 +114,9 @@ AtomicWrite::~AtomicWrite()
   }
 }
 
-std::string AtomicWrite::add(const std::string& path, const std::string& text)
+std::string AtomicWrite::add(const std::string& path, std::string_view bytes)
 {
-  return this->add(path, std::vector<std::string_view>{ text });
+  return this->add(path, std::vector<std::string_view>{ bytes });
 }
 
 std::string AtomicWrite::add(const std::string& path, const std::vector<std::string_view>& pieces)
@@ -190,7 +240,7 @@ void splitBlanks(std::string_view text, std::vector<std::string_view>& fields)
   }
 }
 
-std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t begin, int count, const double* xyz)
+std::size_t appendNumbers(std::string& out, std::string_view text, std::size_t begin, int count, const double* xyz)
 {
   std::size_t end = begin;
   for (int c = 0; c < count; ++c)
@@ -221,7 +271,7 @@ std::size_t appendNumbers(std::string& out, const std::string& text, std::size_t
   return end;
 }
 
-bool nextLine(const std::string& text, std::size_t& at, std::string_view& line)
+bool nextLine(std::string_view text, std::size_t& at, std::string_view& line)
 {
   if (at >= text.size())
   {
@@ -230,7 +280,7 @@ bool nextLine(const std::string& text, std::size_t& at, std::string_view& line)
   std::size_t end = text.find('\n', at);
   const std::size_t next = end == std::string::npos ? text.size() : end + 1;
   end = end == std::string::npos ? text.size() : end;
-  line = std::string_view(text).substr(at, end - at);
+  line = text.substr(at, end - at);
   if (!line.empty() && line.back() == '\r')
   {
     line.remove_suffix(1);
@@ -239,7 +289,7 @@ bool nextLine(const std::string& text, std::size_t& at, std::string_view& line)
   return true;
 }
 
-std::vector<Line> lines(const std::string& text)
+std::vector<Line> lines(std::string_view text)
 {
   std::vector<Line> out;
   std::size_t begin = 0;

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 
 namespace mlsformats
 {
@@ -85,13 +84,13 @@ std::vector<std::string> variantDestinations(const std::string& target, const st
 VariantSource variantSource(const std::string& target, const std::string& source, std::size_t hash,
   const std::vector<std::int64_t>& nodeIds, const std::int64_t* ids, const double* xyz, std::size_t count)
 {
-  VariantSource out{ variantRows(target, source, nodeIds, ids, xyz, count), std::string() };
+  std::vector<std::size_t> row = variantRows(target, source, nodeIds, ids, xyz, count);
   if (canonicalPath(target) == canonicalPath(source))
   {
     throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
   }
-  out.bytes = readFile(source);
-  if (std::hash<std::string>()(out.bytes) != hash)
+  VariantSource out{ std::move(row), MappedFile(source) };
+  if (contentHash(out.bytes.bytes()) != hash)
   {
     throw FileError(source, 0, "has changed since it was read: read the mesh again");
   }

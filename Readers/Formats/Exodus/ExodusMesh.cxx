@@ -440,7 +440,7 @@ public:
     , File(path, Bytes)
   {
     this->Out.path = path;
-    this->Out.hash = std::hash<std::string>()(this->Bytes);
+    this->Out.hash = contentHash(this->Bytes);
     this->nodes(layoutOnly);
     if (!layoutOnly)
     {
@@ -773,7 +773,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   // the source's bytes written aside, their coordinates rewritten there, then renamed into place
   AtomicWrite write(overwrite);
-  NetCDF copy(target, write.add(target, source.bytes));
+  NetCDF copy(target, write.add(target, source.bytes.bytes()));
   const std::size_t each = this->coordinates.size() == 1 ? values.size() : count; // "coord" holds them all
   for (std::size_t c = 0; c < this->coordinates.size(); ++c)
   {

@@ -263,7 +263,7 @@ public:
     , Text(readFile(path))
   {
     this->Out.path = path;
-    this->Out.hash = std::hash<std::string>()(this->Text);
+    this->Out.hash = contentHash(this->Text);
     while (this->nextSection())
     {
       this->section();
@@ -1027,18 +1027,6 @@ bool isFluent(const std::string& head)
 
 namespace
 {
-// Replaces the binary number at out[at..] by value (as a T) unless it holds that value.
-template <class T>
-void replace(std::string& out, std::size_t at, double value)
-{
-  T old;
-  std::memcpy(&old, out.data() + at, sizeof(T));
-  if (static_cast<double>(old) != value)
-  {
-    const T now = static_cast<T>(value);
-    std::memcpy(&out[at], &now, sizeof(T));
-  }
-}
 } // namespace
 
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
@@ -1046,7 +1034,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
 {
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string& text = source.bytes;
+  const std::string_view text = source.bytes.bytes();
   // each node's zone's precision; a coordinate a single-precision zone cannot hold is refused
   std::vector<Precision> precision(count);
   std::size_t k = 0;
@@ -1075,21 +1063,8 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
       {
         return appendNumbers(out, text, at, this->dimension, value);
       }
-      const std::size_t size = precision[n] == Precision::Single ? 4 : 8;
-      out.append(text, at, this->dimension * size);
-      for (int c = 0; c < this->dimension; ++c)
-      {
-        const std::size_t number = out.size() - (this->dimension - c) * size;
-        if (size == 8)
-        {
-          replace<double>(out, number, value[c]);
-        }
-        else
-        {
-          replace<float>(out, number, value[c]);
-        }
-      }
-      return at + this->dimension * size;
+      return precision[n] == Precision::Single ? appendBinaryNumbers<float>(out, text, at, this->dimension, value)
+                                               : appendBinaryNumbers<double>(out, text, at, this->dimension, value);
     });
   AtomicWrite write(overwrite);
   write.add(target, variant.pieces);

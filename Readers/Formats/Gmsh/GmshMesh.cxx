@@ -181,7 +181,7 @@ public:
     , LayoutOnly(layoutOnly)
   {
     this->Out.path = path;
-    this->Out.hash = std::hash<std::string>()(this->Text);
+    this->Out.hash = contentHash(this->Text);
     this->Owners.push_back({ -1, {} }); // 0: in no physical group
     this->meshFormat();
     std::string_view line;
@@ -1247,41 +1247,20 @@ bool isMsh(const std::string& head)
 
 // ---- the variant -------------------------------------------------------------------------------
 
-namespace
-{
-} // namespace
-
 void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string& text = source.bytes;
+  const std::string_view text = source.bytes.bytes();
+  const RewrittenText variant = rewriteInPieces(
+    text, count, [&](std::size_t k) { return this->coordinates[k]; },
+    [&](std::string& out, std::size_t k) {
+      return this->binary ? appendBinaryNumbers<double>(out, text, this->coordinates[k], 3, xyz + 3 * row[k])
+                          : appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]);
+    });
   AtomicWrite write(overwrite);
-  if (this->binary)
-  {
-    std::string out = text;
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        double old;
-        std::memcpy(&old, text.data() + this->coordinates[k] + 8 * c, 8);
-        if (old != xyz[3 * row[k] + c])
-        {
-          std::memcpy(&out[this->coordinates[k] + 8 * c], xyz + 3 * row[k] + c, 8);
-        }
-      }
-    }
-    write.add(target, out);
-  }
-  else
-  {
-    const RewrittenText variant = rewriteInPieces(
-      text, count, [&](std::size_t k) { return this->coordinates[k]; },
-      [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]); });
-    write.add(target, variant.pieces);
-  }
+  write.add(target, variant.pieces);
   write.commit();
 }
 } // namespace gmsh

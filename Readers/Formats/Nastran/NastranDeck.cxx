@@ -148,7 +148,7 @@ std::string upperCase(std::string_view text)
 }
 
 // A line from begin: where it ends (without "\r") and where the next starts.
-Line lineAt(const std::string& text, std::size_t begin)
+Line lineAt(std::string_view text, std::size_t begin)
 {
   std::size_t end = text.find('\n', begin);
   const std::size_t next = end == std::string::npos ? text.size() : end + 1;
@@ -283,7 +283,7 @@ void splitLine(Entry& entry, std::uint32_t l, const std::string& file)
 
 // Reads the entry whose first line starts at begin (line number there): that line and its
 // continuation lines, comment lines between them skipped.
-void readEntry(const std::string& text, std::size_t begin, std::size_t number, const std::string& file, Entry& entry)
+void readEntry(std::string_view text, std::size_t begin, std::size_t number, const std::string& file, Entry& entry)
 {
   entry.lines.clear();
   entry.fields.clear();
@@ -598,7 +598,7 @@ private:
     const std::string text = readFile(path);
     const std::uint32_t file = static_cast<std::uint32_t>(this->Out.files.size());
     this->Out.files.push_back(path);
-    this->Out.hashes.push_back(std::hash<std::string>()(text));
+    this->Out.hashes.push_back(contentHash(text));
     this->Out.includeNames.push_back(includeName);
     const std::uint32_t includingFile = this->File;
     const std::size_t includingLine = this->Line;
@@ -1302,7 +1302,7 @@ namespace
 // in its columns (fixed field: aligned as the old text was, filling its width unless it ends the
 // line; free field: between its commas), every other byte as it was, the comment after.
 void appendLine(
-  std::string& out, const std::string& text, const EntryLine& line, const std::vector<std::pair<const Field*, std::string>>& replaced)
+  std::string& out, std::string_view text, const EntryLine& line, const std::vector<std::pair<const Field*, std::string>>& replaced)
 {
   const std::string_view content = line.content;
   const std::size_t start = out.size();
@@ -1341,7 +1341,7 @@ void appendLine(
 
 // The text of file f with each moved grid's coordinates replaced (row: where grid k's are in xyz).
 RewrittenText withCoordinates(
-  const Deck& deck, const std::string& text, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
+  const Deck& deck, std::string_view text, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the grids in file f, in file order
   for (std::size_t k = 0; k < deck.slots.size(); ++k)
@@ -1425,12 +1425,12 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       continue;
     }
-    const std::string text = readFile(this->files[f]);
-    if (std::hash<std::string>()(text) != this->hashes[f])
+    const MappedFile text(this->files[f]);
+    if (contentHash(text.bytes()) != this->hashes[f])
     {
       throw FileError(this->files[f], 0, "has changed since it was read: read the deck again");
     }
-    const RewrittenText variant = withCoordinates(*this, text, f, row, xyz);
+    const RewrittenText variant = withCoordinates(*this, text.bytes(), f, row, xyz);
     write.add(destinations[f], variant.pieces);
   }
   write.commit();

@@ -115,7 +115,7 @@ public:
     , LayoutOnly(layoutOnly)
   {
     this->Out.path = path;
-    this->Out.hash = std::hash<std::string>()(this->Text);
+    this->Out.hash = contentHash(this->Text);
     bool skipping = false; // the lines after a keyword that is not the mesh's
     std::string_view line;
     while (this->nextLine(line))
@@ -658,7 +658,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
 {
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string& text = source.bytes;
+  const std::string_view text = source.bytes.bytes();
   std::vector<int> dimension(count); // each node's: its zone's
   for (std::size_t z = 0; z < this->zones.size(); ++z)
   {
