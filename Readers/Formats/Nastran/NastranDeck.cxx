@@ -50,72 +50,107 @@ bool parseNastranReal(std::string_view field, double& value)
   return parseReal(text, text + length, value);
 }
 
-// The shortest of a number's Nastran forms, from its significant digits (no trailing zeros) and
-// its decimal exponent (value = d.ddd x 10^exponent): without an exponent ("123.4", ".00123",
-// "1200.") or with one, the point after the first digit ("1.5-7") unless elsewhere is shorter
-// (".15-99", "15.+9"). Each has a decimal point, which makes it a real.
-std::string shortestForm(bool negative, const std::string& digits, int exponent)
+// A number's significant digits (no trailing zeros) and its decimal exponent: value =
+// d.ddd x 10^exponent.
+struct Decimal
 {
-  const int count = static_cast<int>(digits.size());
-  int shortest = exponent >= count - 1 ? exponent + 2 : exponent >= 0 ? count + 1 : count - exponent; // without an exponent
-  int point = -1; // with one: where the point is
-  for (int place = 0; place <= count; ++place)
-  {
-    const int at = place == 0 ? 1 : place == 1 ? 0 : place;
-    const int shown = std::abs(exponent + 1 - at);
-    const int length = count + 2 + (shown >= 100 ? 3 : shown >= 10 ? 2 : 1);
-    if (shown != 0 && length < shortest)
-    {
-      shortest = length;
-      point = at;
-    }
-  }
-  std::string out = negative ? "-" : "";
-  if (point >= 0)
-  {
-    const int shown = exponent + 1 - point;
-    out += digits.substr(0, point) + "." + digits.substr(point) + (shown > 0 ? "+" : "-") + std::to_string(std::abs(shown));
-  }
-  else if (exponent >= count - 1)
-  {
-    out += digits + std::string(exponent - count + 1, '0') + ".";
-  }
-  else if (exponent >= 0)
-  {
-    out += digits.substr(0, exponent + 1) + "." + digits.substr(exponent + 1);
-  }
-  else
-  {
-    out += "." + std::string(-exponent - 1, '0') + digits;
-  }
-  return out;
-}
+  bool negative = false;
+  char digits[24];
+  int count = 0;
+  int exponent = 0;
+};
 
-// value's form from its digits rounded to precision significant ones (0: the fewest that read back
-// as value).
-std::string nastranForm(double value, int precision)
+// value's digits rounded to precision significant ones (0: the fewest that read back as value).
+Decimal decimal(double value, int precision)
 {
   char text[40];
   const char* end = precision == 0
     ? std::to_chars(text, text + sizeof(text), value, std::chars_format::scientific).ptr
     : std::to_chars(text, text + sizeof(text), value, std::chars_format::scientific, precision - 1).ptr;
-  const bool negative = text[0] == '-';
+  Decimal out;
+  out.negative = text[0] == '-';
   const char* e = std::find(static_cast<const char*>(text), end, 'e');
-  std::string digits;
-  for (const char* c = text + (negative ? 1 : 0); c < e; ++c)
+  for (const char* c = text + (out.negative ? 1 : 0); c < e; ++c)
   {
     if (*c != '.')
     {
-      digits.push_back(*c);
+      out.digits[out.count++] = *c;
     }
   }
-  while (digits.size() > 1 && digits.back() == '0')
+  while (out.count > 1 && out.digits[out.count - 1] == '0')
   {
-    digits.pop_back();
+    --out.count;
   }
-  int exponent = 0;
-  std::from_chars(e + (e[1] == '+' ? 2 : 1), end, exponent);
-  return shortestForm(negative, digits, exponent);
+  std::from_chars(e + (e[1] == '+' ? 2 : 1), end, out.exponent);
+  return out;
+}
+
+// A number's Nastran forms, from its digits: without an exponent ("123.4", ".00123", "1200.") or
+// with one (".15-99", "1.5-7", "15.+9"). Each has a decimal point, which makes it a real. The
+// lengths of the shortest of each (without a sign).
+struct FormLengths
+{
+  int plain, withExponent;
+};
+FormLengths formLengths(int count, int exponent)
+{
+  // with an exponent: the point at 0..count digits shows exponent + 1 - count .. exponent + 1 (not 0)
+  const int low = exponent + 1 - count, high = exponent + 1;
+  const int shown = (low <= 1 && 1 <= high) || (low <= -1 && -1 <= high) ? 1 : low > 1 ? low : -high;
+  return { exponent >= count - 1 ? exponent + 2 : exponent >= 0 ? count + 1 : count - exponent,
+    count + 2 + (shown >= 100 ? 3 : shown >= 10 ? 2 : 1) };
+}
+
+// The length of the shortest form.
+int formLength(bool negative, int count, int exponent)
+{
+  const FormLengths lengths = formLengths(count, exponent);
+  return (negative ? 1 : 0) + std::min(lengths.plain, lengths.withExponent);
+}
+
+// Where the point of the shortest form is among the digits when it has an exponent, else -1 (no
+// exponent when that is as short): right after the first digit, else before it, else the first
+// place further right.
+int formPoint(int count, int exponent)
+{
+  const FormLengths lengths = formLengths(count, exponent);
+  for (int place = 0; place <= count && lengths.withExponent < lengths.plain; ++place)
+  {
+    const int at = place == 0 ? 1 : place == 1 ? 0 : place;
+    const int shown = std::abs(exponent + 1 - at);
+    if (shown != 0 && count + 2 + (shown >= 100 ? 3 : shown >= 10 ? 2 : 1) == lengths.withExponent)
+    {
+      return at;
+    }
+  }
+  return -1;
+}
+
+std::string formText(const Decimal& number)
+{
+  const int point = formPoint(number.count, number.exponent);
+  const std::string_view digits(number.digits, static_cast<std::size_t>(number.count));
+  const int count = number.count, exponent = number.exponent;
+  std::string out = number.negative ? "-" : "";
+  if (point >= 0)
+  {
+    const int shown = exponent + 1 - point;
+    out.append(digits.substr(0, point)).append(".").append(digits.substr(point));
+    out.append(shown > 0 ? "+" : "-").append(std::to_string(std::abs(shown)));
+  }
+  else if (exponent >= count - 1)
+  {
+    out.append(digits).append(exponent - count + 1, '0').append(".");
+  }
+  else if (exponent >= 0)
+  {
+    out.append(digits.substr(0, exponent + 1)).append(".").append(digits.substr(exponent + 1));
+  }
+  else
+  {
+    out.append(".").append(-exponent - 1, '0').append(digits);
+  }
+  return out;
 }
 
 // The text of value in at most width characters: the shortest that reads back as value, else the
@@ -126,13 +161,26 @@ std::string nastranReal(double value, std::size_t width)
   {
     return "0.";
   }
-  std::string text = nastranForm(value, 0);
-  // a form of n digits takes n + 1 characters at least
-  for (int precision = std::min(17, static_cast<int>(width) - 1); text.size() > width && precision >= 1; --precision)
+  const Decimal shortest = decimal(value, 0);
+  const int fits = static_cast<int>(width);
+  if (formLength(shortest.negative, shortest.count, shortest.exponent) <= fits)
   {
-    text = nastranForm(value, precision);
+    return formText(shortest);
   }
-  return text;
+  // the most digits whose form at this exponent fits: the text of any more digits that fits is
+  // theirs (its further digits are zeros) or it rounds up to the next power of 10 (as they do);
+  // then fewer, while rounding changes the exponent (a form of n digits takes n + 1 characters)
+  int precision = std::min(17, fits - 1);
+  while (precision > 1 && formLength(shortest.negative, precision, shortest.exponent) > fits)
+  {
+    --precision;
+  }
+  Decimal rounded = decimal(value, precision);
+  while (formLength(rounded.negative, rounded.count, rounded.exponent) > fits && precision > 1)
+  {
+    rounded = decimal(value, --precision);
+  }
+  return formText(rounded);
 }
 
 // ---- entries: their lines and fields -----------------------------------------------------------
@@ -142,7 +190,7 @@ std::string upperCase(std::string_view text)
   std::string out(text);
   for (char& c : out)
   {
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    c = c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; // ASCII, whatever the locale
   }
   return out;
 }
