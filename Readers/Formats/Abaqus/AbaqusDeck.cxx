@@ -1130,9 +1130,10 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
   }
 }
 
-// The text of file f with each of its nodes' coordinates replaced by xyz (row: where node k's are).
-RewrittenText withCoordinates(
-  std::string_view text, const std::vector<NodeSlot>& slots, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
+// Appends to out the text of file f with each of its nodes' coordinates replaced by xyz (row: where
+// node k's are).
+void writeWithCoordinates(AtomicWrite::Aside& out, std::string_view text, const std::vector<NodeSlot>& slots, std::uint32_t f,
+  const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the nodes in file f, in file order
   for (std::size_t k = 0; k < slots.size(); ++k)
@@ -1142,11 +1143,11 @@ RewrittenText withCoordinates(
       mine.push_back(k);
     }
   }
-  return rewriteInPieces(
-    text, mine.size(), [&](std::size_t i) { return slots[mine[i]].begin; },
-    [&](std::string& out, std::size_t i) {
+  rewriteInPieces(
+    out, text, mine.size(), [&](std::size_t i) { return slots[mine[i]].begin; },
+    [&](std::string& piece, std::size_t i) {
       const NodeSlot& s = slots[mine[i]];
-      appendSlot(out, text.substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
+      appendSlot(piece, text.substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
       return static_cast<std::size_t>(s.end);
     });
 }
@@ -1179,8 +1180,9 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       throw FileError(deck.files[f], 0, "has changed since it was read: read the deck again");
     }
-    const RewrittenText variant = withCoordinates(text.bytes(), deck.slots, f, row, xyz);
-    write.add(destinations[f], variant.pieces);
+    AtomicWrite::Aside out = write.open(destinations[f]);
+    writeWithCoordinates(out, text.bytes(), deck.slots, f, row, xyz);
+    write.close(out);
   }
   write.commit();
 }

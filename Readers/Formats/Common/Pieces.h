@@ -1,72 +1,66 @@
-// A file's text rewritten node by node in pieces formatted side by side: how the text formats
-// write a variant of a large file on every thread (the same bytes for any number of threads).
+// A file's text written with its nodes' text rewritten, in pieces formatted side by side and
+// written in order as they are done: how the text formats write a variant of a large file on
+// every thread (the same bytes for any number of threads), formatting one piece while the one
+// before is written.
 #pragma once
+
+#include "Common/TextFile.h"
 
 #include <cstddef>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace mlsformats
 {
-/// A text with its nodes' text rewritten: the source's own bytes before the first node and after
-/// the last (views into it, not copied), and between them the formatted pieces, to be written
-/// one after the other (AtomicWrite::add).
-struct RewrittenText
-{
-  std::vector<std::string> formatted;
-  std::vector<std::string_view> pieces;
-};
-
-/// The text with the old text of each of nodes (in file order, node i's starting at begin(i))
-/// replaced by what write(out, i) appends to out (returning where node i's old text ends),
-/// formatted in 64 pieces side by side. The result's views are into text: keep it alive.
+/// Appends to out the text with the old text of each of nodes (in file order, node i's starting
+/// at begin(i)) replaced by what write(piece, i) appends to piece (returning where node i's old
+/// text ends). The nodes are formatted in 64 pieces, each appended to out as soon as those before
+/// it are: the bytes before the first node and after the last go from text to out uncopied.
 template <class Begin, class Write>
-RewrittenText rewriteInPieces(std::string_view text, std::size_t nodes, Begin begin, Write write)
+void rewriteInPieces(AtomicWrite::Aside& out, std::string_view text, std::size_t nodes, Begin begin, Write write)
 {
-  RewrittenText out;
-  const std::string_view whole = text;
   if (nodes == 0)
   {
-    out.pieces.push_back(whole);
-    return out;
+    out.append(text);
+    return;
   }
+  out.append(text.substr(0, static_cast<std::size_t>(begin(0))));
   constexpr long Pieces = 64;
-  out.formatted.resize(Pieces);
-  std::vector<std::size_t> ends(Pieces, 0);
-  // piece p: its nodes' text and what follows up to the next piece's first node (the last
-  // piece: up to the end of the last node's text)
-#pragma omp parallel for schedule(dynamic)
-  for (long p = 0; p < Pieces; ++p)
+  std::size_t end = 0; // where the last piece's text ends
+#pragma omp parallel
   {
-    const std::size_t first = nodes * p / Pieces, last = nodes * (p + 1) / Pieces;
-    if (first == last)
+    std::string piece; // this thread's, reused piece after piece
+    // piece p: its nodes' text and what follows up to the next piece's first node (the last
+    // piece: up to the end of the last node's text)
+#pragma omp for ordered schedule(dynamic, 1)
+    for (long p = 0; p < Pieces; ++p)
     {
-      continue;
+      const std::size_t first = nodes * p / Pieces, last = nodes * (p + 1) / Pieces;
+      piece.clear();
+      if (first < last)
+      {
+        std::size_t copied = static_cast<std::size_t>(begin(first));
+        const std::size_t next = last < nodes ? static_cast<std::size_t>(begin(last)) : copied;
+        piece.reserve((static_cast<std::size_t>(begin(last - 1)) - copied) * 9 / 8 + 256);
+        for (std::size_t i = first; i < last; ++i)
+        {
+          const std::size_t at = static_cast<std::size_t>(begin(i));
+          piece.append(text, copied, at - copied);
+          copied = write(piece, i);
+        }
+        if (last < nodes)
+        {
+          piece.append(text, copied, next - copied);
+        }
+        else
+        {
+          end = copied;
+        }
+      }
+#pragma omp ordered
+      out.append(piece);
     }
-    std::string& piece = out.formatted[p];
-    std::size_t copied = static_cast<std::size_t>(begin(first));
-    const std::size_t next = last < nodes ? static_cast<std::size_t>(begin(last)) : static_cast<std::size_t>(begin(last - 1));
-    piece.reserve((next - copied) * 9 / 8 + 256);
-    for (std::size_t i = first; i < last; ++i)
-    {
-      const std::size_t at = static_cast<std::size_t>(begin(i));
-      piece.append(text, copied, at - copied);
-      copied = write(piece, i);
-    }
-    if (last < nodes)
-    {
-      piece.append(text, copied, next - copied);
-      copied = next;
-    }
-    ends[p] = copied;
   }
-  out.pieces.push_back(whole.substr(0, static_cast<std::size_t>(begin(0))));
-  for (const std::string& piece : out.formatted)
-  {
-    out.pieces.push_back(piece);
-  }
-  out.pieces.push_back(whole.substr(ends[Pieces - 1]));
-  return out;
+  out.append(text.substr(end));
 }
 } // namespace mlsformats

@@ -4,8 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -97,7 +95,15 @@ MappedFile::~MappedFile()
 
 std::size_t contentHash(std::string_view bytes)
 {
-  return std::hash<std::string_view>()(bytes);
+  // the hashes of 4 MiB chunks taken side by side, then hashed: the same for any number of threads
+  constexpr std::size_t Chunk = std::size_t(1) << 22;
+  std::vector<std::size_t> chunks((bytes.size() + Chunk - 1) / Chunk);
+#pragma omp parallel for schedule(dynamic)
+  for (long c = 0; c < static_cast<long>(chunks.size()); ++c)
+  {
+    chunks[c] = std::hash<std::string_view>()(bytes.substr(c * Chunk, Chunk));
+  }
+  return std::hash<std::string_view>()(std::string_view(reinterpret_cast<const char*>(chunks.data()), chunks.size() * sizeof(std::size_t)));
 }
 
 AtomicWrite::AtomicWrite(bool overwrite)
@@ -114,36 +120,47 @@ AtomicWrite::~AtomicWrite()
   }
 }
 
-std::string AtomicWrite::add(const std::string& path, std::string_view bytes)
+void AtomicWrite::Aside::append(std::string_view bytes)
 {
-  return this->add(path, std::vector<std::string_view>{ bytes });
+  this->Out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-std::string AtomicWrite::add(const std::string& path, const std::vector<std::string_view>& pieces)
+AtomicWrite::Aside AtomicWrite::open(const std::string& path)
 {
   if (!this->Overwrite && std::filesystem::exists(path))
   {
     throw FileError(path, 0, "exists already (overwrite it or choose another name)");
   }
+  Aside aside;
+  aside.Path = path;
+  aside.Written = path + ".writing-" + std::to_string(::getpid());
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   std::error_code made;
   if (!folder.empty())
   {
     std::filesystem::create_directories(folder, made);
   }
-  const std::string aside = path + ".writing-" + std::to_string(::getpid());
-  this->Pending.emplace_back(aside, path);
-  std::ofstream out(aside, std::ios::binary | std::ios::trunc);
-  for (const std::string_view piece : pieces)
-  {
-    out.write(piece.data(), static_cast<std::streamsize>(piece.size()));
-  }
-  out.close();
-  if (!out)
-  {
-    throw FileError(path, 0, "cannot be written (" + (made ? made.message() : std::string("no space or no permission")) + ")");
-  }
+  aside.Unmade = made ? made.message() : std::string();
+  this->Pending.emplace_back(aside.Written, path);
+  aside.Out.open(aside.Written, std::ios::binary | std::ios::trunc);
   return aside;
+}
+
+std::string AtomicWrite::close(Aside& aside)
+{
+  aside.Out.close();
+  if (!aside.Out)
+  {
+    throw FileError(aside.Path, 0, "cannot be written (" + (aside.Unmade.empty() ? std::string("no space or no permission") : aside.Unmade) + ")");
+  }
+  return aside.Written;
+}
+
+std::string AtomicWrite::add(const std::string& path, std::string_view bytes)
+{
+  Aside aside = this->open(path);
+  aside.append(bytes);
+  return this->close(aside);
 }
 
 void AtomicWrite::commit()

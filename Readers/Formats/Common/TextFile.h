@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -60,12 +61,28 @@ std::size_t contentHash(std::string_view bytes);
 class AtomicWrite
 {
 public:
+  /// A file being written aside for a path, its bytes appended in order.
+  class Aside
+  {
+  public:
+    void append(std::string_view bytes);
+
+  private:
+    friend class AtomicWrite;
+    std::ofstream Out;
+    std::string Path, Written; // where it goes; where it is written aside
+    std::string Unmade;        // why its folder could not be made, if it could not
+  };
   explicit AtomicWrite(bool overwrite);
   ~AtomicWrite(); // removes what was written aside and not committed
-  /// Writes text (or its pieces, one after the other) aside for path; returns the file written
-  /// aside (a binary format edits it there through its library before the commit).
+  /// Opens the file written aside for path. Throws FileError when path exists and overwrite is
+  /// not set.
+  Aside open(const std::string& path);
+  /// Closes it; returns the file written aside (a binary format edits it there through its
+  /// library before the commit). Throws FileError when it could not be written.
+  std::string close(Aside& aside);
+  /// Writes bytes aside for path (open, append, close).
   std::string add(const std::string& path, std::string_view bytes);
-  std::string add(const std::string& path, const std::vector<std::string_view>& pieces);
   /// Renames every file written aside into place, the first added last: once it is in place,
   /// so are the others (a variant interrupted before has no main file, and is written again).
   void commit();

@@ -1054,8 +1054,9 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
       }
     }
   }
-  const RewrittenText variant = rewriteInPieces(
-    text, count, [&](std::size_t n) { return this->coordinates[n]; },
+  AtomicWrite write(overwrite);
+  AtomicWrite::Aside out = write.open(target);
+  rewriteInPieces(out, text, count, [&](std::size_t n) { return this->coordinates[n]; },
     [&](std::string& out, std::size_t n) {
       const std::size_t at = this->coordinates[n];
       const double* value = xyz + 3 * row[n];
@@ -1066,8 +1067,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
       return precision[n] == Precision::Single ? appendBinaryNumbers<float>(out, text, at, this->dimension, value)
                                                : appendBinaryNumbers<double>(out, text, at, this->dimension, value);
     });
-  AtomicWrite write(overwrite);
-  write.add(target, variant.pieces);
+  write.close(out);
   write.commit();
 }
 } // namespace fluent

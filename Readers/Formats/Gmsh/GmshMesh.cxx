@@ -1253,14 +1253,14 @@ void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, c
   const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
   const std::string_view text = source.bytes.bytes();
-  const RewrittenText variant = rewriteInPieces(
-    text, count, [&](std::size_t k) { return this->coordinates[k]; },
+  AtomicWrite write(overwrite);
+  AtomicWrite::Aside out = write.open(target);
+  rewriteInPieces(out, text, count, [&](std::size_t k) { return this->coordinates[k]; },
     [&](std::string& out, std::size_t k) {
       return this->binary ? appendBinaryNumbers<double>(out, text, this->coordinates[k], 3, xyz + 3 * row[k])
                           : appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]);
     });
-  AtomicWrite write(overwrite);
-  write.add(target, variant.pieces);
+  write.close(out);
   write.commit();
 }
 } // namespace gmsh

@@ -1387,9 +1387,10 @@ void appendLine(
   }
 }
 
-// The text of file f with each moved grid's coordinates replaced (row: where grid k's are in xyz).
-RewrittenText withCoordinates(
-  const Deck& deck, std::string_view text, std::uint32_t f, const std::vector<std::size_t>& row, const double* xyz)
+// Appends to out the text of file f with each moved grid's coordinates replaced (row: where grid
+// k's are in xyz).
+void writeWithCoordinates(AtomicWrite::Aside& out, const Deck& deck, std::string_view text, std::uint32_t f,
+  const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the grids in file f, in file order
   for (std::size_t k = 0; k < deck.slots.size(); ++k)
@@ -1399,9 +1400,9 @@ RewrittenText withCoordinates(
       mine.push_back(k);
     }
   }
-  return rewriteInPieces(
-    text, mine.size(), [&](std::size_t i) { return deck.slots[mine[i]].offset; },
-    [&](std::string& out, std::size_t i) {
+  rewriteInPieces(
+    out, text, mine.size(), [&](std::size_t i) { return deck.slots[mine[i]].offset; },
+    [&](std::string& piece, std::size_t i) {
       const std::size_t k = mine[i];
       const GridSlot& slot = deck.slots[k];
       std::size_t copied = slot.offset;
@@ -1444,8 +1445,8 @@ RewrittenText withCoordinates(
         }
         if (!replaced.empty())
         {
-          out.append(text, copied, line.begin - copied);
-          appendLine(out, text, line, replaced);
+          piece.append(text, copied, line.begin - copied);
+          appendLine(piece, text, line, replaced);
           copied = line.end;
         }
       }
@@ -1478,8 +1479,9 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       throw FileError(this->files[f], 0, "has changed since it was read: read the deck again");
     }
-    const RewrittenText variant = withCoordinates(*this, text.bytes(), f, row, xyz);
-    write.add(destinations[f], variant.pieces);
+    AtomicWrite::Aside out = write.open(destinations[f]);
+    writeWithCoordinates(out, *this, text.bytes(), f, row, xyz);
+    write.close(out);
   }
   write.commit();
 }

@@ -665,11 +665,11 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
     const std::size_t end = z + 1 < this->zones.size() ? this->zones[z + 1].firstNode : count;
     std::fill(dimension.begin() + this->zones[z].firstNode, dimension.begin() + end, this->zones[z].dimension);
   }
-  const RewrittenText variant = rewriteInPieces(
-    text, count, [&](std::size_t k) { return this->coordinates[k]; },
-    [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], dimension[k], xyz + 3 * row[k]); });
   AtomicWrite write(overwrite);
-  write.add(target, variant.pieces);
+  AtomicWrite::Aside out = write.open(target);
+  rewriteInPieces(out, text, count, [&](std::size_t k) { return this->coordinates[k]; },
+    [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], dimension[k], xyz + 3 * row[k]); });
+  write.close(out);
   write.commit();
 }
 } // namespace su2
