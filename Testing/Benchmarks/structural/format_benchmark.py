@@ -81,7 +81,7 @@ makers = {
     'Abaqus deck (.inp)': ('box.inp', lambda p: gmsh_box(p, 'inp')),
     'Gmsh (.msh 4.1 ASCII)': ('box.msh', lambda p: gmsh_box(p, 'msh41')),
     'SU2 (.su2)': ('box.su2', lambda p: gmsh_box(p, 'su2')),
-    'Nastran (.bdf, free field)': ('box.bdf', lambda p: gmsh_box(p, 'bdf')),
+    'Nastran (.bdf, small field)': ('box.bdf', lambda p: gmsh_box(p, 'bdf')),
     'Exodus II (.exo, ParaView)': ('box.exo', lambda p: wavelet(p, lambda q, s: ExodusIIWriter(FileName=q, Input=s).UpdatePipeline())),
     'CGNS (.cgns, ParaView)': ('box.cgns', lambda p: wavelet(p, lambda q, s: SaveData(q, proxy=s))),
     'Fluent (.msh, foamMeshToFluent)': ('fluent.msh', fluent),
