@@ -38,7 +38,9 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <optional>
+#include <sstream>
 #include <unordered_set>
 
 
@@ -102,6 +104,64 @@ struct PointRule
     return true;
   }
 };
+
+// Why rule selected no point of sets, for the warning: where the points lie and what the rule saw
+// at them, over every process: the Region function's least value (it selects where it is <= 0;
+// with InsideOut its greatest, it selects where it is > 0), or the selection array's values.
+std::string whyNoPoint(const PointRule& rule, const std::vector<vtkPointSet*>& sets, const std::vector<vtkDataArray*>& values,
+  const mlsdeform::Collective& group)
+{
+  constexpr double none = -std::numeric_limits<double>::infinity();
+  // maxima over the processes of -least and greatest: x, y, z, the function, the array's values
+  std::vector<double> extremes(10, none);
+  const auto widen = [&](int at, double value) {
+    extremes[at] = std::max(extremes[at], -value);
+    extremes[at + 1] = std::max(extremes[at + 1], value);
+  };
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    for (vtkIdType i = 0; i < sets[s]->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      sets[s]->GetPoint(i, x);
+      for (int c = 0; c < 3; ++c)
+      {
+        widen(2 * c, x[c]);
+      }
+      if (rule.mode == vtkConstraintRegion::ImplicitFunction)
+      {
+        widen(6, rule.function->FunctionValue(x));
+      }
+      if (rule.mode == vtkConstraintRegion::ArrayRange && values[s])
+      {
+        widen(8, values[s]->GetComponent(i, 0));
+      }
+    }
+  }
+  group.maximum(extremes);
+  std::ostringstream why;
+  why << "the input's points lie within x [" << -extremes[0] << ", " << extremes[1] << "], y [" << -extremes[2] << ", "
+      << extremes[3] << "], z [" << -extremes[4] << ", " << extremes[5] << "]";
+  if (rule.mode == vtkConstraintRegion::ImplicitFunction)
+  {
+    why << (rule.insideOut ? "; the Region function is at most " : "; the Region function is at least ")
+        << (rule.insideOut ? extremes[7] : -extremes[6])
+        << (rule.insideOut ? " at them (with InsideOut it selects where it is > 0)" : " at them (it selects where it is <= 0)");
+  }
+  if (rule.mode == vtkConstraintRegion::ArrayRange)
+  {
+    if (extremes[9] == none)
+    {
+      why << "; none of them has the selection array";
+    }
+    else
+    {
+      why << "; the selection array's values lie within [" << -extremes[8] << ", " << extremes[9] << "], and Range is ["
+          << rule.range[0] << ", " << rule.range[1] << "]";
+    }
+  }
+  return why.str();
+}
 
 // Positions compared exactly (the same point in two blocks or on two processes has the same
 // coordinates: they come from the same file).
@@ -538,9 +598,14 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
     }
     const int role = this->CheckedRole(in, group);
     this->UpdateSelection(in, group); // unless only the motion or the weight changed since the last selection
-    if (!this->Selected->selectedAnywhere && group.any(input->GetNumberOfElements(vtkDataObject::POINT) > 0) && group.rank() == 0)
+    if (!this->Selected->selectedAnywhere && group.any(input->GetNumberOfElements(vtkDataObject::POINT) > 0))
     {
-      vtkWarningMacro(<< GetRoleName(role) << " region selects no point.");
+      const PointRule rule{ this->SelectionMode, this->Region, this->InsideOut, this->Range, this->PrimitiveId };
+      const std::string why = whyNoPoint(rule, in.sets, in.values, group); // on every process
+      if (group.rank() == 0)
+      {
+        vtkWarningMacro(<< GetRoleName(role) << " region selects no point: " << why << ".");
+      }
     }
     this->WriteOutput(output, role, in);
   }

@@ -8,6 +8,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkPointData.h>
 #include <vtkErrorCode.h>
 #include <vtkFloatArray.h>
 #include <vtkIdList.h>
@@ -1008,7 +1009,30 @@ TEST(RegionSelectingNoPoint)
   scene.fixed->SetRegion(box);
   auto regionMessages = MessageCollector::watch(scene.fixed);
   expectFailure(scene, plane, "selects no point");
+  // the region's warning says where the input lies and what the function is there: vtkBox's value
+  // outside is the distance to the box, from the plane's nearest point (1, 1, 0) sqrt(4² + 4² + 5²)
   CHECK(!regionMessages->Warnings.empty());
+  const std::string warning = regionMessages->Warnings.empty() ? "" : regionMessages->Warnings[0];
+  CHECK(warning.find("Fixed region selects no point: the input's points lie within x [0, 1], y [0, 1], z [0, 0]") != std::string::npos);
+  CHECK(warning.find("the Region function is at least 7.54983 at them (it selects where it is <= 0)") != std::string::npos);
+  // a selection array's values against the Range
+  vtkNew<vtkDoubleArray> height;
+  height->SetName("height");
+  for (vtkIdType i = 0; i < plane->GetNumberOfPoints(); ++i)
+  {
+    height->InsertNextValue(plane->GetPoint(i)[0]);
+  }
+  plane->GetPointData()->AddArray(height);
+  vtkNew<vtkConstraintRegion> byValue;
+  byValue->SetInputData(plane);
+  byValue->SetSelectionMode(vtkConstraintRegion::ArrayRange);
+  byValue->SetSelectionArray("height");
+  byValue->SetRange(2, 3);
+  auto valueMessages = MessageCollector::watch(byValue);
+  byValue->Update();
+  CHECK(!valueMessages->Warnings.empty());
+  const std::string valueWarning = valueMessages->Warnings.empty() ? "" : valueMessages->Warnings[0];
+  CHECK(valueWarning.find("the selection array's values lie within [0, 1], and Range is [2, 3]") != std::string::npos);
 }
 
 TEST(FailedRegionIsNamedByItsRole)
