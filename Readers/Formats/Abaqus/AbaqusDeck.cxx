@@ -1132,7 +1132,7 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
 
 // Appends to out the text of file f with each of its nodes' coordinates replaced by xyz (row: where
 // node k's are).
-void writeWithCoordinates(AtomicWrite::Aside& out, std::string_view text, const std::vector<NodeSlot>& slots, std::uint32_t f,
+void writeWithCoordinates(AtomicWrite::Aside& out, SourceBytes& file, const std::vector<NodeSlot>& slots, std::uint32_t f,
   const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the nodes in file f, in file order
@@ -1144,11 +1144,11 @@ void writeWithCoordinates(AtomicWrite::Aside& out, std::string_view text, const 
     }
   }
   rewriteInPieces(
-    out, text, mine.size(), [&](std::size_t i) { return slots[mine[i]].begin; },
-    [&](std::string& piece, std::size_t i) {
+    out, file, mine.size(), mine.empty() ? 0 : slots[mine.back()].end, [&](std::size_t i) { return slots[mine[i]].begin; },
+    [&](std::string& piece, std::string_view text, std::size_t at, std::size_t i) {
       const NodeSlot& s = slots[mine[i]];
-      appendSlot(piece, text.substr(s.begin, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
-      return static_cast<std::size_t>(s.end);
+      appendSlot(piece, text.substr(at, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
+      return at + (s.end - s.begin);
     });
 }
 
@@ -1175,13 +1175,9 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       continue;
     }
-    const MappedFile text(deck.files[f]);
-    if (contentHash(text.bytes()) != deck.hashes[f])
-    {
-      throw FileError(deck.files[f], 0, "has changed since it was read: read the deck again");
-    }
+    SourceBytes file(deck.files[f], deck.hashes[f], "deck");
     AtomicWrite::Aside out = write.open(destinations[f]);
-    writeWithCoordinates(out, text.bytes(), deck.slots, f, row, xyz);
+    writeWithCoordinates(out, file, deck.slots, f, row, xyz);
     write.close(out);
   }
   write.commit();

@@ -192,9 +192,12 @@ public:
   {
     this->Out.path = path;
     {
-      const MappedFile bytes(path);
-      this->Out.hash = contentHash(bytes.bytes());
-      if (!isCgns(std::string(bytes.bytes().substr(0, 64))))
+      this->Out.hash = fileHash(path);
+      std::ifstream in(path, std::ios::binary);
+      std::string head(64, '\0');
+      in.read(&head[0], static_cast<std::streamsize>(head.size()));
+      head.resize(static_cast<std::size_t>(in.gcount()));
+      if (!isCgns(head))
       {
         throw FileError(path, 0, "is not a CGNS file (neither HDF5 nor ADF)");
       }
@@ -863,9 +866,8 @@ void keepModificationDate(const std::string& path, const std::string& target, st
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string_view bytes = source.bytes.bytes();
   // the new arrays, each in its data type, before anything is written
   std::vector<Array> arrays;
   for (const Zone& zone : this->zones)
@@ -910,9 +912,13 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   // the source's bytes written aside, their coordinates overwritten there, renamed into place
   AtomicWrite write(overwrite);
-  const std::string aside = write.add(target, bytes);
+  AtomicWrite::Aside out = write.open(target);
+  const std::string head(source.file.read(0, std::min<std::size_t>(source.file.size(), 512))); // its date, if ADF
+  out.append(head);
+  out.copy(source.file, head.size(), source.file.size());
+  const std::string aside = write.close(out);
   overwriteCoordinates(aside, target, arrays);
-  keepModificationDate(aside, target, bytes);
+  keepModificationDate(aside, target, head);
   write.commit();
 }
 } // namespace cgns

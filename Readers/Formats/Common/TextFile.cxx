@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -51,7 +53,143 @@ std::string readFile(const std::string& path)
   return text;
 }
 
-MappedFile::MappedFile(const std::string& path)
+namespace
+{
+// contentHash's chunks: hashed side by side, then their hashes hashed
+constexpr std::size_t HashChunk = std::size_t(1) << 22;
+
+std::size_t hashOfChunks(const std::vector<std::size_t>& chunks)
+{
+  return std::hash<std::string_view>()(std::string_view(reinterpret_cast<const char*>(chunks.data()), chunks.size() * sizeof(std::size_t)));
+}
+
+// Reads [at, at + length) of file into data; false when the file ends first or a read fails.
+bool readAt(int file, char* data, std::size_t length, std::size_t at)
+{
+  while (length > 0)
+  {
+    const ssize_t read = ::pread(file, data, length, static_cast<off_t>(at));
+    if (read < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (read <= 0)
+    {
+      return false;
+    }
+    data += read;
+    at += static_cast<std::size_t>(read);
+    length -= static_cast<std::size_t>(read);
+  }
+  return true;
+}
+
+} // namespace
+
+std::size_t contentHash(std::string_view bytes)
+{
+  std::vector<std::size_t> chunks((bytes.size() + HashChunk - 1) / HashChunk);
+#pragma omp parallel for schedule(dynamic)
+  for (long c = 0; c < static_cast<long>(chunks.size()); ++c)
+  {
+    chunks[c] = std::hash<std::string_view>()(bytes.substr(c * HashChunk, HashChunk));
+  }
+  return hashOfChunks(chunks);
+}
+
+SourceBytes::SourceBytes(const std::string& path, std::size_t hash, const char* noun)
+  : Path(path)
+  , Noun(noun)
+  , Expected(hash)
+{
+  this->File = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat status;
+  if (this->File < 0 || ::fstat(this->File, &status) != 0 || !S_ISREG(status.st_mode))
+  {
+    throw FileError(path, 0, "cannot be read (no such file, or no permission)");
+  }
+  this->Size = static_cast<std::size_t>(status.st_size);
+}
+
+SourceBytes::SourceBytes(SourceBytes&& other) noexcept
+  : Path(std::move(other.Path))
+  , Noun(other.Noun)
+  , File(other.File)
+  , Size(other.Size)
+  , Expected(other.Expected)
+  , Next(other.Next)
+  , Chunks(std::move(other.Chunks))
+  , Partial(std::move(other.Partial))
+  , Bytes(std::move(other.Bytes))
+  , Buffer(std::move(other.Buffer))
+{
+  other.File = -1;
+}
+
+SourceBytes::~SourceBytes()
+{
+  if (this->File >= 0)
+  {
+    ::close(this->File);
+  }
+}
+
+void SourceBytes::readInto(char* data, std::size_t begin, std::size_t end)
+{
+  if (begin != this->Next || end < begin || end > this->Size)
+  {
+    throw std::logic_error("SourceBytes: bytes [" + std::to_string(begin) + ", " + std::to_string(end) + ") are not the next of " +
+      this->Path + " (at " + std::to_string(this->Next) + " of " + std::to_string(this->Size) + ")");
+  }
+  if (!readAt(this->File, data, end - begin, begin))
+  {
+    throw FileError(this->Path, 0, "has changed since it was read (it is shorter): read the " + std::string(this->Noun) + " again");
+  }
+  this->pass(std::string_view(data, end - begin));
+}
+
+void SourceBytes::pass(std::string_view bytes)
+{
+  this->Next += bytes.size();
+  while (!bytes.empty())
+  {
+    if (this->Partial.empty() && bytes.size() >= HashChunk)
+    {
+      this->Chunks.push_back(std::hash<std::string_view>()(bytes.substr(0, HashChunk)));
+      bytes.remove_prefix(HashChunk);
+      continue;
+    }
+    const std::size_t taken = std::min(HashChunk - this->Partial.size(), bytes.size());
+    this->Partial.append(bytes.substr(0, taken));
+    bytes.remove_prefix(taken);
+    if (this->Partial.size() == HashChunk)
+    {
+      this->Chunks.push_back(std::hash<std::string_view>()(this->Partial));
+      this->Partial.clear();
+    }
+  }
+  if (this->Next == this->Size)
+  {
+    if (!this->Partial.empty())
+    {
+      this->Chunks.push_back(std::hash<std::string_view>()(this->Partial));
+      this->Partial.clear();
+    }
+    if (hashOfChunks(this->Chunks) != this->Expected)
+    {
+      throw FileError(this->Path, 0, "has changed since it was read: read the " + std::string(this->Noun) + " again");
+    }
+  }
+}
+
+std::string_view SourceBytes::read(std::size_t begin, std::size_t end)
+{
+  this->Bytes.resize(end - begin);
+  this->readInto(this->Bytes.data(), begin, end);
+  return this->Bytes;
+}
+
+std::size_t fileHash(const std::string& path)
 {
   const int file = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   struct stat status;
@@ -63,47 +201,26 @@ MappedFile::MappedFile(const std::string& path)
     }
     throw FileError(path, 0, "cannot be read (no such file, or no permission)");
   }
-  this->Size = static_cast<std::size_t>(status.st_size);
-  if (this->Size > 0)
+  const std::size_t size = static_cast<std::size_t>(status.st_size);
+  std::vector<std::size_t> chunks((size + HashChunk - 1) / HashChunk);
+  bool whole = true;
+#pragma omp parallel
   {
-    void* data = ::mmap(nullptr, this->Size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, file, 0);
-    if (data == MAP_FAILED)
+    std::string chunk(HashChunk, '\0'); // this thread's
+#pragma omp for schedule(dynamic) reduction(&& : whole)
+    for (long c = 0; c < static_cast<long>(chunks.size()); ++c)
     {
-      ::close(file);
-      throw FileError(path, 0, "cannot be mapped into memory to be read");
+      const std::size_t at = c * HashChunk, length = std::min(HashChunk, size - at);
+      whole = readAt(file, chunk.data(), length, at) && whole;
+      chunks[c] = std::hash<std::string_view>()(std::string_view(chunk.data(), length));
     }
-    this->Data = static_cast<const char*>(data);
   }
-  ::close(file); // the mapping keeps the file
-}
-
-MappedFile::MappedFile(MappedFile&& other) noexcept
-  : Data(other.Data)
-  , Size(other.Size)
-{
-  other.Data = nullptr;
-  other.Size = 0;
-}
-
-MappedFile::~MappedFile()
-{
-  if (this->Data)
+  ::close(file);
+  if (!whole)
   {
-    ::munmap(const_cast<char*>(this->Data), this->Size);
+    throw FileError(path, 0, "a read failed (or the file changed while it was read)");
   }
-}
-
-std::size_t contentHash(std::string_view bytes)
-{
-  // the hashes of 4 MiB chunks taken side by side, then hashed: the same for any number of threads
-  constexpr std::size_t Chunk = std::size_t(1) << 22;
-  std::vector<std::size_t> chunks((bytes.size() + Chunk - 1) / Chunk);
-#pragma omp parallel for schedule(dynamic)
-  for (long c = 0; c < static_cast<long>(chunks.size()); ++c)
-  {
-    chunks[c] = std::hash<std::string_view>()(bytes.substr(c * Chunk, Chunk));
-  }
-  return std::hash<std::string_view>()(std::string_view(reinterpret_cast<const char*>(chunks.data()), chunks.size() * sizeof(std::size_t)));
+  return hashOfChunks(chunks);
 }
 
 AtomicWrite::AtomicWrite(bool overwrite)
@@ -113,16 +230,65 @@ AtomicWrite::AtomicWrite(bool overwrite)
 
 AtomicWrite::~AtomicWrite()
 {
+  std::error_code ignored;
   for (const auto& [aside, path] : this->Pending)
   {
-    std::error_code ignored;
     std::filesystem::remove(aside, ignored);
+  }
+  // the folders made for what is not committed, a folder's after those in it (longer paths)
+  std::sort(this->Made.begin(), this->Made.end(), [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
+  for (const std::string& folder : this->Made)
+  {
+    std::filesystem::remove(folder, ignored); // only when empty
+  }
+}
+
+AtomicWrite::Aside::Aside(Aside&& other) noexcept
+  : File(other.File)
+  , Path(std::move(other.Path))
+  , Written(std::move(other.Written))
+  , Failure(std::move(other.Failure))
+{
+  other.File = -1;
+}
+
+AtomicWrite::Aside::~Aside()
+{
+  if (this->File >= 0)
+  {
+    ::close(this->File);
   }
 }
 
 void AtomicWrite::Aside::append(std::string_view bytes)
 {
-  this->Out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  while (!bytes.empty() && this->Failure.empty())
+  {
+    const ssize_t written = ::write(this->File, bytes.data(), bytes.size());
+    if (written < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (written <= 0)
+    {
+      this->Failure = written < 0 ? std::strerror(errno) : "no space";
+      return;
+    }
+    bytes.remove_prefix(static_cast<std::size_t>(written));
+  }
+}
+
+void AtomicWrite::Aside::copy(SourceBytes& source, std::size_t begin, std::size_t end)
+{
+  // in chunks of the hash's size, at its chunks' bounds: each read is hashed whole
+  source.Buffer.resize(std::min(end - begin, HashChunk));
+  for (std::size_t at = begin; at < end;)
+  {
+    const std::size_t next = std::min(end, (at / HashChunk + 1) * HashChunk);
+    source.readInto(source.Buffer.data(), at, next);
+    this->append(std::string_view(source.Buffer.data(), next - at));
+    at = next;
+  }
 }
 
 AtomicWrite::Aside AtomicWrite::open(const std::string& path)
@@ -136,22 +302,34 @@ AtomicWrite::Aside AtomicWrite::open(const std::string& path)
   aside.Written = path + ".writing-" + std::to_string(::getpid());
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   std::error_code made;
+  for (std::filesystem::path missing = folder; !missing.empty() && !std::filesystem::exists(missing); missing = missing.parent_path())
+  {
+    this->Made.push_back(missing.string());
+  }
   if (!folder.empty())
   {
     std::filesystem::create_directories(folder, made);
   }
-  aside.Unmade = made ? made.message() : std::string();
   this->Pending.emplace_back(aside.Written, path);
-  aside.Out.open(aside.Written, std::ios::binary | std::ios::trunc);
+  aside.File = ::open(aside.Written.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (aside.File < 0)
+  {
+    throw FileError(path, 0, "cannot be written (" + (made ? made.message() : std::string(std::strerror(errno))) + ")");
+  }
   return aside;
 }
 
 std::string AtomicWrite::close(Aside& aside)
 {
-  aside.Out.close();
-  if (!aside.Out)
+  const int file = aside.File;
+  aside.File = -1;
+  if (::close(file) != 0 && aside.Failure.empty())
   {
-    throw FileError(aside.Path, 0, "cannot be written (" + (aside.Unmade.empty() ? std::string("no space or no permission") : aside.Unmade) + ")");
+    aside.Failure = std::strerror(errno);
+  }
+  if (!aside.Failure.empty())
+  {
+    throw FileError(aside.Path, 0, "cannot be written (" + aside.Failure + ")");
   }
   return aside.Written;
 }
@@ -160,6 +338,13 @@ std::string AtomicWrite::add(const std::string& path, std::string_view bytes)
 {
   Aside aside = this->open(path);
   aside.append(bytes);
+  return this->close(aside);
+}
+
+std::string AtomicWrite::add(const std::string& path, SourceBytes& source)
+{
+  Aside aside = this->open(path);
+  aside.copy(source, 0, source.size());
   return this->close(aside);
 }
 
@@ -177,6 +362,7 @@ void AtomicWrite::commit()
     }
   }
   this->Pending.clear();
+  this->Made.clear();
 }
 
 bool parseInteger(const char* first, const char* last, std::int64_t& value)

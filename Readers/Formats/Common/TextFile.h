@@ -5,7 +5,6 @@
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -29,30 +28,47 @@ std::string canonicalPath(const std::string& path);
 /// The whole file. Throws FileError when it cannot be read.
 std::string readFile(const std::string& path);
 
-/// The whole file mapped into memory read-only: its bytes are the page cache's own, neither copied
-/// nor zeroed first, so a variant's unchanged bytes go from the source's pages straight to the
-/// variant's (AtomicWrite::add). Throws FileError when it cannot be read. The file must not be
-/// truncated while it is mapped (the bytes past its new end would be gone): a variant is written
-/// within a second of mapping its source, and a source replaced by a new file (renamed over it, as
-/// editors and solvers save) keeps its mapped bytes.
-class MappedFile
+/// A source file read to write a variant of it, in file order and never mapped: the span that
+/// holds its nodes read into memory (read), every other span read in chunks and written on
+/// (AtomicWrite::Aside::copy). Its bytes are hashed as they pass: once the last has, a hash other
+/// than the one they had when the file was read throws FileError ("has changed since it was
+/// read"), before the variant is committed. Not mapped: a file truncated meanwhile (a mesher
+/// writing it again in place) is a FileError, not the end of the process.
+class SourceBytes
 {
 public:
-  explicit MappedFile(const std::string& path);
-  MappedFile(MappedFile&& other) noexcept;
-  MappedFile(const MappedFile&) = delete;
-  MappedFile& operator=(const MappedFile&) = delete;
-  MappedFile& operator=(MappedFile&&) = delete;
-  ~MappedFile();
-  std::string_view bytes() const { return std::string_view(this->Data, this->Size); }
+  /// hash: contentHash of the file as it was read; noun: what to read again ("mesh", "deck").
+  SourceBytes(const std::string& path, std::size_t hash, const char* noun = "mesh");
+  SourceBytes(SourceBytes&& other) noexcept;
+  SourceBytes(const SourceBytes&) = delete;
+  SourceBytes& operator=(const SourceBytes&) = delete;
+  SourceBytes& operator=(SourceBytes&&) = delete;
+  ~SourceBytes();
+  const std::string& path() const { return this->Path; }
+  std::size_t size() const { return this->Size; }
+  /// The next bytes, [begin, end) (begin: where those read or copied so far end), read into
+  /// memory and held until the next read.
+  std::string_view read(std::size_t begin, std::size_t end);
 
 private:
-  const char* Data = nullptr;
-  std::size_t Size = 0;
+  friend class AtomicWrite;
+  void readInto(char* data, std::size_t begin, std::size_t end); // throws when the file ends first
+  void pass(std::string_view bytes);                               // hashes the next bytes
+  std::string Path;
+  const char* Noun;
+  int File = -1;
+  std::size_t Size = 0, Expected = 0;
+  std::size_t Next = 0;              // where the bytes passed so far end
+  std::vector<std::size_t> Chunks;   // the hashes of the chunks passed
+  std::string Partial;               // the bytes of the chunk being passed, unless passed whole
+  std::string Bytes, Buffer;         // the span read last; a chunk on its way
 };
 
+/// contentHash of the file at path, read chunk by chunk side by side. Throws FileError.
+std::size_t fileHash(const std::string& path);
+
 /// The hash of a file's bytes, taken when it is read and checked before a variant is written from
-/// it (a variant is written from the bytes that were read, or not at all).
+/// it (SourceBytes::hash: a variant is written from the bytes that were read, or not at all).
 std::size_t contentHash(std::string_view bytes);
 
 /// The files written into place at once: each is written aside (path.writing-<process>), and only
@@ -61,20 +77,31 @@ std::size_t contentHash(std::string_view bytes);
 class AtomicWrite
 {
 public:
-  /// A file being written aside for a path, its bytes appended in order.
+  /// A file being written aside for a path, its bytes appended in order. A failure to write is
+  /// kept and thrown by AtomicWrite::close (append is called where nothing may throw: in order,
+  /// from the threads that format a variant's pieces).
   class Aside
   {
   public:
+    Aside() = default;
+    Aside(Aside&& other) noexcept;
+    Aside(const Aside&) = delete;
+    Aside& operator=(const Aside&) = delete;
+    Aside& operator=(Aside&&) = delete;
+    ~Aside();
     void append(std::string_view bytes);
+    /// Appends source's next bytes, [begin, end). Throws FileError naming the source when it
+    /// ends before end or, its last bytes passed, has changed since it was read.
+    void copy(SourceBytes& source, std::size_t begin, std::size_t end);
 
   private:
     friend class AtomicWrite;
-    std::ofstream Out;
+    int File = -1;
     std::string Path, Written; // where it goes; where it is written aside
-    std::string Unmade;        // why its folder could not be made, if it could not
+    std::string Failure;       // why it could not be written, once it could not
   };
   explicit AtomicWrite(bool overwrite);
-  ~AtomicWrite(); // removes what was written aside and not committed
+  ~AtomicWrite(); // removes what was written aside and not committed, and the folders made for it
   /// Opens the file written aside for path. Throws FileError when path exists and overwrite is
   /// not set.
   Aside open(const std::string& path);
@@ -83,6 +110,8 @@ public:
   std::string close(Aside& aside);
   /// Writes bytes aside for path (open, append, close).
   std::string add(const std::string& path, std::string_view bytes);
+  /// Writes a copy of source aside for path (open, copy, close).
+  std::string add(const std::string& path, SourceBytes& source);
   /// Renames every file written aside into place, the first added last: once it is in place,
   /// so are the others (a variant interrupted before has no main file, and is written again).
   void commit();
@@ -90,6 +119,7 @@ public:
 private:
   bool Overwrite;
   std::vector<std::pair<std::string, std::string>> Pending; // (aside, path)
+  std::vector<std::string> Made;                            // the folders made for them
 };
 
 /// Whether [first, last) is wholly an integer ("+" allowed), and its value.

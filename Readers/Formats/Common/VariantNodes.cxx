@@ -89,11 +89,6 @@ VariantSource variantSource(const std::string& target, const std::string& source
   {
     throw FileError(target, 0, "is the source mesh: a variant is written elsewhere");
   }
-  VariantSource out{ std::move(row), MappedFile(source) };
-  if (contentHash(out.bytes.bytes()) != hash)
-  {
-    throw FileError(source, 0, "has changed since it was read: read the mesh again");
-  }
-  return out;
+  return VariantSource{ std::move(row), SourceBytes(source, hash) };
 }
 } // namespace mlsformats

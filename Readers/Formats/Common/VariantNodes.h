@@ -16,13 +16,13 @@ namespace mlsformats
 std::vector<std::size_t> variantRows(const std::string& target, const std::string& source,
   const std::vector<std::int64_t>& nodeIds, const std::int64_t* ids, const double* xyz, std::size_t count);
 /// What a one-file format's variant starts from: where each source node is among the variant's
-/// (variantRows) and the source's bytes (mapped, not copied). Throws FileError, besides variantRows' refusals, when
+/// (variantRows) and the source file, its hash checked as it is read (SourceBytes). Throws FileError, besides variantRows' refusals, when
 /// target is the source file (by any spelling of its path) and when the source's bytes are not
 /// those read (their hash): a variant is written from the file as it was read, or not at all.
 struct VariantSource
 {
   std::vector<std::size_t> row;
-  MappedFile bytes;
+  SourceBytes file;
 };
 VariantSource variantSource(const std::string& target, const std::string& source, std::size_t hash,
   const std::vector<std::int64_t>& nodeIds, const std::int64_t* ids, const double* xyz, std::size_t count);

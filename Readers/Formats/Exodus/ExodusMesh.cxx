@@ -745,7 +745,7 @@ bool isExodus(const std::string& head)
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
   // the coordinates dimension after dimension, as the file holds them
   const std::size_t dimensions = static_cast<std::size_t>(this->dimensions);
@@ -773,7 +773,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   // the source's bytes written aside, their coordinates rewritten there, then renamed into place
   AtomicWrite write(overwrite);
-  NetCDF copy(target, write.add(target, source.bytes.bytes()));
+  NetCDF copy(target, write.add(target, source.file));
   const std::size_t each = this->coordinates.size() == 1 ? values.size() : count; // "coord" holds them all
   for (std::size_t c = 0; c < this->coordinates.size(); ++c)
   {

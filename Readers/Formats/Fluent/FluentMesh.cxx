@@ -761,6 +761,7 @@ private:
       }
       mesh.nodeIds.push_back(id);
       this->Out.coordinates.push_back(first);
+      this->Out.nodesEnd = this->At;
       if (!this->LayoutOnly)
       {
         mesh.xyz.insert(mesh.xyz.end(), xyz, xyz + 3);
@@ -1032,9 +1033,8 @@ namespace
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string_view text = source.bytes.bytes();
   // each node's zone's precision; a coordinate a single-precision zone cannot hold is refused
   std::vector<Precision> precision(count);
   std::size_t k = 0;
@@ -1056,16 +1056,15 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   AtomicWrite write(overwrite);
   AtomicWrite::Aside out = write.open(target);
-  rewriteInPieces(out, text, count, [&](std::size_t n) { return this->coordinates[n]; },
-    [&](std::string& out, std::size_t n) {
-      const std::size_t at = this->coordinates[n];
+  rewriteInPieces(out, source.file, count, this->nodesEnd, [&](std::size_t n) { return this->coordinates[n]; },
+    [&](std::string& piece, std::string_view text, std::size_t at, std::size_t n) {
       const double* value = xyz + 3 * row[n];
       if (precision[n] == Precision::Text)
       {
-        return appendNumbers(out, text, at, this->dimension, value);
+        return appendNumbers(piece, text, at, this->dimension, value);
       }
-      return precision[n] == Precision::Single ? appendBinaryNumbers<float>(out, text, at, this->dimension, value)
-                                               : appendBinaryNumbers<double>(out, text, at, this->dimension, value);
+      return precision[n] == Precision::Single ? appendBinaryNumbers<float>(piece, text, at, this->dimension, value)
+                                               : appendBinaryNumbers<double>(piece, text, at, this->dimension, value);
     });
   write.close(out);
   write.commit();

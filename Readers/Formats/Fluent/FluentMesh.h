@@ -55,6 +55,8 @@ struct MeshFile : SourceFile
   /// One a node, in mesh.nodeIds' order: where its coordinates start in the file (text: x's first
   /// character, the others follow after blanks; binary: its first float or double).
   std::vector<std::uint64_t> coordinates;
+  /// Where the last node's coordinates end in the file.
+  std::uint64_t nodesEnd = 0;
 
   /// The file with each node's coordinates replaced and every other byte as it was: a text
   /// coordinate whose value changed is written as its shortest text, an unchanged one keeps its

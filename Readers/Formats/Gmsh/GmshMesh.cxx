@@ -630,6 +630,7 @@ private:
   void asciiCoordinates(std::int64_t id, std::size_t first)
   {
     this->node(id, static_cast<std::size_t>(this->Fields[first].data() - this->Text.data()));
+    this->Out.nodesEnd = static_cast<std::size_t>(this->Fields[first + 2].data() + this->Fields[first + 2].size() - this->Text.data());
     if (this->LayoutOnly)
     {
       return;
@@ -647,6 +648,7 @@ private:
   void binaryCoordinates(std::int64_t id, std::size_t offset)
   {
     this->node(id, offset);
+    this->Out.nodesEnd = offset + 24;
     if (this->LayoutOnly)
     {
       return;
@@ -1250,15 +1252,14 @@ bool isMsh(const std::string& head)
 void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string_view text = source.bytes.bytes();
   AtomicWrite write(overwrite);
   AtomicWrite::Aside out = write.open(target);
-  rewriteInPieces(out, text, count, [&](std::size_t k) { return this->coordinates[k]; },
-    [&](std::string& out, std::size_t k) {
-      return this->binary ? appendBinaryNumbers<double>(out, text, this->coordinates[k], 3, xyz + 3 * row[k])
-                          : appendNumbers(out, text, this->coordinates[k], 3, xyz + 3 * row[k]);
+  rewriteInPieces(out, source.file, count, this->nodesEnd, [&](std::size_t k) { return this->coordinates[k]; },
+    [&](std::string& piece, std::string_view text, std::size_t at, std::size_t k) {
+      return this->binary ? appendBinaryNumbers<double>(piece, text, at, 3, xyz + 3 * row[k])
+                          : appendNumbers(piece, text, at, 3, xyz + 3 * row[k]);
     });
   write.close(out);
   write.commit();

@@ -30,6 +30,8 @@ struct MshFile : SourceFile
   /// One a node, in mesh.nodeIds' order: where its coordinates start in the file (ASCII: x's
   /// first character, y and z follow after blanks; binary: the first of its three doubles).
   std::vector<std::uint64_t> coordinates;
+  /// Where the last node's coordinates end in the file.
+  std::uint64_t nodesEnd = 0;
 
   /// The file with each node's x, y and z replaced and every other byte as it was: ASCII writes a
   /// changed coordinate as its shortest text and keeps an unchanged one's; binary replaces the

@@ -647,6 +647,7 @@ private:
     const std::uint32_t file = static_cast<std::uint32_t>(this->Out.files.size());
     this->Out.files.push_back(path);
     this->Out.hashes.push_back(contentHash(text));
+    this->Out.gridsEnd.push_back(0);
     this->Out.includeNames.push_back(includeName);
     const std::uint32_t includingFile = this->File;
     const std::size_t includingLine = this->Line;
@@ -858,6 +859,7 @@ private:
     this->GridSystems.push_back(this->field(1).empty() ? -1 : this->integer(1, id, "CP", 0, true));
     this->Out.mesh.nodeIds.push_back(id);
     this->Out.slots.push_back({ this->File, 0, begin });
+    this->Out.gridsEnd[this->File] = this->Current.next;
     static const char* const names[] = { "X1", "X2", "X3" };
     for (int c = 0; c < 3; ++c)
     {
@@ -1389,7 +1391,7 @@ void appendLine(
 
 // Appends to out the text of file f with each moved grid's coordinates replaced (row: where grid
 // k's are in xyz).
-void writeWithCoordinates(AtomicWrite::Aside& out, const Deck& deck, std::string_view text, std::uint32_t f,
+void writeWithCoordinates(AtomicWrite::Aside& out, const Deck& deck, SourceBytes& file, std::uint32_t f,
   const std::vector<std::size_t>& row, const double* xyz)
 {
   std::vector<std::size_t> mine; // the grids in file f, in file order
@@ -1401,14 +1403,14 @@ void writeWithCoordinates(AtomicWrite::Aside& out, const Deck& deck, std::string
     }
   }
   rewriteInPieces(
-    out, text, mine.size(), [&](std::size_t i) { return deck.slots[mine[i]].offset; },
-    [&](std::string& piece, std::size_t i) {
+    out, file, mine.size(), deck.gridsEnd[f], [&](std::size_t i) { return deck.slots[mine[i]].offset; },
+    [&](std::string& piece, std::string_view text, std::size_t at, std::size_t i) {
       const std::size_t k = mine[i];
       const GridSlot& slot = deck.slots[k];
-      std::size_t copied = slot.offset;
+      std::size_t copied = at;
       thread_local Entry entry;
       thread_local std::vector<std::pair<const Field*, std::string>> replaced;
-      readEntry(text, slot.offset, 0, deck.files[f], entry);
+      readEntry(text, at, 0, deck.files[f], entry);
       const CoordinateSystem& system = deck.systems[slot.system];
       double old[3], basic[3], local[3];
       for (int c = 0; c < 3; ++c)
@@ -1474,13 +1476,9 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     {
       continue;
     }
-    const MappedFile text(this->files[f]);
-    if (contentHash(text.bytes()) != this->hashes[f])
-    {
-      throw FileError(this->files[f], 0, "has changed since it was read: read the deck again");
-    }
+    SourceBytes file(this->files[f], this->hashes[f], "deck");
     AtomicWrite::Aside out = write.open(destinations[f]);
-    writeWithCoordinates(out, *this, text.bytes(), f, row, xyz);
+    writeWithCoordinates(out, *this, file, f, row, xyz);
     write.close(out);
   }
   write.commit();

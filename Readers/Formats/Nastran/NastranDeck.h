@@ -58,6 +58,8 @@ struct Deck : SourceFile
   std::vector<std::string> includeNames;
   /// For each file, the hash of its text: a variant is not written from a file changed since.
   std::vector<std::size_t> hashes;
+  /// For each file, where the entry of its last grid ends (0: it has none).
+  std::vector<std::uint64_t> gridsEnd;
   /// The systems the grids are in, the basic one first.
   std::vector<CoordinateSystem> systems;
   /// One a grid, in mesh.nodeIds' order.

@@ -441,6 +441,7 @@ private:
       }
       this->Out.mesh.nodeIds.push_back(static_cast<std::int64_t>(zone.firstNode + i));
       this->Out.coordinates.push_back(static_cast<std::uint64_t>(this->Fields[0].data() - this->Text.data()));
+      this->Out.nodesEnd = static_cast<std::uint64_t>(this->Fields[dimension - 1].data() + this->Fields[dimension - 1].size() - this->Text.data());
       if (this->LayoutOnly)
       {
         continue;
@@ -656,9 +657,8 @@ bool isSu2(const std::string& head)
 void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, const double* xyz, std::size_t count,
   bool overwrite) const
 {
-  const VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
+  VariantSource source = variantSource(target, this->path, this->hash, this->mesh.nodeIds, ids, xyz, count);
   const std::vector<std::size_t>& row = source.row;
-  const std::string_view text = source.bytes.bytes();
   std::vector<int> dimension(count); // each node's: its zone's
   for (std::size_t z = 0; z < this->zones.size(); ++z)
   {
@@ -667,8 +667,10 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   }
   AtomicWrite write(overwrite);
   AtomicWrite::Aside out = write.open(target);
-  rewriteInPieces(out, text, count, [&](std::size_t k) { return this->coordinates[k]; },
-    [&](std::string& out, std::size_t k) { return appendNumbers(out, text, this->coordinates[k], dimension[k], xyz + 3 * row[k]); });
+  rewriteInPieces(out, source.file, count, this->nodesEnd, [&](std::size_t k) { return this->coordinates[k]; },
+    [&](std::string& piece, std::string_view text, std::size_t at, std::size_t k) {
+      return appendNumbers(piece, text, at, dimension[k], xyz + 3 * row[k]);
+    });
   write.close(out);
   write.commit();
 }

@@ -46,6 +46,8 @@ struct MeshFile : SourceFile
   /// One a point, in mesh.nodeIds' order: where its x's text starts in the file (y and z follow
   /// after blanks).
   std::vector<std::uint64_t> coordinates;
+  /// Where the last node's coordinates end in the file.
+  std::uint64_t nodesEnd = 0;
 
   /// The file with each point's coordinates replaced and every other byte as it was: a changed
   /// coordinate is written as its shortest text, an unchanged one keeps its text (a 2D file's z is
