@@ -220,7 +220,7 @@ struct IsDeck<File, std::void_t<decltype(std::declval<const File&>().files)>> : 
 /// - a target that exists, unless overwrite is set: then the variant of the unchanged nodes is the
 ///   source, as same(target, source) compares them (byte for byte unless the format says otherwise);
 /// - a source changed since it was read: edit appended to edited (the file that holds the nodes:
-///   "" for source, else the deck's include);
+///   "" for source, else the deck's include), its last byte changed, or cut to half its size;
 /// and no file left aside (".writing-") anywhere in dir.
 template <class File, class Same = bool (*)(const std::string&, const std::string&)>
 void checkVariantRefusals(const File& file, const std::string& source, const std::string& dir, const std::string& edit,
@@ -262,13 +262,24 @@ void checkVariantRefusals(const File& file, const std::string& source, const std
   CHECK(mlsformats::readFile(target) == "kept");
   CHECK(writeError(file, target, ids, xyz, true).empty());
   CHECK(same(target, source));
-  // a source changed since it was read
+  // a source changed since it was read: edited, a byte that is copied (not parsed) changed in
+  // place, cut short (which a mapped source would have answered with SIGBUS)
   const std::string changed = edited.empty() ? source : edited;
-  writeFile(changed, mlsformats::readFile(changed) + edit);
+  const std::string original = mlsformats::readFile(changed);
+  std::string lastByte = original;
+  lastByte.back() = lastByte.back() == 'x' ? 'y' : 'x';
   const std::string later = dir + "/c/" + name;
-  CHECK(contains(writeError(file, later, ids, xyz),
-    changed + ": has changed since it was read: read the " + (deck ? "deck" : "mesh") + " again"));
-  CHECK(!fs::exists(later));
+  const std::string again = std::string(": read the ") + (deck ? "deck" : "mesh") + " again";
+  writeFile(changed, original + edit);
+  CHECK(contains(writeError(file, later, ids, xyz), changed + ": has changed since it was read" + again));
+  for (const std::string& text : { lastByte, original.substr(0, original.size() / 2) })
+  {
+    writeFile(changed, text);
+    const std::string error = writeError(file, later, ids, xyz);
+    CHECK(contains(error, changed + ": has changed since it was read") && contains(error, again));
+  }
+  writeFile(changed, original);
+  CHECK(!fs::exists(later) && !fs::exists(dir + "/c"));
   CHECK(nothingWrittenAside(dir));
 }
 } // namespace testing

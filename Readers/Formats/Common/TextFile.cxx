@@ -136,12 +136,12 @@ SourceBytes::~SourceBytes()
 
 void SourceBytes::readInto(char* data, std::size_t begin, std::size_t end)
 {
-  if (begin != this->Next || end < begin || end > this->Size)
+  if (begin != this->Next || end < begin)
   {
     throw std::logic_error("SourceBytes: bytes [" + std::to_string(begin) + ", " + std::to_string(end) + ") are not the next of " +
       this->Path + " (at " + std::to_string(this->Next) + " of " + std::to_string(this->Size) + ")");
   }
-  if (!readAt(this->File, data, end - begin, begin))
+  if (end > this->Size || !readAt(this->File, data, end - begin, begin))
   {
     throw FileError(this->Path, 0, "has changed since it was read (it is shorter): read the " + std::string(this->Noun) + " again");
   }
