@@ -68,7 +68,7 @@ private:
 std::size_t fileHash(const std::string& path);
 
 /// The hash of a file's bytes, taken when it is read and checked before a variant is written from
-/// it (SourceBytes::hash: a variant is written from the bytes that were read, or not at all).
+/// it (SourceBytes checks it as the bytes pass: a variant is written from the bytes that were read, or not at all).
 std::size_t contentHash(std::string_view bytes);
 
 /// The files written into place at once: each is written aside (path.writing-<process>), and only
