@@ -233,7 +233,7 @@ TEST(VariantKeepsEveryOtherByte)
   CHECK(again.mesh.xyz[3 * 20 + 1] == moved21[1]);
   // the layout alone writes the same variant
   const abaqus::Deck layout = abaqus::readNodeLayout(source);
-  CHECK(layout.mesh.nodeIds == deck.mesh.nodeIds && layout.mesh.blocks.empty());
+  CHECK(layout.mesh.nodeIds == deck.mesh.nodeIds && layout.mesh.xyz == deck.mesh.xyz && layout.mesh.blocks.empty());
   layout.writeVariant(dir + "/layout/cube.inp", ids.data(), xyz.data(), count, false);
   CHECK(readFile(dir + "/layout/cube.inp") == readFile(dir + "/moved/cube.inp"));
 }

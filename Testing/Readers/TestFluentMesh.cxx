@@ -355,7 +355,7 @@ TEST(AsciiMeshesRead)
 
   // the layout: the node ids alone, and where their coordinates are
   const fluent::MeshFile layout = fluent::readFluentLayout(dir + "/solid.msh");
-  CHECK(layout.mesh.nodeIds == mesh.nodeIds && layout.coordinates == file.coordinates && layout.mesh.xyz.empty() &&
+  CHECK(layout.mesh.nodeIds == mesh.nodeIds && layout.coordinates == file.coordinates && layout.mesh.xyz == mesh.xyz &&
     layout.mesh.blocks.empty() && layout.mesh.nodeSets.empty() && layout.mesh.elementSets.empty());
 }
 

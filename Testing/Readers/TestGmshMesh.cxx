@@ -190,7 +190,7 @@ TEST(FourVariantsReadAlike)
   for (const std::string& file : files)
   {
     const gmsh::MshFile layout = gmsh::readMshLayout(file);
-    CHECK(layout.mesh.nodeIds == mesh.nodeIds && layout.mesh.xyz.empty() && layout.mesh.blocks.empty() && layout.mesh.nodeSets.empty());
+    CHECK(layout.mesh.nodeIds == mesh.nodeIds && layout.mesh.xyz == mesh.xyz && layout.mesh.blocks.empty() && layout.mesh.nodeSets.empty());
   }
   CHECK(gmsh::isMsh("$MeshFormat\n4.1 0 8\n") && !gmsh::isMsh("*HEADING\n") && !gmsh::isMsh(""));
 }

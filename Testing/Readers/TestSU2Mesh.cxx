@@ -102,7 +102,7 @@ TEST(Reads2DMesh)
   CHECK(mesh.elementSets.empty() && mesh.warnings.empty());
   // the layout: the ids and where the coordinates are
   const su2::MeshFile layout = su2::readSu2Layout(dir + "/plane.su2");
-  CHECK(layout.mesh.nodeIds == mesh.nodeIds && layout.coordinates == file.coordinates && layout.mesh.xyz.empty() &&
+  CHECK(layout.mesh.nodeIds == mesh.nodeIds && layout.coordinates == file.coordinates && layout.mesh.xyz == mesh.xyz &&
     layout.mesh.blocks.empty() && layout.mesh.nodeSets.empty());
   CHECK(su2::isSu2(plane) && su2::isSu2("NDIME= 3\n") && su2::isSu2("\r\n  % comment\r\nNDIME=2\r\n") && su2::isSu2("NZONE= 2\nIZONE= 1\n"));
   CHECK(!su2::isSu2("NPOIN= 3\n") && !su2::isSu2("% only a comment\n") && !su2::isSu2("$MeshFormat\n") && !su2::isSu2(""));

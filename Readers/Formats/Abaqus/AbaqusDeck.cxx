@@ -630,10 +630,6 @@ private:
     // to the last one's end
     const std::size_t begin = first.data() - line.data(), end = last.data() + last.size() - line.data();
     this->Out.slots.push_back({ this->File, static_cast<std::uint32_t>(count), offset + begin, offset + end });
-    if (this->LayoutOnly)
-    {
-      return;
-    }
     for (std::size_t c = 0; c < 3; ++c)
     {
       double value = 0;
@@ -645,7 +641,7 @@ private:
       }
       Mesh().xyz.push_back(value);
     }
-    if (!this->NodeSetName.empty())
+    if (!this->NodeSetName.empty() && !this->LayoutOnly)
     {
       SetItem item = this->item(SetItem::Id, "");
       item.first = id;
@@ -1093,13 +1089,14 @@ Deck readNodeLayout(const std::string& path)
 
 namespace
 {
-// Appends the slot's text with the coordinates xyz: each number whose value changed is replaced by
-// the shortest text of the new one; blanks, separators and unchanged numbers stay as they were.
+// Appends the slot's text with the coordinates xyz: each number whose value changed (from old, its
+// value as read; a blank field's is 0) is replaced by the shortest text of the new one; blanks,
+// separators and unchanged numbers stay as they were.
 // CalculiX reads a number in 20 characters and silently cuts a longer one ("1.2345678901234567e-05"
 // becomes 1.2345678901234567e-0): a changed coordinate's text fits them.
 constexpr std::size_t NumberWidth = 20;
 
-void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, const double* xyz)
+void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, const double* xyz, const double* old)
 {
   std::size_t begin = 0;
   for (std::uint32_t c = 0; c < count; ++c)
@@ -1108,10 +1105,7 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
     end = end == std::string_view::npos ? slot.size() : end;
     const std::string_view field = slot.substr(begin, end - begin);
     const std::string_view number = trim(field);
-    double old = 0;
-    const bool same = number.empty() ? xyz[c] == 0
-                                     : parseReal(number.data(), number.data() + number.size(), old) && old == xyz[c];
-    if (same)
+    if (old[c] == xyz[c])
     {
       out.append(field);
     }
@@ -1131,9 +1125,9 @@ void appendSlot(std::string& out, std::string_view slot, std::uint32_t count, co
 }
 
 // Appends to out the text of file f with each of its nodes' coordinates replaced by xyz (row: where
-// node k's are).
+// node k's are; old: the coordinates as read).
 void writeWithCoordinates(AtomicWrite::Aside& out, SourceBytes& file, const std::vector<NodeSlot>& slots, std::uint32_t f,
-  const std::vector<std::size_t>& row, const double* xyz)
+  const std::vector<std::size_t>& row, const double* xyz, const double* old)
 {
   std::vector<std::size_t> mine; // the nodes in file f, in file order
   for (std::size_t k = 0; k < slots.size(); ++k)
@@ -1147,7 +1141,7 @@ void writeWithCoordinates(AtomicWrite::Aside& out, SourceBytes& file, const std:
     out, file, mine.size(), mine.empty() ? 0 : slots[mine.back()].end, [&](std::size_t i) { return slots[mine[i]].begin; },
     [&](std::string& piece, std::string_view text, std::size_t at, std::size_t i) {
       const NodeSlot& s = slots[mine[i]];
-      appendSlot(piece, text.substr(at, s.end - s.begin), s.count, xyz + 3 * row[mine[i]]);
+      appendSlot(piece, text.substr(at, s.end - s.begin), s.count, xyz + 3 * row[mine[i]], old + 3 * mine[i]);
       return at + (s.end - s.begin);
     });
 }
@@ -1177,7 +1171,7 @@ void Deck::writeVariant(const std::string& target, const std::int64_t* ids, cons
     }
     SourceBytes file(deck.files[f], deck.hashes[f], "deck");
     AtomicWrite::Aside out = write.open(destinations[f]);
-    writeWithCoordinates(out, file, deck.slots, f, row, xyz);
+    writeWithCoordinates(out, file, deck.slots, f, row, xyz, deck.mesh.xyz.data());
     write.close(out);
   }
   write.commit();

@@ -54,7 +54,7 @@ struct Deck : SourceFile
 /// An element type without a cell type is left out with a warning (mesh.warnings).
 Deck readDeck(const std::string& path);
 
-/// Only what writing a variant needs: the files and the nodes' ids and slots (no coordinates,
+/// Only what writing a variant needs: the files and the nodes' ids, coordinates and slots (no
 /// elements or sets), which reads a large deck several times faster than readDeck.
 Deck readNodeLayout(const std::string& path);
 

@@ -443,7 +443,7 @@ void splitBlanks(std::string_view text, std::vector<std::string_view>& fields)
   }
 }
 
-std::size_t appendNumbers(std::string& out, std::string_view text, std::size_t begin, int count, const double* xyz)
+std::size_t appendNumbers(std::string& out, std::string_view text, std::size_t begin, int count, const double* xyz, const double* old)
 {
   std::size_t end = begin;
   for (int c = 0; c < count; ++c)
@@ -460,8 +460,8 @@ std::size_t appendNumbers(std::string& out, std::string_view text, std::size_t b
     {
       ++end;
     }
-    double old = 0;
-    if (parseReal(text.data() + begin, text.data() + end, old) && old == xyz[c])
+    double value = 0;
+    if (old ? old[c] == xyz[c] : parseReal(text.data() + begin, text.data() + end, value) && value == xyz[c])
     {
       out.append(text, begin, end - begin);
     }

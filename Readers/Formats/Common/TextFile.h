@@ -68,7 +68,8 @@ private:
 std::size_t fileHash(const std::string& path);
 
 /// The hash of a file's bytes, taken when it is read and checked before a variant is written from
-/// it (SourceBytes checks it as the bytes pass: a variant is written from the bytes that were read, or not at all).
+/// it (SourceBytes checks it as the bytes pass: a variant is written from the bytes that were
+/// read, or not at all).
 std::size_t contentHash(std::string_view bytes);
 
 /// The files written into place at once: each is written aside (path.writing-<process>), and only
@@ -147,9 +148,12 @@ std::string_view trim(std::string_view text);
 void splitBlanks(std::string_view text, std::vector<std::string_view>& fields);
 
 /// Appends the count numbers separated by blanks or line ends that start at text[begin] (a number
-/// also ends at a parenthesis: Fluent's "0 0 1))") with the values xyz: a number whose value changed becomes appendShortest's text of the new one, the
-/// others and what separates them stay as they were. Returns where the last number's text ends.
-std::size_t appendNumbers(std::string& out, std::string_view text, std::size_t begin, int count, const double* xyz);
+/// also ends at a parenthesis: Fluent's "0 0 1))") with the values xyz: a number whose value
+/// changed becomes appendShortest's text of the new one, the others and what separates them stay
+/// as they were. old: their values as read (nullptr: parsed from their text). Returns where the
+/// last number's text ends.
+std::size_t appendNumbers(
+  std::string& out, std::string_view text, std::size_t begin, int count, const double* xyz, const double* old = nullptr);
 
 /// Appends the count binary numbers of type T (in the machine's byte order) that start at text[at]
 /// with the values xyz: a number whose value changed becomes the new value as a T, the others stay

@@ -723,10 +723,7 @@ private:
     SourceMesh& mesh = this->Out.mesh;
     mesh.nodeIds.reserve(mesh.nodeIds.size() + count);
     this->Out.coordinates.reserve(this->Out.coordinates.size() + count);
-    if (!this->LayoutOnly)
-    {
-      mesh.xyz.reserve(mesh.xyz.size() + 3 * count);
-    }
+    mesh.xyz.reserve(mesh.xyz.size() + 3 * count);
     for (std::uint64_t i = 0; i < count; ++i)
     {
       const std::int64_t id = header[1] + static_cast<std::int64_t>(i);
@@ -736,7 +733,7 @@ private:
       {
         this->Mark = first;
         this->At += dimension * size;
-        for (int c = 0; c < dimension && !this->LayoutOnly; ++c)
+        for (int c = 0; c < dimension; ++c)
         {
           xyz[c] = size == 4 ? this->number<float>(first + c * size) : this->number<double>(first + c * size);
           if (!std::isfinite(xyz[c]))
@@ -754,7 +751,7 @@ private:
               " coordinates; its " + std::to_string(count) + " nodes have " + std::to_string(count * dimension));
         }
         first = c == 0 ? this->Mark : first;
-        if (!this->LayoutOnly && !parseReal(value.data(), value.data() + value.size(), xyz[c]))
+        if (!parseReal(value.data(), value.data() + value.size(), xyz[c]))
         {
           this->fail("node " + std::to_string(id) + "'s coordinate \"" + std::string(value) + "\" is not a finite number");
         }
@@ -762,10 +759,7 @@ private:
       mesh.nodeIds.push_back(id);
       this->Out.coordinates.push_back(first);
       this->Out.nodesEnd = this->At;
-      if (!this->LayoutOnly)
-      {
-        mesh.xyz.insert(mesh.xyz.end(), xyz, xyz + 3);
-      }
+      mesh.xyz.insert(mesh.xyz.end(), xyz, xyz + 3);
     }
     this->leaveData(std::to_string(count) + " nodes' coordinates");
     this->skipRest();
@@ -1061,7 +1055,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
       const double* value = xyz + 3 * row[n];
       if (precision[n] == Precision::Text)
       {
-        return appendNumbers(piece, text, at, this->dimension, value);
+        return appendNumbers(piece, text, at, this->dimension, value, this->mesh.xyz.data() + 3 * n);
       }
       return precision[n] == Precision::Single ? appendBinaryNumbers<float>(piece, text, at, this->dimension, value)
                                                : appendBinaryNumbers<double>(piece, text, at, this->dimension, value);

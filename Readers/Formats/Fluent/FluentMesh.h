@@ -74,8 +74,8 @@ struct MeshFile : SourceFile
 /// cell, NaN. Cells that cannot be rebuilt are left out with a warning (mesh.warnings).
 MeshFile readFluent(const std::string& path);
 
-/// Only what writing a variant needs: the node ids and where their coordinates are (no
-/// coordinates, cells or sets).
+/// Only what writing a variant needs: the node ids, their coordinates and where they are (no
+/// cells or sets).
 MeshFile readFluentLayout(const std::string& path);
 
 /// Whether text (a file's first bytes) is a Fluent file: after blanks, a section "(index" with a

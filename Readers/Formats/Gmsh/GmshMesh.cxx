@@ -631,10 +631,6 @@ private:
   {
     this->node(id, static_cast<std::size_t>(this->Fields[first].data() - this->Text.data()));
     this->Out.nodesEnd = static_cast<std::size_t>(this->Fields[first + 2].data() + this->Fields[first + 2].size() - this->Text.data());
-    if (this->LayoutOnly)
-    {
-      return;
-    }
     for (std::size_t c = first; c < this->Fields.size(); ++c)
     {
       const double value = this->real(this->Fields[c], id);
@@ -649,10 +645,6 @@ private:
   {
     this->node(id, offset);
     this->Out.nodesEnd = offset + 24;
-    if (this->LayoutOnly)
-    {
-      return;
-    }
     for (int c = 0; c < 3; ++c)
     {
       double value;
@@ -695,10 +687,7 @@ private:
     this->room(blocks, this->Binary ? 20 : 8, "node blocks");
     ids.reserve(total);
     this->Out.coordinates.reserve(total);
-    if (!this->LayoutOnly)
-    {
-      this->Out.mesh.xyz.reserve(3 * total);
-    }
+    this->Out.mesh.xyz.reserve(3 * total);
     // MSH 2.2: "tag x y z" each; 4.1: blocks
     for (std::uint64_t i = 0; i < total && this->Version2; ++i)
     {
@@ -1259,7 +1248,7 @@ void MshFile::writeVariant(const std::string& target, const std::int64_t* ids, c
   rewriteInPieces(out, source.file, count, this->nodesEnd, [&](std::size_t k) { return this->coordinates[k]; },
     [&](std::string& piece, std::string_view text, std::size_t at, std::size_t k) {
       return this->binary ? appendBinaryNumbers<double>(piece, text, at, 3, xyz + 3 * row[k])
-                          : appendNumbers(piece, text, at, 3, xyz + 3 * row[k]);
+                          : appendNumbers(piece, text, at, 3, xyz + 3 * row[k], this->mesh.xyz.data() + 3 * k);
     });
   write.close(out);
   write.commit();

@@ -47,8 +47,8 @@ struct MshFile : SourceFile
 /// is left out with a warning (mesh.warnings).
 MshFile readMsh(const std::string& path);
 
-/// Only what writing a variant needs: the nodes' tags and where their coordinates are (no
-/// coordinates, elements or sets).
+/// Only what writing a variant needs: the nodes' tags, their coordinates and where they are (no
+/// elements or sets).
 MshFile readMshLayout(const std::string& path);
 
 /// Whether text (a file's first bytes) is a Gmsh mesh: it starts with "$MeshFormat".

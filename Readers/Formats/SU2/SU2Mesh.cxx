@@ -427,10 +427,7 @@ private:
     this->room(zone.pointCount, 2 * dimension, "points");
     this->Out.mesh.nodeIds.reserve(this->Out.mesh.nodeIds.size() + zone.pointCount);
     this->Out.coordinates.reserve(this->Out.coordinates.size() + zone.pointCount);
-    if (!this->LayoutOnly)
-    {
-      this->Out.mesh.xyz.reserve(this->Out.mesh.xyz.size() + 3 * zone.pointCount);
-    }
+    this->Out.mesh.xyz.reserve(this->Out.mesh.xyz.size() + 3 * zone.pointCount);
     for (std::uint64_t i = 0; i < zone.pointCount; ++i)
     {
       this->dataLine("point", i, zone.pointCount, "NPOIN=");
@@ -442,10 +439,6 @@ private:
       this->Out.mesh.nodeIds.push_back(static_cast<std::int64_t>(zone.firstNode + i));
       this->Out.coordinates.push_back(static_cast<std::uint64_t>(this->Fields[0].data() - this->Text.data()));
       this->Out.nodesEnd = static_cast<std::uint64_t>(this->Fields[dimension - 1].data() + this->Fields[dimension - 1].size() - this->Text.data());
-      if (this->LayoutOnly)
-      {
-        continue;
-      }
       for (std::size_t c = 0; c < dimension; ++c)
       {
         double value = 0;
@@ -669,7 +662,7 @@ void MeshFile::writeVariant(const std::string& target, const std::int64_t* ids, 
   AtomicWrite::Aside out = write.open(target);
   rewriteInPieces(out, source.file, count, this->nodesEnd, [&](std::size_t k) { return this->coordinates[k]; },
     [&](std::string& piece, std::string_view text, std::size_t at, std::size_t k) {
-      return appendNumbers(piece, text, at, dimension[k], xyz + 3 * row[k]);
+      return appendNumbers(piece, text, at, dimension[k], xyz + 3 * row[k], this->mesh.xyz.data() + 3 * k);
     });
   write.close(out);
   write.commit();

@@ -64,8 +64,8 @@ struct MeshFile : SourceFile
 /// warning (mesh.warnings).
 MeshFile readSu2(const std::string& path);
 
-/// Only what writing a variant needs: the points' ids and where their coordinates are (no
-/// coordinates, elements or sets).
+/// Only what writing a variant needs: the points' ids, their coordinates and where they are (no
+/// elements or sets).
 MeshFile readSu2Layout(const std::string& path);
 
 /// Whether text (a file's first bytes) is an SU2 mesh: after blank lines and '%' comments, its
