@@ -85,6 +85,47 @@ Decimal decimal(double value, int precision)
   return out;
 }
 
+// value's digits rounded to precision significant ones, from its shortest digits (as many or
+// fewer: those): rounding them rounds value, unless they end in a 5 right after the last digit kept
+// (their tie may not be value's), which value's own digits round.
+Decimal roundedTo(const Decimal& shortest, int precision, double value)
+{
+  if (precision >= shortest.count)
+  {
+    return shortest;
+  }
+  const char next = shortest.digits[precision];
+  if (next == '5' && precision + 1 == shortest.count)
+  {
+    return decimal(value, precision);
+  }
+  Decimal out = shortest;
+  out.count = precision;
+  if (next >= '5')
+  {
+    int i = precision - 1;
+    while (i >= 0 && out.digits[i] == '9')
+    {
+      out.digits[i--] = '0';
+    }
+    if (i < 0)
+    {
+      out.digits[0] = '1'; // the nines became the next power of 10
+      out.count = 1;
+      ++out.exponent;
+    }
+    else
+    {
+      ++out.digits[i];
+    }
+  }
+  while (out.count > 1 && out.digits[out.count - 1] == '0')
+  {
+    --out.count;
+  }
+  return out;
+}
+
 // A number's Nastran forms, from its digits: without an exponent ("123.4", ".00123", "1200.") or
 // with one (".15-99", "1.5-7", "15.+9"). Each has a decimal point, which makes it a real. The
 // lengths of the shortest of each (without a sign).
@@ -175,10 +216,10 @@ std::string nastranReal(double value, std::size_t width)
   {
     --precision;
   }
-  Decimal rounded = decimal(value, precision);
+  Decimal rounded = roundedTo(shortest, precision, value);
   while (formLength(rounded.negative, rounded.count, rounded.exponent) > fits && precision > 1)
   {
-    rounded = decimal(value, --precision);
+    rounded = roundedTo(shortest, --precision, value);
   }
   return formText(rounded);
 }
