@@ -36,12 +36,12 @@ bool parseNastranReal(std::string_view field, double& value)
   for (std::size_t i = 0; i < field.size(); ++i)
   {
     const char c = field[i];
-    const char before = i > 0 ? static_cast<char>(std::toupper(static_cast<unsigned char>(field[i - 1]))) : 'E';
+    const char before = i > 0 ? field[i - 1] : 'E';
     if (length + 2 > sizeof(text))
     {
       return false;
     }
-    if ((c == '+' || c == '-') && before != 'E' && before != 'D')
+    if ((c == '+' || c == '-') && before != 'E' && before != 'e' && before != 'D' && before != 'd')
     {
       text[length++] = 'E';
     }
