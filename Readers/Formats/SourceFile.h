@@ -16,7 +16,7 @@ class SourceFile
 {
 public:
   virtual ~SourceFile() = default;
-  /// The mesh (with readLayout: its node ids only).
+  /// The mesh (read as a layout: its node ids, and its coordinates where a variant compares them).
   SourceMesh mesh;
   /// Writes the variant whose node ids[i] is at xyz[3i..3i+2] to target: the source with only the
   /// node coordinates changed. Throws FileError, having written nothing, when ids are not the
