@@ -83,7 +83,6 @@ bool readAt(int file, char* data, std::size_t length, std::size_t at)
   }
   return true;
 }
-
 } // namespace
 
 std::size_t contentHash(std::string_view bytes)
@@ -106,6 +105,10 @@ SourceBytes::SourceBytes(const std::string& path, std::size_t hash, const char* 
   struct stat status;
   if (this->File < 0 || ::fstat(this->File, &status) != 0 || !S_ISREG(status.st_mode))
   {
+    if (this->File >= 0)
+    {
+      ::close(this->File); // no destructor runs for a constructor that throws
+    }
     throw FileError(path, 0, "cannot be read (no such file, or no permission)");
   }
   this->Size = static_cast<std::size_t>(status.st_size);
