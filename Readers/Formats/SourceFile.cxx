@@ -7,10 +7,10 @@
 #include "Gmsh/GmshMesh.h"
 #include "Nastran/NastranDeck.h"
 #include "SU2/SU2Mesh.h"
+#include "Common/TextFile.h"
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <sstream>
 
 namespace mlsformats
@@ -84,10 +84,7 @@ const Format* formatOf(const std::string& path)
 {
   const std::size_t dot = path.find_last_of('.');
   const std::string extension = dot == std::string::npos ? std::string() : lowerCase(path.substr(dot + 1));
-  std::ifstream in(path, std::ios::binary);
-  std::string head(4096, '\0');
-  in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::string head = readHead(path, 4096);
   for (const Format& format : formats())
   {
     std::istringstream extensions(format.extensions);

@@ -193,11 +193,7 @@ public:
     this->Out.path = path;
     {
       this->Out.hash = fileHash(path);
-      std::ifstream in(path, std::ios::binary);
-      std::string head(64, '\0');
-      in.read(&head[0], static_cast<std::streamsize>(head.size()));
-      head.resize(static_cast<std::size_t>(in.gcount()));
-      if (!isCgns(head))
+      if (!isCgns(readHead(path, 64)))
       {
         throw FileError(path, 0, "is not a CGNS file (neither HDF5 nor ADF)");
       }

@@ -53,6 +53,15 @@ std::string readFile(const std::string& path)
   return text;
 }
 
+std::string readHead(const std::string& path, std::size_t bytes)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string head(bytes, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head;
+}
+
 namespace
 {
 // contentHash's chunks: hashed side by side, then their hashes hashed
@@ -61,6 +70,19 @@ constexpr std::size_t HashChunk = std::size_t(1) << 22;
 std::size_t hashOfChunks(const std::vector<std::size_t>& chunks)
 {
   return std::hash<std::string_view>()(std::string_view(reinterpret_cast<const char*>(chunks.data()), chunks.size() * sizeof(std::size_t)));
+}
+
+// The regular file at path opened to read, and its size. Throws FileError.
+Descriptor openToRead(const std::string& path, std::size_t& size)
+{
+  Descriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  struct stat status;
+  if (file.get() < 0 || ::fstat(file.get(), &status) != 0 || !S_ISREG(status.st_mode))
+  {
+    throw FileError(path, 0, "cannot be read (no such file, or no permission)");
+  }
+  size = static_cast<std::size_t>(status.st_size);
+  return file;
 }
 
 // Reads [at, at + length) of file into data; false when the file ends first or a read fails.
@@ -96,45 +118,19 @@ std::size_t contentHash(std::string_view bytes)
   return hashOfChunks(chunks);
 }
 
+bool Descriptor::close()
+{
+  const int descriptor = this->Value;
+  this->Value = -1;
+  return descriptor < 0 || ::close(descriptor) == 0;
+}
+
 SourceBytes::SourceBytes(const std::string& path, std::size_t hash, const char* noun)
   : Path(path)
   , Noun(noun)
   , Expected(hash)
 {
-  this->File = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  struct stat status;
-  if (this->File < 0 || ::fstat(this->File, &status) != 0 || !S_ISREG(status.st_mode))
-  {
-    if (this->File >= 0)
-    {
-      ::close(this->File); // no destructor runs for a constructor that throws
-    }
-    throw FileError(path, 0, "cannot be read (no such file, or no permission)");
-  }
-  this->Size = static_cast<std::size_t>(status.st_size);
-}
-
-SourceBytes::SourceBytes(SourceBytes&& other) noexcept
-  : Path(std::move(other.Path))
-  , Noun(other.Noun)
-  , File(other.File)
-  , Size(other.Size)
-  , Expected(other.Expected)
-  , Next(other.Next)
-  , Chunks(std::move(other.Chunks))
-  , Partial(std::move(other.Partial))
-  , Bytes(std::move(other.Bytes))
-  , Buffer(std::move(other.Buffer))
-{
-  other.File = -1;
-}
-
-SourceBytes::~SourceBytes()
-{
-  if (this->File >= 0)
-  {
-    ::close(this->File);
-  }
+  this->File = openToRead(path, this->Size);
 }
 
 void SourceBytes::readInto(char* data, std::size_t begin, std::size_t end)
@@ -144,7 +140,7 @@ void SourceBytes::readInto(char* data, std::size_t begin, std::size_t end)
     throw std::logic_error("SourceBytes: bytes [" + std::to_string(begin) + ", " + std::to_string(end) + ") are not the next of " +
       this->Path + " (at " + std::to_string(this->Next) + " of " + std::to_string(this->Size) + ")");
   }
-  if (end > this->Size || !readAt(this->File, data, end - begin, begin))
+  if (end > this->Size || !readAt(this->File.get(), data, end - begin, begin))
   {
     throw FileError(this->Path, 0, "has changed since it was read (it is shorter): read the " + std::string(this->Noun) + " again");
   }
@@ -194,17 +190,8 @@ std::string_view SourceBytes::read(std::size_t begin, std::size_t end)
 
 std::size_t fileHash(const std::string& path)
 {
-  const int file = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  struct stat status;
-  if (file < 0 || ::fstat(file, &status) != 0 || !S_ISREG(status.st_mode))
-  {
-    if (file >= 0)
-    {
-      ::close(file);
-    }
-    throw FileError(path, 0, "cannot be read (no such file, or no permission)");
-  }
-  const std::size_t size = static_cast<std::size_t>(status.st_size);
+  std::size_t size = 0;
+  Descriptor file = openToRead(path, size);
   std::vector<std::size_t> chunks((size + HashChunk - 1) / HashChunk);
   bool whole = true;
 #pragma omp parallel
@@ -214,11 +201,10 @@ std::size_t fileHash(const std::string& path)
     for (long c = 0; c < static_cast<long>(chunks.size()); ++c)
     {
       const std::size_t at = c * HashChunk, length = std::min(HashChunk, size - at);
-      whole = readAt(file, chunk.data(), length, at) && whole;
+      whole = readAt(file.get(), chunk.data(), length, at) && whole;
       chunks[c] = std::hash<std::string_view>()(std::string_view(chunk.data(), length));
     }
   }
-  ::close(file);
   if (!whole)
   {
     throw FileError(path, 0, "a read failed (or the file changed while it was read)");
@@ -246,28 +232,11 @@ AtomicWrite::~AtomicWrite()
   }
 }
 
-AtomicWrite::Aside::Aside(Aside&& other) noexcept
-  : File(other.File)
-  , Path(std::move(other.Path))
-  , Written(std::move(other.Written))
-  , Failure(std::move(other.Failure))
-{
-  other.File = -1;
-}
-
-AtomicWrite::Aside::~Aside()
-{
-  if (this->File >= 0)
-  {
-    ::close(this->File);
-  }
-}
-
 void AtomicWrite::Aside::append(std::string_view bytes)
 {
   while (!bytes.empty() && this->Failure.empty())
   {
-    const ssize_t written = ::write(this->File, bytes.data(), bytes.size());
+    const ssize_t written = ::write(this->File.get(), bytes.data(), bytes.size());
     if (written < 0 && errno == EINTR)
     {
       continue;
@@ -314,8 +283,8 @@ AtomicWrite::Aside AtomicWrite::open(const std::string& path)
     std::filesystem::create_directories(folder, made);
   }
   this->Pending.emplace_back(aside.Written, path);
-  aside.File = ::open(aside.Written.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (aside.File < 0)
+  aside.File = Descriptor(::open(aside.Written.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666));
+  if (aside.File.get() < 0)
   {
     throw FileError(path, 0, "cannot be written (" + (made ? made.message() : std::string(std::strerror(errno))) + ")");
   }
@@ -324,9 +293,7 @@ AtomicWrite::Aside AtomicWrite::open(const std::string& path)
 
 std::string AtomicWrite::close(Aside& aside)
 {
-  const int file = aside.File;
-  aside.File = -1;
-  if (::close(file) != 0 && aside.Failure.empty())
+  if (!aside.File.close() && aside.Failure.empty())
   {
     aside.Failure = std::strerror(errno);
   }

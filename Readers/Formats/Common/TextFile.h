@@ -28,6 +28,42 @@ std::string canonicalPath(const std::string& path);
 /// The whole file. Throws FileError when it cannot be read.
 std::string readFile(const std::string& path);
 
+/// The file's first bytes (fewer when it is shorter, none when it cannot be read): what tells
+/// its format.
+std::string readHead(const std::string& path, std::size_t bytes);
+
+/// An open file's descriptor, closed with its owner (moved, never copied).
+class Descriptor
+{
+public:
+  explicit Descriptor(int descriptor = -1)
+    : Value(descriptor)
+  {
+  }
+  Descriptor(Descriptor&& other) noexcept
+    : Value(other.Value)
+  {
+    other.Value = -1;
+  }
+  Descriptor& operator=(Descriptor&& other) noexcept
+  {
+    if (this != &other)
+    {
+      this->close();
+      this->Value = other.Value;
+      other.Value = -1;
+    }
+    return *this;
+  }
+  ~Descriptor() { this->close(); }
+  int get() const { return this->Value; }
+  /// Closes it now; false when that fails (bytes written that did not reach the file).
+  bool close();
+
+private:
+  int Value;
+};
+
 /// A source file read to write a variant of it, in file order and never mapped: the span that
 /// holds its nodes read into memory (read), every other span read in chunks and written on
 /// (AtomicWrite::Aside::copy). Its bytes are hashed as they pass: once the last has, a hash other
@@ -39,11 +75,6 @@ class SourceBytes
 public:
   /// hash: contentHash of the file as it was read; noun: what to read again ("mesh", "deck").
   SourceBytes(const std::string& path, std::size_t hash, const char* noun = "mesh");
-  SourceBytes(SourceBytes&& other) noexcept;
-  SourceBytes(const SourceBytes&) = delete;
-  SourceBytes& operator=(const SourceBytes&) = delete;
-  SourceBytes& operator=(SourceBytes&&) = delete;
-  ~SourceBytes();
   const std::string& path() const { return this->Path; }
   std::size_t size() const { return this->Size; }
   /// The next bytes, [begin, end) (begin: where those read or copied so far end), read into
@@ -56,7 +87,7 @@ private:
   void pass(std::string_view bytes);                               // hashes the next bytes
   std::string Path;
   const char* Noun;
-  int File = -1;
+  Descriptor File;
   std::size_t Size = 0, Expected = 0;
   std::size_t Next = 0;              // where the bytes passed so far end
   std::vector<std::size_t> Chunks;   // the hashes of the chunks passed
@@ -84,12 +115,6 @@ public:
   class Aside
   {
   public:
-    Aside() = default;
-    Aside(Aside&& other) noexcept;
-    Aside(const Aside&) = delete;
-    Aside& operator=(const Aside&) = delete;
-    Aside& operator=(Aside&&) = delete;
-    ~Aside();
     void append(std::string_view bytes);
     /// Appends source's next bytes, [begin, end). Throws FileError naming the source when it
     /// ends before end or, its last bytes passed, has changed since it was read.
@@ -97,7 +122,7 @@ public:
 
   private:
     friend class AtomicWrite;
-    int File = -1;
+    Descriptor File;
     std::string Path, Written; // where it goes; where it is written aside
     std::string Failure;       // why it could not be written, once it could not
   };

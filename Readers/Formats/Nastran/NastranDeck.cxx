@@ -60,6 +60,15 @@ struct Decimal
   int exponent = 0;
 };
 
+// Drops the zeros that end number's digits (one digit stays).
+void withoutTrailingZeros(Decimal& number)
+{
+  while (number.count > 1 && number.digits[number.count - 1] == '0')
+  {
+    --number.count;
+  }
+}
+
 // value's digits rounded to precision significant ones (0: the fewest that read back as value).
 Decimal decimal(double value, int precision)
 {
@@ -77,10 +86,7 @@ Decimal decimal(double value, int precision)
       out.digits[out.count++] = *c;
     }
   }
-  while (out.count > 1 && out.digits[out.count - 1] == '0')
-  {
-    --out.count;
-  }
+  withoutTrailingZeros(out);
   std::from_chars(e + (e[1] == '+' ? 2 : 1), end, out.exponent);
   return out;
 }
@@ -119,10 +125,7 @@ Decimal roundedTo(const Decimal& shortest, int precision, double value)
       ++out.digits[i];
     }
   }
-  while (out.count > 1 && out.digits[out.count - 1] == '0')
-  {
-    --out.count;
-  }
+  withoutTrailingZeros(out);
   return out;
 }
 
@@ -133,13 +136,19 @@ struct FormLengths
 {
   int plain, withExponent;
 };
+// The characters of an exponent's magnitude.
+int exponentWidth(int shown)
+{
+  return shown >= 100 ? 3 : shown >= 10 ? 2 : 1;
+}
+
 FormLengths formLengths(int count, int exponent)
 {
   // with an exponent: the point at 0..count digits shows exponent + 1 - count .. exponent + 1 (not 0)
   const int low = exponent + 1 - count, high = exponent + 1;
   const int shown = (low <= 1 && 1 <= high) || (low <= -1 && -1 <= high) ? 1 : low > 1 ? low : -high;
   return { exponent >= count - 1 ? exponent + 2 : exponent >= 0 ? count + 1 : count - exponent,
-    count + 2 + (shown >= 100 ? 3 : shown >= 10 ? 2 : 1) };
+    count + 2 + exponentWidth(shown) };
 }
 
 // The length of the shortest form.
@@ -159,7 +168,7 @@ int formPoint(int count, int exponent)
   {
     const int at = place == 0 ? 1 : place == 1 ? 0 : place;
     const int shown = std::abs(exponent + 1 - at);
-    if (shown != 0 && count + 2 + (shown >= 100 ? 3 : shown >= 10 ? 2 : 1) == lengths.withExponent)
+    if (shown != 0 && count + 2 + exponentWidth(shown) == lengths.withExponent)
     {
       return at;
     }
