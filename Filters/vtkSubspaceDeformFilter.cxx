@@ -215,6 +215,14 @@ int vtkSubspaceDeformFilter::RequestData(vtkInformation*, vtkInformationVector**
       vtkWarningMacro(<< "No Fixed region: nothing holds the model, so the Handle moves all of it (a rigid motion). Add a Fixed "
                          "region (e.g. a CFD case's inlet and outlet, a deck's supports) to deform it.");
     }
+    if (session.model().regularizingStretch() > 0 && (figures.resampled || figures.refactorized))
+    {
+      vtkWarningMacro(<< "The deformation system was singular with these weights (more MLS samples than the integration points "
+                         "determine); it was solved with StretchWeight "
+                      << session.model().regularizingStretch()
+                      << " instead, which makes the deformation slightly more membrane-like (RegularizingStretchWeight). "
+                         "Fewer samples (NumberOfSamples), a larger Cover or IntegrationPointRatio avoid it.");
+    }
     if (!solution.converged)
     {
       vtkWarningMacro(<< "The constraints did not converge in MaxIterations = " << this->MaxIterations

@@ -98,6 +98,7 @@ double reportSolution(vtkFieldData* field, const SpaceDeformation& model, const 
     }
   }
   addField(field, "ReciprocalCondition", model.reciprocalCondition());
+  addField(field, "RegularizingStretchWeight", model.regularizingStretch());
   addField(field, "Resampled", figures.resampled ? 1 : 0);
   addField(field, "Refactorized", figures.refactorized ? 1 : 0);
   return reportConstraints(field, constraints, solution, figures.diagonal);

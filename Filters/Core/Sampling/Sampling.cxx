@@ -321,6 +321,46 @@ PointList placeSites(const DenseSamples& dense, int surfaceCount, int volumeCoun
   lloydRelaxation(sites, allDense, weights, parameters.lloydIterations, progress);
   return sites;
 }
+// A sample closer than this fraction of a kept sample's support radius to it is merged into it.
+constexpr double MergeDistance = 0.1;
+
+// Merges samples that lie within MergeDistance of the support radius of a sample kept before
+// them (in order, surface samples first): their shape functions are nearly the same function,
+// so the system of eq. 14 cannot tell their coefficients apart (a sampling finer than the mesh:
+// the sphereChannel case's 19,697 points with k = 20,000 put samples at 2% of their radius from
+// each other). The basis loses a nearly redundant function, not a part of the space it spans.
+// Returns whether any was merged (the radii are then to be computed again).
+bool mergeCloseSamples(PointList& centers, const std::vector<double>& radius, int& numberOfSurfaceCenters)
+{
+  std::vector<double> reach(radius.size());
+  std::transform(radius.begin(), radius.end(), reach.begin(), [](double r) { return MergeDistance * r; });
+  KdTree tree(centers);
+  tree.setRadii(reach);
+  std::vector<char> kept(centers.size(), 1);
+  std::vector<int> near;
+  for (std::size_t j = 0; j < centers.size(); ++j)
+  {
+    tree.containing(centers[j], near);
+    kept[j] = std::none_of(near.begin(), near.end(), [&](int i) { return static_cast<std::size_t>(i) < j && kept[i]; });
+  }
+  if (std::all_of(kept.begin(), kept.end(), [](char k) { return k != 0; }))
+  {
+    return false;
+  }
+  PointList merged;
+  int surface = 0;
+  for (std::size_t j = 0; j < centers.size(); ++j)
+  {
+    if (kept[j])
+    {
+      merged.push_back(centers[j]);
+      surface += static_cast<int>(j) < numberOfSurfaceCenters ? 1 : 0;
+    }
+  }
+  centers = std::move(merged);
+  numberOfSurfaceCenters = surface;
+  return true;
+}
 } // namespace
 
 std::vector<int> farthestPointSelection(const PointList& candidates, int count, const PointList& alreadyChosen, std::uint64_t seed,
@@ -441,11 +481,16 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
 }
 
 std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover, bool volumeMesh,
-  const Collective& group)
+  const PointList& measured, const Collective& group)
 {
   // The reach r_j of a sample starts at the distance to its s-th nearest fellow sample, so that
-  // supports follow the local sample density (dense on the surface, coarse in the volume).
+  // supports follow the local sample density (dense on the surface, coarse in the volume), and
+  // reaches at least s measured points: a sample whose support holds fewer is barely seen by
+  // the energies (eq. 12, 13 sum over the integration points), and its coefficient is then
+  // determined by little but round-off (the sphereChannel case with k = 4000: supports with a
+  // single integration point of nonzero volume, a system of reciprocal condition below 1e-12).
   const KdTree tree(centers);
+  const KdTree measuredTree(measured);
   const int s = std::max(1, static_cast<int>(std::ceil(cover)));
   const long k = static_cast<long>(centers.size());
   std::vector<double> reach(centers.size(), 0.0);
@@ -458,6 +503,11 @@ std::vector<double> coverSupportRadii(const PointList& centers, const std::vecto
     {
       tree.kNearest(centers[j], s + 1, indices, d2); // the first is c_j itself
       reach[j] = std::sqrt(d2.back());
+      if (static_cast<long>(measured.size()) >= s)
+      {
+        measuredTree.kNearest(centers[j], s, indices, d2);
+        reach[j] = std::max(reach[j], std::sqrt(d2.back()) * (1 + 1e-9));
+      }
     }
   }
   // Then every position reached by fewer than s samples extends the reach of s samples: its s
@@ -620,8 +670,20 @@ Samples sampleDomain(const SamplingDomain& domain, const SamplingParameters& par
     }
   }
   progress.report(0.8);
-  out.supportRadius = coverSupportRadii(out.centers, { &out.integrationPoints, &domain.points }, parameters.cover,
-    group.any(!domain.tetrahedra.empty()), group);
+  PointList measured; // the integration points the energies see: those with a volume
+  for (std::size_t i = 0; i < out.integrationPoints.size(); ++i)
+  {
+    if (out.volume[i] > 0)
+    {
+      measured.push_back(out.integrationPoints[i]);
+    }
+  }
+  const bool volumeMesh = group.any(!domain.tetrahedra.empty());
+  out.supportRadius = coverSupportRadii(out.centers, { &out.integrationPoints, &domain.points }, parameters.cover, volumeMesh, measured, group);
+  if (mergeCloseSamples(out.centers, out.supportRadius, out.numberOfSurfaceCenters))
+  {
+    out.supportRadius = coverSupportRadii(out.centers, { &out.integrationPoints, &domain.points }, parameters.cover, volumeMesh, measured, group);
+  }
   progress.report(1.0);
   return out;
 }

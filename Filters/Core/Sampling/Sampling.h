@@ -74,11 +74,13 @@ void lloydRelaxation(PointList& sites, const PointList& dense, const std::vector
   const Progress& progress = {});
 
 /// Support radii following the local sample density (the distance to the s-th nearest fellow
-/// sample), enlarged so that each of the positions lies within reach of at least s samples (its
-/// s nearest grow, or on a graded volume mesh those that grow least relative to their reach); a
-/// margin makes the weight at the reach w(1/margin) = 0.25.
-/// The positions may be split over the processes of group (centers are the same on all).
+/// sample, and at least to the s-th nearest of the measured points: the integration points the
+/// energies are measured at, those with a volume), enlarged so that each of the positions lies
+/// within reach of at least s samples (its s nearest grow, or on a graded volume mesh those that
+/// grow least relative to their reach); a margin makes the weight at the reach w(1/margin) = 0.25.
+/// The positions may be split over the processes of group (centers and measured points are the
+/// same on all).
 std::vector<double> coverSupportRadii(const PointList& centers, const std::vector<const PointList*>& positions, double cover,
-  bool volumeMesh = false, const Collective& group = serial());
+  bool volumeMesh = false, const PointList& measured = {}, const Collective& group = serial());
 
 } // namespace mlsdeform

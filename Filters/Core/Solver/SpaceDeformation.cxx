@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace mlsdeform
 {
@@ -22,6 +24,8 @@ constexpr double GlobalBasisRidge = 1e-9;
 
 // Below this, a tiny stretching term decides between equally bent results (see the header).
 constexpr double MinimumStretchPerBend = 1e-6;
+// The largest stretch share that a singular system gets to determine it (see the header).
+constexpr double MaximumRegularizingStretchPerBend = 1e-2;
 
 // An accelerated step is rejected when the fixed-point residual exceeds this multiple of the
 // smallest residual since the last restart: Anderson iterates are not monotone, and a strict
@@ -139,45 +143,73 @@ void SpaceDeformation::setConstraints(const std::vector<ShapeConstraint>& constr
 
 void SpaceDeformation::factorize(const EnergyWeights& requested)
 {
+  // The stretch share grows while the system is singular (see the header): the least share
+  // first, then 1e-4 and 1e-2 of the bend weight.
+  std::vector<double> shares = { MinimumStretchPerBend };
+  for (double share = 1e-4; share <= MaximumRegularizingStretchPerBend * (1 + 1e-12); share *= 100)
+  {
+    shares.push_back(share);
+  }
+  const int systems = Constraints && Constraints->hasAxisSlips() ? 3 : 1; // slip planes normal to an axis: that coordinate's own system
+  bool positiveDefinite = false;
   EnergyWeights weights = requested;
-  weights.stretch = std::max(weights.stretch, MinimumStretchPerBend * weights.bend);
-  Weights = weights;
-  System = weights.stretch * Energy.stretch + weights.bend * Energy.bend;
-  for (const SparseMatrix& A : RegionNormals)
+  for (std::size_t attempt = 0; attempt < shares.size(); ++attempt)
   {
-    System += weights.fix * A;
-  }
-  if (Constraints)
-  {
-    System += weights.constraint * Constraints->normalMatrix();
-  }
-  if (Energy.ridge > 0)
-  {
-    const Eigen::VectorXd ridge = Eigen::VectorXd::Constant(System.rows(), Energy.ridge * System.diagonal().maxCoeff());
-    System += SparseMatrix(ridge.asDiagonal());
-  }
-  // slip planes normal to an axis: that coordinate's own system
-  const int systems = Constraints && Constraints->hasAxisSlips() ? 3 : 1;
-  Factors.clear();
-  ReciprocalCondition = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < systems; ++a)
-  {
-    auto factor = std::make_unique<SparseCholesky>();
-    const bool positiveDefinite =
-      systems == 1 ? factor->factorize(System) : factor->factorize(System + weights.constraint * Constraints->axisNormal(a));
-    ReciprocalCondition = std::min(ReciprocalCondition, factor->reciprocalCondition());
-    if (!positiveDefinite || !(ReciprocalCondition > SingularReciprocalCondition))
+    if (attempt > 0 && (requested.bend <= 0 || requested.stretch >= shares[attempt] * requested.bend))
     {
-      Factors.clear();
-      throw SolverException("the deformation system (eq. 14) is singular (reciprocal condition " +
-        std::to_string(ReciprocalCondition) +
-        "): the handle and fixed regions and the energies do not determine every MLS coefficient; "
-        "use a positive StretchWeight or BendWeight, more integration points, or fewer samples (NumberOfSamples) than the "
-        "mesh's points can hold");
+      continue; // a share the requested stretch already holds: the same system
     }
-    Factors.push_back(std::move(factor));
+    weights.stretch = std::max(requested.stretch, shares[attempt] * requested.bend);
+    System = weights.stretch * Energy.stretch + weights.bend * Energy.bend;
+    for (const SparseMatrix& A : RegionNormals)
+    {
+      System += weights.fix * A;
+    }
+    if (Constraints)
+    {
+      System += weights.constraint * Constraints->normalMatrix();
+    }
+    if (Energy.ridge > 0)
+    {
+      const Eigen::VectorXd ridge = Eigen::VectorXd::Constant(System.rows(), Energy.ridge * System.diagonal().maxCoeff());
+      System += SparseMatrix(ridge.asDiagonal());
+    }
+    Factors.clear();
+    ReciprocalCondition = std::numeric_limits<double>::infinity();
+    positiveDefinite = true;
+    for (int a = 0; a < systems && positiveDefinite && ReciprocalCondition > SingularReciprocalCondition; ++a)
+    {
+      auto factor = std::make_unique<SparseCholesky>();
+      positiveDefinite =
+        systems == 1 ? factor->factorize(System) : factor->factorize(System + weights.constraint * Constraints->axisNormal(a));
+      ReciprocalCondition = std::min(ReciprocalCondition, positiveDefinite ? factor->reciprocalCondition() : 0.0);
+      Factors.push_back(std::move(factor));
+    }
+    if (positiveDefinite && ReciprocalCondition > SingularReciprocalCondition)
+    {
+      Weights = weights;
+      RegularizingStretch = attempt > 0 ? weights.stretch : 0;
+      FactorizedFor = requested;
+      return;
+    }
   }
-  FactorizedFor = requested;
+  Factors.clear();
+  std::ostringstream reason;
+  reason << "the deformation system (eq. 14) is singular: ";
+  if (!positiveDefinite)
+  {
+    reason << "its Cholesky factorization met a pivot that is not positive";
+  }
+  else
+  {
+    reason << "its reciprocal condition " << std::setprecision(3) << ReciprocalCondition << " is below " << SingularReciprocalCondition;
+  }
+  reason << ". With " << System.rows() << " MLS samples, " << Energy.points << " integration points and bend weight "
+         << requested.bend << ", even a stretch weight of " << weights.stretch
+         << " leaves some sample's coefficient undetermined: a sample whose support holds few integration points is seen "
+            "by little but round-off, and the regions must fix the deformation's translation. Use a larger StretchWeight, "
+            "Cover or IntegrationPointRatio, or fewer samples (NumberOfSamples)";
+  throw SolverException(reason.str());
 }
 
 Displacements SpaceDeformation::solveSystem(const Displacements& b) const

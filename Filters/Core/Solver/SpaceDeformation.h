@@ -100,8 +100,19 @@ public:
   /// is singular. A stretching
   /// weight of at least 1e-6 * bend is always used: pure bending does not determine motions
   /// that bend nothing, such as a shear normal to a flat configuration, and the tiny stretching
-  /// term picks the least stretched of the equally bent results.
+  /// term picks the least stretched of the equally bent results. The bending energy (eq. 13)
+  /// measures the Laplacian only, at the integration points: many samples over few of them (a
+  /// fine surface sampling: the sphereChannel case with k = 10,000) leave harmonic combinations
+  /// that bend nothing there and that the tiny term barely determines. Such a singular system
+  /// is factorized again with a stretch weight of 1e-4 and then 1e-2 times the bend weight
+  /// (regularizingStretch() says which): the deformation is then that much more membrane-like
+  /// (its first derivatives penalized too), which changes the displacements by about that
+  /// share. Still singular, it throws.
   void factorize(const EnergyWeights& weights);
+
+  /// The stretch weight that a singular system was factorized with instead of the requested
+  /// one; 0 when the requested weights (with the least share above) determined it.
+  double regularizingStretch() const { return RegularizingStretch; }
 
   /// Whether the system is factorized for these weights (as given to factorize) with the current
   /// regions and constraints: setRegions and setConstraints discard the factor.
@@ -201,5 +212,6 @@ private:
   /// planes normal to an axis add to that coordinate's system only.
   std::vector<std::unique_ptr<SparseCholesky>> Factors;
   double ReciprocalCondition = 0;
+  double RegularizingStretch = 0;
 };
 } // namespace mlsdeform

@@ -3,6 +3,10 @@
 #include <dlfcn.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace mlsdeform
 {
 namespace
@@ -52,6 +56,7 @@ SparseCholesky::SparseCholesky()
 bool SparseCholesky::factorize(const SparseMatrix& A)
 {
   SerialBlas serial;
+  Diagonal = A.diagonal();
   this->compute(A);
   return this->info() == Eigen::Success;
 }
@@ -70,6 +75,34 @@ Eigen::VectorXd SparseCholesky::solveColumn(const Eigen::VectorXd& b) const
 
 double SparseCholesky::reciprocalCondition()
 {
-  return m_cholmodFactor && this->info() == Eigen::Success ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0;
+  const cholmod_factor* L = m_cholmodFactor;
+  if (!L || this->info() != Eigen::Success)
+  {
+    return 0.0;
+  }
+  if (!L->is_super || L->itype != CHOLMOD_INT || L->xtype != CHOLMOD_REAL || !(Diagonal.size() > 0 && Diagonal.minCoeff() > 0))
+  {
+    return cholmod_rcond(m_cholmodFactor, &this->cholmod());
+  }
+  // L L^T = P A P^T; the factor of the equilibrated P D A D P^T is diag(d_Perm[j]) L, so its
+  // diagonal is L_jj / sqrt(A_Perm[j],Perm[j]). The diagonal entries of a supernode's columns,
+  // as cholmod_rcond reads them: column j of supernode s at px[s] + (j - k1) * (nsrow + 1).
+  const auto* super = static_cast<const int*>(L->super);
+  const auto* pi = static_cast<const int*>(L->pi);
+  const auto* px = static_cast<const int*>(L->px);
+  const auto* perm = static_cast<const int*>(L->Perm);
+  const auto* x = static_cast<const double*>(L->x);
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0;
+  for (std::size_t s = 0; s < L->nsuper; ++s)
+  {
+    const int nsrow = pi[s + 1] - pi[s];
+    for (int j = super[s]; j < super[s + 1]; ++j)
+    {
+      const double scaled = x[px[s] + (j - super[s]) * (nsrow + 1)] / std::sqrt(Diagonal[perm ? perm[j] : j]);
+      smallest = std::min(smallest, scaled);
+      largest = std::max(largest, scaled);
+    }
+  }
+  return largest > 0 ? (smallest / largest) * (smallest / largest) : 0.0;
 }
 } // namespace mlsdeform
