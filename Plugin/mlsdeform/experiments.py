@@ -208,6 +208,10 @@ def designOfExperiments(dvs, folder, samples=None, seed=0, table=None, threshold
     bounds = dvs.getBounds()
     if (samples is None) == (table is None):
         raise ValueError("give either samples= (a Latin hypercube) or table= (a CSV file), not both or neither")
+    # The pipeline brought up to date first: what tells one design from another (the source, the
+    # regions' points, the set-up) and whether the source is a deck exist only once it ran, and a
+    # script may call this before any update.
+    dvs._updated()
     deck = _is_deck(dvs)
     defaults, quality = (FEM_THRESHOLDS, FEM_QUALITY) if _fem(dvs) else (THRESHOLDS, QUALITY)
     limits = dict(defaults)
