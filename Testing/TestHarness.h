@@ -106,3 +106,16 @@ inline int run(int argc, char* argv[])
 
 #define TEST_MAIN                                                                                  \
   int main(int argc, char* argv[]) { return testing::run(argc, argv); }
+
+// A test program that also writes the file its tests read, for tests in other languages:
+// `PROGRAM --write PATH` calls write(PATH) and exits.
+#define TEST_MAIN_WRITING(write)                                                                   \
+  int main(int argc, char* argv[])                                                                 \
+  {                                                                                                \
+    if (argc == 3 && std::string(argv[1]) == "--write")                                            \
+    {                                                                                              \
+      write(argv[2]);                                                                              \
+      return 0;                                                                                    \
+    }                                                                                              \
+    return testing::run(argc, argv);                                                               \
+  }

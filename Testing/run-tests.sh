@@ -14,7 +14,7 @@ bash "$root/Testing/setup.sh"
 # the OpenFOAM tests do), the Python modules of Debian's Python (ParaView's), CGAL's demo meshes
 # (the archive and the extracted files of the configured build).
 missing=()
-for program in pvpython pvbatch pvserver paraview mpiexec Xvfb xdpyinfo gmsh snappyHexMesh; do
+for program in pvpython pvbatch pvserver paraview mpiexec Xvfb xdpyinfo gmsh snappyHexMesh cgnscheck cgnsdiff aflr3_to_cgns ncdump; do
   command -v "$program" > /dev/null || missing+=("program $program")
 done
 for program in blockMesh snappyHexMesh checkMesh decomposePar adjointOptimisationFoam foamDictionary; do

@@ -3,7 +3,8 @@
 # missing (ParaView 5.11 with its development files and everything its CMake package needs,
 # Qt's OpenGL module for the plugin's GUI part, Eigen, CHOLMOD with OpenBLAS, CGAL's demo meshes, Xvfb and PyQt5 for the GUI tests, and for the paper comparisons gmsh
 # and matplotlib, scipy for the optimization example, OpenFOAM for the CFD round-trip tests and examples, and OpenFOAM's tutorials from
-# openfoam-examples, unpacked into the build, for the adjoint tests, CalculiX for the structural loop's tests and example and meshio for its benchmark; CGNS files go
+# openfoam-examples, unpacked into the build, for the adjoint tests, CalculiX for the structural loop's tests and example and meshio for its benchmark, the CGNS project's
+# tools (cgns-convert: cgnscheck, cgnsdiff, CGNS 3.4) and ncdump (netcdf-bin) to check variants; CGNS files go
 # through ParaView's own CGNS library, Exodus files through netCDF), then configures and builds into build/ (or
 # $MLSDEFORM_BUILD). Running it again only rebuilds what changed.
 set -euo pipefail
@@ -22,7 +23,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libblas-dev libopenblas0-openmp
   libcgal-demo xvfb xauth x11-utils
   gmsh python3-matplotlib python3-pyqt5 python3-scipy time
-  openfoam calculix-ccx python3-meshio
+  openfoam calculix-ccx python3-meshio cgns-convert netcdf-bin
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -44,17 +44,20 @@ int vtkSMProducerDomain::IsInDomain(vtkSMProperty* property)
   vtkSMUncheckedPropertyHelper inputs(property);
   for (unsigned int i = 0; i < inputs.GetNumberOfElements(); ++i)
   {
-    vtkSMProxy* producer = inputs.GetAsProxy(i);
-    const bool listed = producer && producer->GetXMLGroup() && producer->GetXMLName() &&
-      std::any_of(this->Producers.begin(), this->Producers.end(), [&](const std::pair<std::string, std::string>& p) {
-        return p.first == producer->GetXMLGroup() && p.second == producer->GetXMLName();
-      });
-    if (!listed)
+    if (!this->IsListed(inputs.GetAsProxy(i)))
     {
       return vtkSMDomain::NOT_IN_DOMAIN;
     }
   }
   return vtkSMDomain::IN_DOMAIN;
+}
+
+bool vtkSMProducerDomain::IsListed(vtkSMProxy* proxy) const
+{
+  return proxy && proxy->GetXMLGroup() && proxy->GetXMLName() &&
+    std::any_of(this->Producers.begin(), this->Producers.end(), [&](const std::pair<std::string, std::string>& p) {
+      return p.first == proxy->GetXMLGroup() && p.second == proxy->GetXMLName();
+    });
 }
 
 void vtkSMProducerDomain::PrintSelf(ostream& os, vtkIndent indent)

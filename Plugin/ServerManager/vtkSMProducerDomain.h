@@ -40,6 +40,9 @@ protected:
   ~vtkSMProducerDomain() override;
   int ReadXMLAttributes(vtkSMProperty* property, vtkPVXMLElement* element) override;
 
+  /// Whether proxy is one of the listed proxies.
+  bool IsListed(vtkSMProxy* proxy) const;
+
 private:
   vtkSMProducerDomain(const vtkSMProducerDomain&) = delete;
   void operator=(const vtkSMProducerDomain&) = delete;

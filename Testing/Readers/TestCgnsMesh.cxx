@@ -711,4 +711,5 @@ TEST(BadFilesNameTheFileAndWhat)
   CHECK(contains(readError(dir + "/none.cgns"), "none.cgns: cannot be read"));
 }
 
-TEST_MAIN
+// the two bases' file for test_save_data_default.py (Save Data of its deformation in pvpython)
+TEST_MAIN_WRITING([](const std::string& path) { writeTwoBases(path); })

@@ -822,4 +822,5 @@ TEST(BadFilesNameTheFileAndTheVariable)
     "sideelement.exo: elem_ss1: side 2 refers to element number 4, not one of the file's 3 elements"));
 }
 
-TEST_MAIN
+// the mesh of three blocks with its node and side sets for test_save_data_default.py
+TEST_MAIN_WRITING([](const std::string& path) { writeExodus(path, mesh(NC_CLOBBER)); })
