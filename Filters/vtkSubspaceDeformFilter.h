@@ -241,6 +241,10 @@ public:
   /// Reverse mode: dJ/dp per design variable (out) from gradient = dJ/dX (n x 3).
   bool ComputeObjectiveSensitivity(vtkDataArray* gradient, vtkDoubleArray* out);
   const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
+
+  /// Whether the last output holds deformed points: a cancelled update leaves the previous
+  /// update's deformation, or the unchanged input when there was none (the GUI says which).
+  bool GetOutputDeformed() const { return this->OutputDeformed; }
   ///@}
 
   /// Connections of the regions.

@@ -5,9 +5,11 @@
 #include "vtkConstraintRegion.h"
 
 #include <pqApplicationCore.h>
+#include <pqCoreUtilities.h>
 #include <pqObjectBuilder.h>
 #include <pqOutputPort.h>
 #include <pqPipelineFilter.h>
+#include <pqPropertiesPanel.h>
 #include <pqServerManagerModel.h>
 #include <vtkDataObject.h>
 #include <vtkPVArrayInformation.h>
@@ -16,6 +18,7 @@
 #include <vtkSMPropertyHelper.h>
 #include <vtkSMProxy.h>
 
+#include <QMetaObject>
 #include <QRegularExpression>
 #include <QStringList>
 
@@ -79,6 +82,12 @@ void pqConstraintRegionBehavior::filterCreated(pqPipelineSource* source)
     vtkSMPropertyHelper(source->getProxy(), "SelectionMode").Set(vtkConstraintRegion::Blocks);
     source->getProxy()->UpdateVTKObjects();
   }
+  // named by its role from the start (the pipeline browser, the panel's header, the undo
+  // entries), not ConstraintRegion1 until its first Apply
+  if (isRegion(source))
+  {
+    this->regionUpdated(source);
+  }
 }
 
 void pqConstraintRegionBehavior::sourceAdded(pqPipelineSource* source)
@@ -112,6 +121,12 @@ void pqConstraintRegionBehavior::regionUpdated(pqPipelineSource* region)
   if (!name.isEmpty() && name != current)
   {
     region->rename(name);
+    // the Properties panel's header shows the name it had when the panel last updated (its
+    // updatePanel is a private slot: called as a slot)
+    for (pqPropertiesPanel* panel : pqCoreUtilities::mainWidget()->findChildren<pqPropertiesPanel*>())
+    {
+      QMetaObject::invokeMethod(panel, "updatePanel", Qt::QueuedConnection);
+    }
   }
   this->Given[region] = name.isEmpty() ? current : name;
 }

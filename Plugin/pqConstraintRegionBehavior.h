@@ -3,8 +3,9 @@
 //  - a region made from the Filters menu on a composite input (an OpenFOAM case, a mesh file's
 //    blocks) starts in SelectionMode Blocks, its panel showing the input's blocks to tick;
 //  - a region is named after its role and what it selects ("Handle: hull", "Fixed: inlet,
-//    outlet", "Slip: ground, top +2", "Handle (Box)") once applied and whenever that changes,
-//    unless the user gave it a name of their own.
+//    outlet", "Slip: ground, top +2", "Handle (Box)") from its creation in the Filters menu
+//    ("Handle") and whenever that changes once applied, unless the user gave it a name of their
+//    own; the Properties panel's header follows.
 #pragma once
 
 #include <QMap>

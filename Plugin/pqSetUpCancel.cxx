@@ -182,8 +182,12 @@ void pqSetUpCancel::ended(vtkObject* algorithm)
       // where the user looks (the output window's line is out of sight): the view is not the panel's
       if (QStatusBar* bar = statusBar())
       {
-        bar->showMessage(QString("%1: set-up cancelled, the view shows the previous deformation; %2 runs it again.")
-                           .arg(source->getSMName(), autoApply ? "the next change" : "Apply"));
+        // short: the progress bar beside it takes most of the bar's width
+        auto* deform = vtkSubspaceDeformFilter::SafeDownCast(cancelled);
+        const bool previous = !deform || deform->GetOutputDeformed();
+        bar->showMessage(QString("%1: set-up cancelled, %2 shown. %3 runs it again.")
+                           .arg(source->getSMName(), previous ? "the previous deformation" : "the undeformed model",
+                             autoApply ? "The next change" : "Apply"));
         this->Told = true;
       }
     }

@@ -1,5 +1,6 @@
 #include "vtkMeshFileReader.h"
 
+#include "Adapters/ReportArrays.h"
 #include "Common/IdIndex.h"
 #include "SourceFile.h"
 
@@ -134,6 +135,8 @@ int vtkMeshFileReader::CanReadFile(const char* filename)
 
 int vtkMeshFileReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  // its field data SourceFile and QualityVerdict: reports, not fields to colour by
+  const mlsvtk::ReportArrays reports(nullptr, outputVector);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   this->LastError.clear();
   this->SetErrorCode(vtkErrorCode::NoError);

@@ -536,7 +536,7 @@ void DeformationSession::displacement(const PointField& field, long offset, long
   slideOnPlanes(Slips, Points, offset, n, out);
 }
 
-void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving) const
+void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving)
 {
   for (std::size_t v = 0; v < Design.size(); ++v)
   {
@@ -562,6 +562,7 @@ void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& out
         displacement(t, offset, n, derivative->GetPointer(0));
       }
       set->GetPointData()->AddArray(derivative);
+      Output.addDerived(s, derivative); // kept with the points (a drag's, a cancel's)
       offset += n;
     }
   }

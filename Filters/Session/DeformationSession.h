@@ -215,8 +215,9 @@ public:
   /// S (Phi w + B r) at this process's points [offset, offset + n), into out: the displacement
   /// of the last solve or a derivative (tangent).
   void displacement(const PointField& field, long offset, long n, double* out) const;
-  /// The point arrays dX/d<variable> of every design variable into the moving output point sets.
-  void writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving) const;
+  /// The point arrays dX/d<variable> of every design variable into the moving output point sets
+  /// (the others keep the previous update's with its points: DeformedOutput::addDerived).
+  void writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving);
   /// Reverse mode: dJ/dp per design variable from g = dJ/dX at this process's points (3 values
   /// per point, in order; a collective operation under MPI); method says how it was computed.
   std::vector<double> objectiveSensitivity(std::vector<double> gradient, const mlsdeform::Collective& group, std::string& method);

@@ -6,6 +6,7 @@
 
 #include <vtkCompositeDataIterator.h>
 #include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
@@ -69,7 +70,16 @@ void DeformedOutput::keep(std::size_t s, vtkPointSet* out) const
   {
     out->SetPoints(Moved[s]);
     out->GetPointData()->AddArray(Displacement[s]);
+    for (vtkDataArray* array : Derived[s])
+    {
+      out->GetPointData()->AddArray(array);
+    }
   }
+}
+
+void DeformedOutput::addDerived(std::size_t s, vtkDataArray* array)
+{
+  Derived[s].emplace_back(array);
 }
 
 bool DeformedOutput::restore(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets)
@@ -93,6 +103,7 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
 {
   Moved.resize(inSets.size());
   Displacement.resize(inSets.size());
+  Derived.resize(inSets.size());
   long offset = 0;
   for (std::size_t s = 0; s < inSets.size(); ++s)
   {
@@ -108,6 +119,7 @@ void DeformedOutput::write(const std::vector<vtkPointSet*>& inSets, const std::v
       offset += n;
       continue;
     }
+    Derived[s].clear();
     vtkDoubleArray* displacement = reusable(Displacement[s], Displacement[s] && Displacement[s]->GetNumberOfTuples() == n);
     displacement->SetName(fields::Displacement);
     displacement->SetNumberOfComponents(3);

@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+class vtkDataArray;
 class vtkDataObject;
 class vtkDoubleArray;
 class vtkPoints;
@@ -37,6 +38,11 @@ public:
   /// returns false, leaving the sets as they are, when it does not fit the sets (other inputs).
   bool restore(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets);
 
+  /// Arrays written with set s's points (the design sensitivities dX/dp), given to the set with
+  /// its points whenever the previous write is kept or restored (a drag's surface-only update, a
+  /// cancel), so that a view coloured by them keeps them. A new write of the set drops them.
+  void addDerived(std::size_t s, vtkDataArray* array);
+
 private:
   /// Whether set s's previous write fits the input set (its number of points and precision).
   bool fits(std::size_t s, vtkPointSet* in) const;
@@ -45,5 +51,6 @@ private:
 
   std::vector<vtkSmartPointer<vtkPoints>> Moved;
   std::vector<vtkSmartPointer<vtkDoubleArray>> Displacement;
+  std::vector<std::vector<vtkSmartPointer<vtkDataArray>>> Derived;
 };
 } // namespace mlsvtk

@@ -507,6 +507,12 @@ TEST(CancelledSetUpResumes)
   PlaneScene scene(plane);
   scene.deform->SetNumberOfSamples(300);
   scene.deform->AddObserver(vtkCommand::ProgressEvent, observer);
+  // a design variable whose dX/dp array a view may be coloured by (issue 63: kept on a cancel)
+  scene.handle->AddDesignVariable("lift", 0, 0, 0, 1, 0, -1, 1);
+  scene.deform->ComputeSensitivitiesOn();
+  const auto sensitivity = [&] {
+    return vtkPointSet::SafeDownCast(scene.deform->GetOutputDataObject(0))->GetPointData()->GetArray("dX/dlift");
+  };
   auto messages = MessageCollector::watch(scene.deform);
   vtkNew<vtkStringOutputWindow> window; // the information lines
   vtkSmartPointer<vtkOutputWindow> previousWindow = vtkOutputWindow::GetInstance();
@@ -533,6 +539,7 @@ TEST(CancelledSetUpResumes)
   CHECK(scene.deform->GetErrorCode() == vtkErrorCode::NoError);
   CHECK(scene.deform->GetNumberOfSamplings() == 1 && scene.deform->GetNumberOfFactorizations() == 1);
   CHECK(displacementOf(scene.deform) == expected);
+  CHECK(sensitivity() != nullptr);
 
   // a new set-up cancelled as its sampling ends (its last report, 0.4, comes from the main thread
   // outside parallel regions; the row assembly's reports depend on the threads' schedule): stopped
@@ -545,6 +552,8 @@ TEST(CancelledSetUpResumes)
   CHECK(scene.deform->GetErrorCode() == vtkErrorCode::UserError && informed("previous update's deformed points"));
   CHECK(messages->Errors.empty());
   CHECK(displacementOf(scene.deform) == expected);
+  CHECK(sensitivity() != nullptr && sensitivity()->GetNumberOfTuples() == plane->GetNumberOfPoints()); // with its dX/dp
+  CHECK(scene.deform->GetOutputDeformed());
   CHECK(scene.deform->GetNumberOfFactorizations() == 1);
 
   // and the next update goes on to the uninterrupted answer of the new set-up

@@ -104,9 +104,12 @@ try:
     count = len(executions)
     start = time.time()
     xinput.click(*gui.reveal(apply), wait=ARRIVAL)
-    settle(lambda: len(executions) > count and field('NumberOfSamples') == 3000, seconds=60.0)
+    # the 3000 samples typed (a few within a tenth of a neighbour's support of it merged: at least 99%)
+    def set_up_for_3000():
+        return field('NumberOfSamples') is not None and 2970 <= field('NumberOfSamples') <= 3000
+    settle(lambda: len(executions) > count and set_up_for_3000(), seconds=60.0)
     full = time.time() - start
-    check(field('DeformationError') is None and field('NumberOfSamples') == 3000,
+    check(field('DeformationError') is None and set_up_for_3000(),
           'Apply ran the set-up through in %.1f s: NumberOfSamples %s, error %s' % (full, field('NumberOfSamples'),
                                                                                  field('DeformationError')))
     # (the rest of the set-up outlasts the cancel's second: the stop came from the click, not the end)

@@ -53,10 +53,19 @@ try:
     pvs.Hide(reader, view)
     apply = [b for b in window.findChildren(QPushButton) if b.objectName() == 'Accept'][0]
 
+    def name_of(proxy):
+        return {p: name for (name, _), p in pvs.GetSources().items()}[proxy]
+
+    def header():
+        return [w for w in window.findChildren(QWidget) if w.objectName() == 'PropertiesButton'][0].property('text')
+
     def region_for(role, patches):
         """Filters > Constraint Region on the case, the role chosen, the patches ticked, Apply."""
         region = gui.new_region(reader, settle)
         check(region.SelectionMode == 'Blocks', 'a new region on the case selects blocks from the start (%s)' % region.SelectionMode)
+        check(name_of(region) == 'Handle' and header() == 'Properties (Handle)',
+              'a new region is named by its (default) role from the start: "%s", the panel\'s header "%s" (issue 63)'
+              % (name_of(region), header()))
         handles, shown = gui.shown_boxes(view)
         check(not shown, 'a new region shows no box before its first Apply (%d)' % len(shown))
         combo = gui.choose_role(window, role, click, settle, ARRIVAL)
@@ -78,6 +87,9 @@ try:
         settle(lambda: region.GetDataInformation().GetNumberOfPoints() > 0)
         check(sorted(str(b).split('/')[-1] for b in region.Blocks) == sorted(patches),
               'the ticked patches are the region\'s Blocks: %s' % list(region.Blocks))
+        settle(lambda: header() == 'Properties (%s)' % name_of(region), seconds=3)
+        check(header() == 'Properties (%s)' % name_of(region) and name_of(region).startswith(role),
+              'once applied the panel\'s header follows the region\'s name: "%s"' % header())
         return region
 
     handle = region_for('Handle', ['body'])

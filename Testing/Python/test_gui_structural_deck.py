@@ -25,7 +25,7 @@ def gui():
     import checks
     from checks import check
     from PyQt5.QtCore import Qt
-    from PyQt5.QtWidgets import QApplication, QDockWidget, QPushButton, QTreeView
+    from PyQt5.QtWidgets import QApplication, QDockWidget, QPushButton, QTreeView, QWidget
     import paraview.simple as pvs
     import gui
     import xinput
@@ -59,6 +59,9 @@ def gui():
         lists = [w for w in window.findChildren(QTreeView) if w.metaObject().className() == 'pqArraySelectionWidget'
                  and w.isVisible()]
         check(len(lists) == 1, 'the panel shows one list of sets (%d)' % len(lists))
+        blocks = [w for w in window.findChildren(QWidget) if w.metaObject().className() == 'pqDataAssemblyPropertyWidget'
+                  and w.isVisible()]
+        check(not blocks, "a deck's region shows no (empty) Blocks box (%d shown; issue 63)" % len(blocks))
         tree = lists[0]
         model = tree.model()
         items = {model.data(model.index(r, 0)): model.index(r, 0) for r in range(model.rowCount())}
