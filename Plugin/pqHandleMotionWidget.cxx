@@ -248,11 +248,12 @@ void pqHandleMotionWidget::dragEnded()
     this->DragEnded = true;
     if (vtkSMPropertyHelper(this->proxy(), "Dragging", true).GetAsInt() != 0)
     {
-      // released: the volume blocks follow (with the last motion, when Auto Apply has it pending)
+      // released: the volume blocks follow (with the last motion, when Auto Apply has it pending);
+      // the box is drawn released now, not once that update has run (seconds on a large case)
       this->setRegionDragging(false);
-      if (!(source && source->modifiedState() != pqProxy::UNMODIFIED && autoApply) && this->view())
+      if (this->view())
       {
-        this->view()->render();
+        this->view()->forceRender();
       }
     }
   }
