@@ -9,7 +9,10 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$root/Testing/setup.sh" > /dev/null
 build=${MLSDEFORM_SANITIZE_BUILD:-$root/build-sanitize}
 mkdir -p "$build"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMLSDEFORM_SANITIZE=ON -DMLSDEFORM_BUILD_EXAMPLES=OFF \
+# -O1, as AddressSanitizer's documentation advises: every check is there, and the build takes 4.6
+# minutes instead of 11.5 at -O3 on a 2-core Intel Xeon (its tests 2.3 instead of 3.5 minutes)
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DCMAKE_C_FLAGS_RELEASE="-O1 -DNDEBUG" \
+  -DMLSDEFORM_SANITIZE=ON -DMLSDEFORM_BUILD_EXAMPLES=OFF \
   > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" -j "$(nproc)" --target MLSDeformTestPrograms
 cd "$build"

@@ -7,7 +7,8 @@ than twice the handle: a nearly singular system gives displacements orders of ma
 and on the case invert no cell. A system that the requested weights leave singular is solved
 with a larger stretch weight, which the field data RegularizingStretchWeight names (0, 1e-4 or
 1e-2 of the bend weight).
-Usage: pvpython test_sample_counts.py PLUGIN EXAMPLES_DIR FANDISK.off WORK_DIR [COUNTS...]"""
+Usage: pvpython test_sample_counts.py PLUGIN EXAMPLES_DIR FANDISK.off WORK_DIR [FANDISK_COUNTS CASE_COUNTS]
+(comma-separated; without them both sweep 4,100,1000,4000,6000,10000,20000: about 7 minutes)"""
 import os
 import subprocess
 import sys
@@ -17,7 +18,8 @@ from paraview.simple import LoadPlugin, OpenDataFile
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 plugin, examples, fandisk, work = sys.argv[1:5]
-counts = [int(k) for k in sys.argv[5:]] or [4, 100, 1000, 4000, 6000, 10000, 20000]
+RANGE = '4,100,1000,4000,6000,10000,20000'
+fandisk_counts, case_counts = ([[int(k) for k in arg.split(',')] for arg in (sys.argv[5:7] if len(sys.argv) > 6 else [RANGE, RANGE])])
 LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 sys.path.insert(0, os.path.join(examples, 'OpenFOAM'))
@@ -41,7 +43,7 @@ def displacements(deformed):
     return np.concatenate([vtk_to_numpy(b.GetPointData().GetArray('Displacement')) for b in blocks]), output.GetFieldData()
 
 
-def sweep(name, make, motion, volume):
+def sweep(name, counts, make, motion, volume):
     for k in counts:
         deformed = make(k)
         try:
@@ -67,7 +69,7 @@ part.UpdatePipeline()
 bounds = part.GetDataInformation().GetBounds()
 fixed, handle = scene.fixed_and_handle(part, bounds)
 height = bounds[5] - bounds[4]
-sweep('fandisk', lambda k: scene.MLSDeform(Input=part, Regions=[fixed, handle], NumberOfSamples=k), 0.15 * height, False)
+sweep('fandisk', fandisk_counts, lambda k: scene.MLSDeform(Input=part, Regions=[fixed, handle], NumberOfSamples=k), 0.15 * height, False)
 
 # the sphereChannel case, as Tour 1 deforms it
 case = os.path.join(work, 'case')
@@ -77,7 +79,7 @@ reader = openfoam_variant.open_case(os.path.join(case, 'case.foam'), sum(roles.v
 lift = 0.05
 regions = [scene.ConstraintRegion(Input=reader, Role=role, SelectionMode='Blocks', Blocks=patches,
                                   **({'Translation': [0, 0, lift]} if role == 'Handle' else {})) for role, patches in roles.items()]
-sweep('sphereChannel', lambda k: scene.MLSDeform(Input=reader, Regions=regions, NumberOfSamples=k), lift, True)
+sweep('sphereChannel', case_counts, lambda k: scene.MLSDeform(Input=reader, Regions=regions, NumberOfSamples=k), lift, True)
 
 # Issue 63 point 5 (the README's "When the mesh moves more than the handle"): bending lets the
 # volume move farther than the body; stretching alone (a membrane, whose minimizer is bounded by
