@@ -7,6 +7,7 @@
 #include "Basis/RadialBasis.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <iomanip>
@@ -22,10 +23,10 @@ constexpr double SingularReciprocalCondition = 1e-12;
 // DeformationEnergy::ridge of the global RBF bases with volumetric energies.
 constexpr double GlobalBasisRidge = 1e-9;
 
-// Below this, a tiny stretching term decides between equally bent results (see the header).
-constexpr double MinimumStretchPerBend = 1e-6;
-// The largest stretch share that a singular system gets to determine it (see the header).
-constexpr double MaximumRegularizingStretchPerBend = 1e-2;
+// The stretch weights per bend weight tried in turn while the system is singular (see the
+// header): first the least, a tiny stretching term that decides between equally bent results,
+// then the regularizing ones.
+constexpr std::array<double, 3> StretchPerBendShares{ 1e-6, 1e-4, 1e-2 };
 
 // An accelerated step is rejected when the fixed-point residual exceeds this multiple of the
 // smallest residual since the last restart: Anderson iterates are not monotone, and a strict
@@ -143,23 +144,17 @@ void SpaceDeformation::setConstraints(const std::vector<ShapeConstraint>& constr
 
 void SpaceDeformation::factorize(const EnergyWeights& requested)
 {
-  // The stretch share grows while the system is singular (see the header): the least share
-  // first, then 1e-4 and 1e-2 of the bend weight.
-  std::vector<double> shares = { MinimumStretchPerBend };
-  for (double share = 1e-4; share <= MaximumRegularizingStretchPerBend * (1 + 1e-12); share *= 100)
-  {
-    shares.push_back(share);
-  }
   const int systems = Constraints && Constraints->hasAxisSlips() ? 3 : 1; // slip planes normal to an axis: that coordinate's own system
   bool positiveDefinite = false;
   EnergyWeights weights = requested;
-  for (std::size_t attempt = 0; attempt < shares.size(); ++attempt)
+  for (std::size_t attempt = 0; attempt < StretchPerBendShares.size(); ++attempt)
   {
-    if (attempt > 0 && (requested.bend <= 0 || requested.stretch >= shares[attempt] * requested.bend))
+    const double share = StretchPerBendShares[attempt];
+    if (attempt > 0 && (requested.bend <= 0 || requested.stretch >= share * requested.bend))
     {
       continue; // a share the requested stretch already holds: the same system
     }
-    weights.stretch = std::max(requested.stretch, shares[attempt] * requested.bend);
+    weights.stretch = std::max(requested.stretch, share * requested.bend);
     System = weights.stretch * Energy.stretch + weights.bend * Energy.bend;
     for (const SparseMatrix& A : RegionNormals)
     {
