@@ -106,7 +106,7 @@ pqHandleMotionWidget::pqHandleMotionWidget(vtkSMProxy* proxy, vtkSMPropertyGroup
     "The region's selection box (its Region function's own widget): edits which positions the region selects.");
   this->BoxChoice->button(static_cast<int>(Box::None))->setToolTip("No box in the view.");
   layout->addLayout(choices, 1, 0, 1, 4); // at the top of the group, seen first
-  QObject::connect(this->BoxChoice, QOverload<int>::of(&QButtonGroup::buttonClicked), this, [this](int box) {
+  QObject::connect(this->BoxChoice, &QButtonGroup::idClicked, this, [this](int box) {
     this->Shown = static_cast<Box>(box);
     this->showChosenBox();
   });

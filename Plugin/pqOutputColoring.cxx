@@ -7,6 +7,7 @@
 #include <pqDataRepresentation.h>
 #include <pqOutputPort.h>
 #include <pqPipelineFilter.h>
+#include <pqServer.h>
 #include <pqServerManagerModel.h>
 #include <vtkSMTransferFunctionManager.h>
 #include <vtkCommand.h>
@@ -68,6 +69,37 @@ void pqOutputColoring::onStartup()
 {
   QObject::connect(pqApplicationCore::instance()->getServerManagerModel(), &pqServerManagerModel::representationAdded, this,
     &pqOutputColoring::representationAdded);
+  QObject::connect(pqApplicationCore::instance()->getServerManagerModel(), &pqServerManagerModel::serverAdded, this,
+    &pqOutputColoring::drawingArraysUnlisted);
+  for (pqServer* server : pqApplicationCore::instance()->getServerManagerModel()->findItems<pqServer*>())
+  {
+    this->drawingArraysUnlisted(server);
+  }
+}
+
+void pqOutputColoring::drawingArraysUnlisted(pqServer* server)
+{
+  // ParaView's geometry filter marks the edges inside a quadratic element's subdivided faces in
+  // the point array vtkEdgeFlags (vtkPVRecoverGeometryWireframe); the colouring menu listed it
+  // among a deck's fields. A filter expression of the settings proxy (not of its VTK object
+  // alone, which the Settings dialog would overwrite)
+  vtkSMProxy* settings = server ? server->proxyManager()->GetProxy("settings", "RepresentedArrayListSettings") : nullptr;
+  if (!settings)
+  {
+    return;
+  }
+  const char* const drawingArray = "^vtkEdgeFlags$";
+  vtkSMPropertyHelper expressions(settings, "FilterExpressions");
+  for (unsigned int i = 0; i < expressions.GetNumberOfElements(); ++i)
+  {
+    if (std::strcmp(expressions.GetAsString(i), drawingArray) == 0)
+    {
+      return;
+    }
+  }
+  expressions.SetNumberOfElements(expressions.GetNumberOfElements() + 1);
+  expressions.Set(expressions.GetNumberOfElements() - 1, drawingArray);
+  settings->UpdateVTKObjects();
 }
 
 void pqOutputColoring::representationAdded(pqRepresentation* representation)
@@ -114,6 +146,12 @@ void pqOutputColoring::representationAdded(pqRepresentation* representation)
   vtkSMPropertyHelper(proxy, "AmbientColor").Set(colour, 3);
   vtkSMPropertyHelper(proxy, "PointSize").Set(8.0);
   vtkSMPropertyHelper(proxy, "RenderPointsAsSpheres", /*quiet=*/true).Set(1);
+  // beads with a white highlight and a dark rim: told apart from a model coloured in the role's
+  // own colour (the Handle's red on the red end of a displacement colour map)
+  vtkSMPropertyHelper(proxy, "Ambient").Set(0.0);
+  vtkSMPropertyHelper(proxy, "Diffuse").Set(1.0);
+  vtkSMPropertyHelper(proxy, "Specular").Set(1.0);
+  vtkSMPropertyHelper(proxy, "SpecularPower").Set(5.0); // a highlight a third of a bead across
   vtkSMRepresentationProxy::SetRepresentationType(proxy, "Points");
   proxy->UpdateVTKObjects();
 }

@@ -7,6 +7,9 @@
 // colour legend of what it is coloured by (Displacement, dX/d<variable>, ...) shows the range of
 // the data shown now (unless the user locked it), and a zero field shows as zero, also when
 // ParaView rescales the legend itself (another component, colouring anew, Reset Range).
+// The colouring menu lists the data's fields, not the arrays ParaView makes to draw them
+// (vtkEdgeFlags, of a mesh with quadratic elements: a filter expression of Edit > Settings >
+// Miscellaneous, added to each server's settings if missing).
 #pragma once
 
 #include <QObject>
@@ -15,6 +18,7 @@
 #include <vtkNew.h>
 
 class pqRepresentation;
+class pqServer;
 class vtkEventQtSlotConnect;
 class vtkObject;
 class vtkSMProxy;
@@ -31,6 +35,8 @@ public:
 
 private Q_SLOTS:
   void representationAdded(pqRepresentation* representation);
+  /// The arrays ParaView makes to draw data out of the server's colouring menus.
+  void drawingArraysUnlisted(pqServer* server);
   /// A representation's data changed: the legend follows, if it shows a deformation's data.
   void legendFollows();
   /// A followed legend's range changed (ParaView rescaled it): an empty range of a zero field

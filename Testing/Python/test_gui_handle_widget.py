@@ -118,57 +118,81 @@ def gui_run():
     view.CameraFocalPoint = pivot
     view.CameraViewUp = [0, 0, 1]
     view.ResetCamera()
-    return failures + view_failures(view, representation, handle, shown[handle], height)
+    return (failures + view_failures(view, representation, handle, shown[handle], height)
+            + contrast_failures(view, representation, handle, shown[handle], shown[deformed]))
+
+
+class Picture:
+    """The view's rendered pixels, looked up by world point. Shading differs between CPUs (the
+    renderer's reciprocal square roots are approximations of their own on each), so pixels are
+    tested for their hue, not their values; a line's pixels lie within half a pixel of its
+    projection."""
+
+    def __init__(self, view):
+        from paraview.vtk.vtkRenderingCore import vtkWindowToImageFilter
+        pvs.Render(view)
+        grab = vtkWindowToImageFilter()
+        grab.SetInput(view.GetRenderWindow())
+        grab.ReadFrontBufferOff()
+        grab.ShouldRerenderOn()
+        grab.Update()
+        self.image = grab.GetOutput()
+        self.size = self.image.GetDimensions()
+        self.renderer = view.GetRenderer()
+
+    def pixel_of(self, point):
+        self.renderer.SetWorldPoint(list(point) + [1.0])
+        self.renderer.WorldToDisplay()
+        return [int(round(c)) for c in self.renderer.GetDisplayPoint()[:2]]
+
+    def colours_near(self, x, y, reach):
+        return [[self.image.GetScalarComponentAsDouble(i, j, 0, c) / 255 for c in range(3)]
+                for i in range(max(0, x - reach), min(self.size[0], x + reach + 1))
+                for j in range(max(0, y - reach), min(self.size[1], y + reach + 1))]
+
+
+def red(c):  # the Handle's red (0.9, 0.1, 0.1), shaded
+    return c[0] > 0.3 and c[0] > 2 * c[1] and c[0] > 2 * c[2]
+
+
+def yellow(c):  # the centre sphere's (1, 0.85, 0), shaded
+    return c[0] > 0.3 and c[1] > 0.25 and c[0] > 2 * c[2] and c[1] > 2 * c[2]
+
+
+def dark(c):  # the box's black halo (unlit); the red model's darkest shading keeps its hue
+    return max(c) < 0.12
+
+
+def light(c):  # a white highlight: the red model (no specular) never has green and blue above 0.1
+    return c[1] > 0.4 and c[2] > 0.4
+
+
+# The box's 12 edges by corner (vtkBoxRepresentation's first 8 points).
+EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+
+
+def box_points(representation):
+    from paraview.vtk.vtkCommonDataModel import vtkPolyData
+    box = vtkPolyData()
+    representation.GetPolyData(box)  # the moved box: 8 corners, 6 face centres, its centre
+    return [box.GetPoint(i) for i in range(15)]
 
 
 def view_failures(view, representation, handle, points_look, height):
-    """What the view shows of the moved handle, from its rendered pixels and its representations.
-    Shading differs between CPUs (the renderer's reciprocal square roots are approximations of
-    their own on each), so the pixels are tested for their hue, not their values; a line's pixels
-    lie within half a pixel of its projection, so an edge is looked for within one pixel."""
-    from paraview.vtk.vtkRenderingCore import vtkActor, vtkWindowToImageFilter
-    from paraview.vtk.vtkCommonDataModel import vtkPolyData
+    """What the view shows of the moved handle, from its rendered pixels and its representations."""
+    from paraview.vtk.vtkRenderingCore import vtkActor
     failures = []
-    pvs.Render(view)
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(view.GetRenderWindow())
-    grab.ReadFrontBufferOff()
-    grab.ShouldRerenderOn()
-    grab.Update()
-    image = grab.GetOutput()
-    size = image.GetDimensions()
-    renderer = view.GetRenderer()
-
-    def pixel_of(point):
-        renderer.SetWorldPoint(list(point) + [1.0])
-        renderer.WorldToDisplay()
-        return [int(round(c)) for c in renderer.GetDisplayPoint()[:2]]
-
-    def colours_near(x, y, reach):
-        return [[image.GetScalarComponentAsDouble(i, j, 0, c) / 255 for c in range(3)]
-                for i in range(max(0, x - reach), min(size[0], x + reach + 1))
-                for j in range(max(0, y - reach), min(size[1], y + reach + 1))]
-
-    def red(c):  # the Handle's red (0.9, 0.1, 0.1), shaded
-        return c[0] > 0.3 and c[0] > 2 * c[1] and c[0] > 2 * c[2]
-
-    def yellow(c):  # the centre sphere's (1, 0.85, 0), shaded
-        return c[0] > 0.3 and c[1] > 0.25 and c[0] > 2 * c[2] and c[1] > 2 * c[2]
-    box = vtkPolyData()
-    representation.GetPolyData(box)  # the moved box: its 8 corners first
-    corners = [box.GetPoint(i) for i in range(8)]
-    edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+    picture = Picture(view)
+    points = box_points(representation)
     missed = []
-    for a, b in edges:
-        x, y = pixel_of([(p + q) / 2 for p, q in zip(corners[a], corners[b])])
-        if not any(red(c) for c in colours_near(x, y, 1)):
+    for a, b in EDGES:
+        x, y = picture.pixel_of([(p + q) / 2 for p, q in zip(points[a], points[b])])
+        if not any(red(c) for c in picture.colours_near(x, y, 1)):
             missed.append((a, b, x, y))
     if missed:
         failures.append('the view shows no red outline at these edges of the moved box (corners, pixel): %s' % missed)
-    handle.UpdatePropertyInformation()
-    centre = [box.GetPoint(14)[i] for i in range(3)]  # the box's centre: the moved pivot
-    x, y = pixel_of(centre)
-    colour = colours_near(x, y, 0)[0]
+    x, y = picture.pixel_of(points[14])  # the box's centre: the moved pivot
+    colour = picture.colours_near(x, y, 0)[0]
     if not yellow(colour):
         failures.append('the view shows no centre sphere at the moved pivot: pixel (%d, %d) is %s' % (x, y, colour))
     # the region's points are drawn where the handle goes: the representation's transform takes
@@ -187,6 +211,55 @@ def view_failures(view, representation, handle, points_look, height):
         miss = max(miss, max(abs(moved[k] - x[k] - targets.GetComponent(i, k)) for k in range(3)))
     if output.GetNumberOfPoints() == 0 or miss > TOLERANCE * height:
         failures.append('the region\'s %d points are drawn %g from where the handle goes' % (output.GetNumberOfPoints(), miss))
+    return failures
+
+
+def contrast_failures(view, representation, handle, points_look, model_look):
+    """Issue 63, point 4: the handle stays visible over a model coloured in the handle's own red
+    (the red end of a displacement colour map): each edge of the box has its dark halo beside the
+    red line (the halo is 1.5 pixels wide each side of the line: looked for within 3 pixels); the
+    region's points show their white highlights; and seen along an axis of the box, the face
+    sphere in front of the centre sphere is not drawn over it."""
+    failures = []
+    colour = list(model_look.ColorArrayName)
+    model_look.ColorArrayName = ['POINTS', '']
+    model_look.DiffuseColor = model_look.AmbientColor = [0.9, 0.1, 0.1]
+    picture = Picture(view)
+    points = box_points(representation)
+    unhaloed = []
+    for a, b in EDGES:
+        x, y = picture.pixel_of([(p + q) / 2 for p, q in zip(points[a], points[b])])
+        near = picture.colours_near(x, y, 3)
+        if not (any(red(c) for c in near) and any(dark(c) for c in near)):
+            unhaloed.append((a, b, x, y))
+    if unhaloed:
+        failures.append('over a red model these edges of the box have no dark halo (corners, pixel): %s' % unhaloed)
+    # the highlight of a bead (8 pixels across, SpecularPower 5) lies within 2 pixels of its
+    # centre's projection; the region is the part's top, seen from above and in front, so at least
+    # a quarter of its points face the camera unhidden
+    output = handle.GetClientSideObject().GetOutputDataObject(0)
+    targets = output.GetPointData().GetArray('PrescribedDisplacement')
+    lit = 0
+    for i in range(output.GetNumberOfPoints()):
+        x, y = picture.pixel_of([output.GetPoint(i)[k] + targets.GetComponent(i, k) for k in range(3)])
+        lit += any(light(c) for c in picture.colours_near(x, y, 2))
+    if lit < output.GetNumberOfPoints() / 4:
+        failures.append('over a red model only %d of the region\'s %d points show a highlight' % (lit, output.GetNumberOfPoints()))
+    # along the box's axis through a face sphere (its point 10, the -y face's centre)
+    axis = [f - c for f, c in zip(points[10], points[14])]
+    view.CameraFocalPoint = list(points[14])
+    view.CameraPosition = [c + 4 * a for c, a in zip(points[14], axis)]
+    view.CameraViewUp = [0, 0, 1]
+    # the centre sphere is 15 pixels in radius (2 x 1.5 x HandleSize 5), the face sphere in front
+    # of it 7.5: pixels 4 pixels diagonally off its centre are the face sphere's if it is drawn, and
+    # clear of the centre lines (crossing at the centre)
+    picture = Picture(view)
+    x, y = picture.pixel_of(points[14])
+    seen = [picture.colours_near(x + dx, y + dy, 0)[0] for dx in (-4, 4) for dy in (-4, 4)]
+    if not all(yellow(c) for c in seen):
+        failures.append('seen along the box\'s axis, the centre sphere at pixel (%d, %d) shows %s: a face sphere is drawn over it'
+                        % (x, y, seen))
+    model_look.ColorArrayName = colour
     return failures
 
 

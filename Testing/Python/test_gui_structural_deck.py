@@ -47,7 +47,14 @@ def gui():
     reader = pvs.OpenDataFile(os.environ['MLSDEFORM_DECK'])  # File > Open's choice of reader
     check(reader.GetXMLName() == 'MeshFileReader', 'the deck opens with the Mesh File reader (%s)' % reader.GetXMLName())
     view = pvs.GetActiveViewOrCreate('RenderView')
-    pvs.Show(reader, view)
+    shown = pvs.Show(reader, view)
+    pvs.Render(view)
+    # issue 63: the colouring menu lists the deck's fields and sets, not the arrays ParaView draws
+    # quadratic elements with (vtkEdgeFlags) nor the reader's reports
+    domain = shown.GetProperty('ColorArrayName').SMProperty.GetDomain('array_list')
+    listed = [domain.GetString(i) for i in range(domain.GetNumberOfStrings())]
+    check('hole1' in listed and not {'vtkEdgeFlags', 'SourceFile', 'QualityVerdict'} & set(listed),
+          'the colouring menu of the deck lists %s' % listed)
     apply = [b for b in window.findChildren(QPushButton) if b.objectName() == 'Accept'][0]
 
     def region_for(role, sets):
