@@ -88,7 +88,7 @@ Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellF
   m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
   // the faces' inverted cells and the quadratic elements folded between their corners
   std::vector<unsigned char> inverted = m.faces.inverted;
-  mlsvtk::Elements(grid).measure(points, inverted, true);
+  mlsvtk::Elements(grid, mlsvtk::ElementSet::Quadratic).measure(points, inverted);
   m.inverted = static_cast<long>(std::count(inverted.begin(), inverted.end(), 1));
   m.maxNonOrthogonality.assign(cells.cells(), 0);
   m.maxSkewness.assign(cells.cells(), 0);

@@ -102,14 +102,17 @@ std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid)
   return jacobians;
 }
 
-Elements::Elements(vtkUnstructuredGrid* grid)
+Elements::Elements(vtkUnstructuredGrid* grid, ElementSet set)
   : CellCount(static_cast<std::size_t>(grid->GetNumberOfCells()))
 {
+  using mlsdeform::ElementShape;
   vtkNew<vtkIdList> ids;
   Start.push_back(0);
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    if (const std::optional<mlsdeform::ElementShape> shape = elementShape(grid->GetCellType(c)))
+    const std::optional<ElementShape> shape = elementShape(grid->GetCellType(c));
+    const bool quadratic = shape == ElementShape::Tetra10 || shape == ElementShape::Hexa20 || shape == ElementShape::Wedge15;
+    if (shape && (quadratic || set == ElementSet::All))
     {
       grid->GetCellPoints(c, ids);
       Cells.push_back(static_cast<int>(c));
@@ -120,9 +123,8 @@ Elements::Elements(vtkUnstructuredGrid* grid)
   }
 }
 
-double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted, bool quadraticOnly) const
+double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const
 {
-  using mlsdeform::ElementShape;
   const long count = static_cast<long>(Cells.size());
   inverted.resize(std::max(inverted.size(), CellCount), 0);
   double least = std::numeric_limits<double>::infinity();
@@ -136,8 +138,7 @@ double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigne
     }
     const mlsdeform::ElementJacobian j = mlsdeform::elementJacobian(Shapes[e], nodes);
     least = std::min(least, j.minScaled);
-    const bool quadratic = Shapes[e] == ElementShape::Tetra10 || Shapes[e] == ElementShape::Hexa20 || Shapes[e] == ElementShape::Wedge15;
-    if (j.inverted && (quadratic || !quadraticOnly))
+    if (j.inverted)
     {
       inverted[Cells[e]] = 1; // one element a cell: no two threads write the same byte
     }
@@ -160,12 +161,12 @@ mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what)
 }
 
 VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath, QualityVerdict verdict)
-  : FemElements(rest)
+  : JacobianElements(rest, verdict == QualityVerdict::FemSolver ? ElementSet::All : ElementSet::Quadratic)
   , Verdict(verdict)
 {
   if (verdict == QualityVerdict::FemSolver)
   {
-    Has3DCells = !FemElements.empty();
+    Has3DCells = !JacobianElements.empty();
     if (Has3DCells)
     {
       gridPoints(rest, "the mesh's points", Points);
@@ -225,7 +226,7 @@ QualitySummary VolumeMeshQuality::summarizeMeasures()
   const bool checkMesh = Verdict == QualityVerdict::CheckMesh;
   QualitySummary summary{ Measures.invertedCells, Measures.maxNonOrthogonality, Measures.maxSkewness };
   summary.faceMeasures = checkMesh;
-  if (!FemElements.empty())
+  if (!JacobianElements.empty())
   {
     // checkMesh's: the faces' inverted cells and the quadratic elements folded between their
     // corners; the FEM solver's: every element with det J <= 0 at one of its points
@@ -237,7 +238,11 @@ QualitySummary VolumeMeshQuality::summarizeMeasures()
     {
       Inverted.assign(Inverted.size(), 0);
     }
-    summary.minScaledJacobian = FemElements.measure(Points, Inverted, checkMesh);
+    const double least = JacobianElements.measure(Points, Inverted);
+    if (!checkMesh)
+    {
+      summary.minScaledJacobian = least; // the FEM verdict's figure; checkMesh has none
+    }
     summary.inverted = static_cast<long>(std::count(Inverted.begin(), Inverted.end(), 1));
   }
   return summary;

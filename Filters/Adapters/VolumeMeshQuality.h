@@ -28,16 +28,24 @@ std::optional<mlsdeform::ElementShape> elementShape(int vtkCellType);
 /// and pyramids (verdict's); NaN for other cells.
 std::vector<double> scaledJacobians(vtkUnstructuredGrid* grid);
 
-/// The cells ElementJacobian measures, with their point ids, measured on any points.
+/// Which elements a verdict measures by their Jacobian: every one (an FEM solver's), or the
+/// quadratic ones only (checkMesh's, where face pyramids do not see a midside node folded
+/// between its corners; a finite-volume mesh has none and costs nothing).
+enum class ElementSet
+{
+  All,
+  Quadratic,
+};
+
+/// The cells ElementJacobian measures (of `set`), with their point ids, measured on any points.
 class Elements
 {
 public:
-  explicit Elements(vtkUnstructuredGrid* grid);
+  Elements(vtkUnstructuredGrid* grid, ElementSet set);
   bool empty() const { return Cells.empty(); }
   /// The least scaled Jacobian over the elements (infinity when there are none), and for each
-  /// element with det J <= 0 at one of its points (every element, or the quadratic ones only),
-  /// inverted[its cell] set to 1.
-  double measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted, bool quadraticOnly) const;
+  /// element with det J <= 0 at one of its points inverted[its cell] set to 1.
+  double measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const;
 
 private:
   std::size_t CellCount;
@@ -58,7 +66,7 @@ struct QualitySummary
   long inverted = 0;
   double maxNonOrthogonality = 0;
   double maxSkewness = 0;
-  double minScaledJacobian = std::numeric_limits<double>::infinity(); // over Elements (none: infinity)
+  double minScaledJacobian = std::numeric_limits<double>::infinity(); // the FEM verdict's (else infinity)
   bool faceMeasures = false; // whether the non-orthogonality and skewness were measured
 
   /// Adds another mesh's: the counts add up, the largest (least) values stay.
@@ -117,7 +125,7 @@ private:
   mlsdeform::FaceWorkspace Work;
   mlsdeform::FaceMeasures Measures;
   QualitySummary Original;
-  Elements FemElements;
+  Elements JacobianElements;
   QualityVerdict Verdict;
   std::vector<unsigned char> Inverted; // per cell: the faces' verdict, then the elements'
 };

@@ -138,7 +138,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
       addField(field, (std::string(prefix) + "MaxNonOrthogonality").c_str(), largest[0]);
       addField(field, (std::string(prefix) + "MaxSkewness").c_str(), largest[1]);
     }
-    if (std::isfinite(largest[2])) // some process has elements ElementJacobian measures
+    if (std::isfinite(largest[2])) // the FEM verdict, where some process has elements
     {
       addField(field, (std::string(prefix) + "MinScaledJacobian").c_str(), -largest[2]);
     }

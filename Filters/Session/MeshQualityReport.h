@@ -21,9 +21,9 @@ namespace mlsvtk
 class MeshQualityReport
 {
 public:
-  /// Adds InvertedCells, MaxNonOrthogonality, MaxSkewness, MinScaledJacobian (with tetrahedra,
-  /// hexahedra or wedges, linear or quadratic: ElementJacobian) and the same prefixed "Original" to
-  /// field when some process has volume cells. A structural solver's mesh file (field data
+  /// Adds InvertedCells, MaxNonOrthogonality, MaxSkewness and the same prefixed "Original" to
+  /// field when some process has volume cells (checkMesh's verdict; quadratic elements are
+  /// measured by their Jacobian for InvertedCells only). A structural solver's mesh file (field data
   /// QualityVerdict "FemSolver") gets the FEM solver's verdict instead of checkMesh's: InvertedCells
   /// by the elements' Jacobian, MinScaledJacobian, and no face measures. Split over processes, each measures its own piece
   /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
