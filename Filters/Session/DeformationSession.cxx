@@ -141,6 +141,7 @@ bool DeformationSession::updateSubspace(const SubspaceDependencies& dependencies
   Constraints.invalidate();
   Model.reset();
   PointRows = RowBlocks();
+  PointsProductIsLast = false;
   Model = build();
   Subspace.built(std::move(key));
   ++Counts.subspace;
@@ -192,7 +193,8 @@ void DeformationSession::updateTargets()
   }
   // a region's points are usually input points too (a patch of the mesh): their rows of Phi are
   // stage 2's, viewed rather than evaluated again or copied
-  Model->setRegions(targets, { &PointRows, positionsAmong(Points, positions) });
+  TargetRows = positionsAmong(Points, positions);
+  Model->setRegions(targets, { &PointRows, TargetRows });
   Targets.built(std::move(key));
   ++Counts.targets;
 }
@@ -318,11 +320,20 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   ConstraintConflicts.clear();
   Intersected = false;
   const std::vector<PointDisplacementsView> prescribed = gatherPrescribed(Regions, Prescribed, group);
+  PointsProductIsLast = false;
   Last = Model->solve(prescribed, settings);
   LastField.w = Last.w;
   if (Exact.active())
   {
-    const PointDisplacements reached = Model->regionDisplacements(Last.w);
+    const bool dragged = std::any_of(Regions.begin(), Regions.end(), [](const RegionInput& r) { return r.dragging; });
+    if (!dragged) // the whole output follows (movingSets)
+    {
+      PointsProduct.resize(static_cast<long>(Points.size()), 3);
+      multiplyRows(PointRows, Last.w, 0, PointRows.rows(), PointsProduct.data());
+      PointsProductIsLast = true;
+    }
+    const PointDisplacements reached =
+      Model->regionDisplacements(Last.w, PointsProductIsLast ? KnownProduct{ &TargetRows, PointsProduct.data() } : KnownProduct{});
     LastField.r = Exact.residuals(prescribed, reached);
     measureTargets(prescribed, Exact.misses(prescribed, reached, LastField.r));
     if (Exact.hasConstraintSites())
@@ -527,8 +538,14 @@ PointField DeformationSession::tangent(const std::vector<double>& seeds) const
 
 void DeformationSession::displacement(const PointField& field, long offset, long n, double* out) const
 {
-  const PointDisplacements w = field.w; // row-major: a shape function's x, y, z share a cache line
-  multiplyRows(PointRows, w, offset, offset + n, out);
+  if (&field == &LastField && PointsProductIsLast)
+  {
+    std::copy_n(PointsProduct.data() + 3 * offset, 3 * n, out);
+  }
+  else
+  {
+    multiplyRows(PointRows, field.w, offset, offset + n, out);
+  }
   if (field.r.rows() > 0)
   {
     Exact.add(field.r, offset, offset + n, out);

@@ -293,6 +293,13 @@ private:
   PrescribedDerivatives Derivatives;
   mlsdeform::SpaceDeformation::Solution Last;
   PointField LastField;
+  // Phi w of the last solve at every point, when the whole output is written (no drag): the
+  // exact targets' Phi w at the region positions that are points is read from it rather than
+  // multiplied again (a 1M-point sphere's regions' 410k rows doubled its variation), and the
+  // output copies it
+  mlsdeform::PointDisplacements PointsProduct;
+  bool PointsProductIsLast = false;
+  std::vector<long> TargetRows; // per region position: its row of PointRows (positionsAmong), or -1
   std::string TargetConflicts;
   std::string ConstraintConflicts;
   bool Intersected = false; // the constraint sites' residuals are an intersection's (exact constraints met)

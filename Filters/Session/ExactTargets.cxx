@@ -62,16 +62,7 @@ std::vector<double> ExactTargets::misses(
 
 void ExactTargets::add(const PointDisplacements& r, long begin, long end, double* out) const
 {
-#pragma omp parallel for schedule(static)
-  for (long i = begin; i < end; ++i)
-  {
-    double c[3];
-    multiplyRow(PointRows, i, r, c);
-    for (int a = 0; a < 3; ++a)
-    {
-      out[3 * (i - begin) + a] += c[a];
-    }
-  }
+  multiplyRows(PointRows, r, begin, end, out, Into::Add); // the blend's rows, by block
 }
 
 GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> among) const

@@ -5,6 +5,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
+#include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include <omp.h>
 
@@ -542,7 +546,18 @@ SparseRowMatrix subspaceMatrix(const ShapeFunctions& basis, const PointList& pos
   return concatenate(phiBlocks<SparseRowMatrix>(basis, positions, outside, progress));
 }
 
-GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside)
+const long* GatheredRows::order(long begin, long end) const
+{
+  if (!std::binary_search(Segments.begin(), Segments.end(), begin) || !std::binary_search(Segments.begin(), Segments.end(), end))
+  {
+    throw std::logic_error("a product over rows " + std::to_string(begin) + " to " + std::to_string(end) +
+      " of gathered rows, not a run of their segments");
+  }
+  return Order.data() + begin;
+}
+
+GatheredRows gatherRows(
+  const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside, const std::vector<long>& segments)
 {
   const bool usable = known.known && known.row.size() == positions.size();
   // Phi evaluated at the positions without a known row, then every row viewed in the positions' order
@@ -572,6 +587,19 @@ GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions,
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
     A.Rows[i] = usable && known.row[i] >= 0 ? rowOf(*known.known, known.row[i]) : rowOf(*A.Own, next++);
+  }
+  // each segment's rows by where their entries lie (std::less orders pointers into any arrays)
+  A.Segments = segments.empty() ? std::vector<long>{ 0, A.rows() } : segments;
+  if (A.Segments.front() != 0 || A.Segments.back() != A.rows() || !std::is_sorted(A.Segments.begin(), A.Segments.end()))
+  {
+    throw std::invalid_argument("gatherRows: the segments do not cover the positions in order");
+  }
+  A.Order.resize(positions.size());
+  std::iota(A.Order.begin(), A.Order.end(), 0L);
+  for (std::size_t s = 0; s + 1 < A.Segments.size(); ++s)
+  {
+    std::sort(A.Order.begin() + A.Segments[s], A.Order.begin() + A.Segments[s + 1],
+      [&](long a, long b) { return std::less<const PhiValue*>()(A.Rows[a].value, A.Rows[b].value); });
   }
   return A;
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 
 namespace mlsdeform
 {
@@ -78,9 +79,10 @@ using RowBlocks = RowBlocksOf<PhiBlock>;
 struct PhiRowSpan
 {
   const PhiPlace* place = nullptr;
-  const int* columns = nullptr;
+  const int* columns = nullptr; // the table of its PhiRows
   const PhiValue* value = nullptr;
   long size = 0;
+  long columnCount = 0; // of the table
   int column(long a) const { return columns[place[a]]; }
 };
 
@@ -109,23 +111,36 @@ SparseRowMatrix subspaceMatrix(
 /// gives the same bits wherever it is done) or of a row evaluated for it and kept here. A region
 /// of mesh points costs no copy of its rows (115 MB for the patches of the 1M-cell hull case).
 /// The views stay valid while the known rows live unchanged.
+///
+/// The products read the rows in the order they are stored (order()), within each segment of
+/// consecutive rows (a region's): a region's points in the mesh's order meet Phi's rows (in the
+/// samples' spatial order) in another block at nearly every row, and a pass over a 1M-point
+/// sphere's regions' 410k rows took longer than over all 1M rows. A product's range of rows is
+/// a run of whole segments.
 class GatheredRows
 {
 public:
   long rows() const { return static_cast<long>(Rows.size()); }
   long cols() const { return Columns; }
   const PhiRowSpan& row(long i) const { return Rows[i]; }
+  /// The rows begin..end - 1 in storage order (a permutation of them); throws std::logic_error
+  /// when the range is not a run of whole segments.
+  const long* order(long begin, long end) const;
 
 private:
-  friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*);
+  friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*, const std::vector<long>&);
   std::unique_ptr<RowBlocks> Own; // the rows evaluated here (on the heap: the views outlive a move)
   std::vector<PhiRowSpan> Rows;
+  std::vector<long> Order;    // per segment, its rows by where their entries are stored
+  std::vector<long> Segments; // the first row of each segment, and the end
   long Columns = 0;
 };
 
 /// Phi at the positions, the rows in `known` viewed, the others evaluated (indices of positions
-/// outside every support appended to outside).
-GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside = nullptr);
+/// outside every support appended to outside). segments: the first position of each segment of
+/// positions, and the end (empty: one segment).
+GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside = nullptr,
+  const std::vector<long>& segments = {});
 
 /// Row i of a row-major sparse matrix: its column indices and values (column(a) and value[a],
 /// the one way the products below read a row, as they read PhiRowSpan's).
@@ -151,7 +166,8 @@ inline PhiRowSpan rowOf(const RowBlocks& A, long i)
     if (r < part.rows())
     {
       const int begin = part.start[r];
-      return { part.place.data() + begin, part.columns.data(), part.value.data() + begin, part.start[r + 1] - begin };
+      return { part.place.data() + begin, part.columns.data(), part.value.data() + begin, part.start[r + 1] - begin,
+        static_cast<long>(part.columns.size()) };
     }
     r -= part.rows();
   }
@@ -162,88 +178,132 @@ inline const PhiRowSpan& rowOf(const GatheredRows& A, long i)
   return A.row(i);
 }
 
-/// Row i of A X (d(x_i) = sum_j Phi_ij w_j) written as an (x, y, z) triple to out, summed in the
-/// order of the row.
-template <typename Rows, typename Dense>
-void multiplyRow(const Rows& A, long i, const Eigen::MatrixBase<Dense>& X, double* out)
+/// Whether a product's rows are written to out or added to what out holds.
+enum class Into
 {
-  const auto row = rowOf(A, i);
-  double x = 0, y = 0, z = 0;
-  for (long a = 0; a < row.size; ++a)
+  Write,
+  Add,
+};
+
+/// The rows of a dense X with three columns that a product's entries read, as (x, y, z) triples
+/// in one array, so that an entry's x, y and z share a cache line and an entry needs no lookup
+/// in its rows' table of columns: for rows of Phi (PhiRowSpan), read in storage order, X at their
+/// table's columns (PhiRows), gathered again when a row's table is another's (a few hundred
+/// columns for 4096 consecutive rows), read by place; for a sparse matrix's rows all of X, read by
+/// column.
+template <typename Dense>
+class GatheredX
+{
+public:
+  explicit GatheredX(const Eigen::MatrixBase<Dense>& X)
+    : X(X)
   {
-    const double v = row.value[a];
-    const auto j = row.column(a);
-    x += v * X(j, 0);
-    y += v * X(j, 1);
-    z += v * X(j, 2);
   }
-  out[0] = x;
-  out[1] = y;
-  out[2] = z;
+  const double* of(const PhiRowSpan& row)
+  {
+    if (row.columns != Table)
+    {
+      Table = row.columns;
+      Values.resize(3 * static_cast<std::size_t>(row.columnCount));
+      for (long p = 0; p < row.columnCount; ++p)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          Values[3 * p + c] = X(row.columns[p], c);
+        }
+      }
+    }
+    return Values.data();
+  }
+  template <typename Scalar>
+  const double* of(const RowSpan<Scalar>&)
+  {
+    if (Values.empty())
+    {
+      Values.resize(3 * static_cast<std::size_t>(X.rows()));
+      Eigen::Map<PointDisplacements>(Values.data(), X.rows(), 3) = X;
+    }
+    return Values.data();
+  }
+  static long at(const PhiRowSpan& row, long a) { return row.place[a]; }
+  template <typename Scalar>
+  static long at(const RowSpan<Scalar>& row, long a)
+  {
+    return row.index[a];
+  }
+
+private:
+  const Eigen::MatrixBase<Dense>& X;
+  const int* Table = nullptr;
+  std::vector<double> Values;
+};
+
+/// The rows begin..end - 1 of A in the order the products read them (GatheredRows' storage
+/// order; other rows in turn): the n-th is rows[n - begin], or n when rows is null.
+template <typename Rows>
+const long* readingOrder(const Rows&, long, long)
+{
+  return nullptr;
 }
+inline const long* readingOrder(const GatheredRows& A, long begin, long end)
+{
+  return A.order(begin, end);
+}
+
+/// Rows of a product A X multiplied before, elsewhere: row i of A X is known[3 * row[i]] .. + 2
+/// where row[i] >= 0 (rows of Phi viewed from the rows that product was taken over).
+struct KnownProduct
+{
+  const std::vector<long>* row = nullptr;
+  const double* known = nullptr;
+};
 
 /// Rows begin..end of A X for a dense X with three columns (either storage order), written as
-/// (x, y, z) triples to out: one parallel pass over those rows of A (d(x_i) = sum_j Phi_ij w_j at
-/// many points). Each entry is summed by one thread in the order of its row, so the result does
-/// not depend on the number of threads. Rows are taken in chunks as threads come free (a virtual
-/// CPU at times runs at half speed: an even split would wait for it).
+/// (x, y, z) triples to out (or added to them, Into::Add): one parallel pass over those rows of A
+/// (d(x_i) = sum_j Phi_ij w_j at many points). Each entry is summed by one thread in the order of
+/// its row, so the result does not depend on the number of threads. Rows are taken in chunks as
+/// threads come free (a virtual CPU at times runs at half speed: an even split would wait for it).
+/// Rows in `known` are copied from it, the same bits (Write only).
 template <typename Rows, typename Dense>
-void multiplyRows(const Rows& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
+void multiplyRows(const Rows& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out, Into into = Into::Write,
+  const KnownProduct& known = {})
 {
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (long i = begin; i < end; ++i)
-  {
-    multiplyRow(A, i, X, out + 3 * (i - begin));
-  }
-}
-
-/// multiplyRows for Phi's row blocks, the same products summed in the same order: each part's
-/// rows read the rows of X at its columns, gathered once by place (a few hundred for 4096 rows),
-/// not through the table at every entry.
-template <typename Dense>
-void multiplyRows(const RowBlocks& A, const Eigen::MatrixBase<Dense>& X, long begin, long end, double* out)
-{
-  if (begin >= end)
-  {
-    return;
-  }
+  const long* order = readingOrder(A, begin, end);
 #pragma omp parallel
   {
-    std::vector<double> gathered; // x, y, z of X's row at each place
-#pragma omp for schedule(dynamic, 1)
-    for (long b = begin / A.rowsPerBlock; b <= (end - 1) / A.rowsPerBlock; ++b)
+    GatheredX<Dense> gathered(X);
+#pragma omp for schedule(dynamic, 1024)
+    for (long n = begin; n < end; ++n)
     {
-      long first = b * A.rowsPerBlock; // the part's first row
-      for (const PhiRows& part : A.blocks[b].parts)
+      const long i = order ? order[n - begin] : n;
+      if (known.row && (*known.row)[i] >= 0)
       {
-        const long from = std::max(first, begin), to = std::min(first + part.rows(), end);
-        if (from < to)
-        {
-          gathered.resize(3 * part.columns.size());
-          for (std::size_t p = 0; p < part.columns.size(); ++p)
-          {
-            for (int c = 0; c < 3; ++c)
-            {
-              gathered[3 * p + c] = X(part.columns[p], c);
-            }
-          }
-          for (long i = from; i < to; ++i)
-          {
-            double x = 0, y = 0, z = 0;
-            for (int a = part.start[i - first]; a < part.start[i - first + 1]; ++a)
-            {
-              const double v = part.value[a];
-              const double* g = gathered.data() + 3 * part.place[a];
-              x += v * g[0];
-              y += v * g[1];
-              z += v * g[2];
-            }
-            out[3 * (i - begin)] = x;
-            out[3 * (i - begin) + 1] = y;
-            out[3 * (i - begin) + 2] = z;
-          }
-        }
-        first += part.rows();
+        std::copy_n(known.known + 3 * (*known.row)[i], 3, out + 3 * (i - begin));
+        continue;
+      }
+      const auto& row = rowOf(A, i);
+      const double* g = gathered.of(row);
+      double x = 0, y = 0, z = 0;
+      for (long a = 0; a < row.size; ++a)
+      {
+        const double v = row.value[a];
+        const double* r = g + 3 * gathered.at(row, a);
+        x += v * r[0];
+        y += v * r[1];
+        z += v * r[2];
+      }
+      double* o = out + 3 * (i - begin);
+      if (into == Into::Add)
+      {
+        o[0] += x;
+        o[1] += y;
+        o[2] += z;
+      }
+      else
+      {
+        o[0] = x;
+        o[1] = y;
+        o[2] = z;
       }
     }
   }
@@ -260,21 +320,24 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Den
 
 /// A(begin:end, :)^T X (k x 3) for a dense X with one row per row of the range (b_r = Phi_r^T
 /// dbar_r), without a transposed copy of A: partial sums over fixed blocks of rows, added in block
-/// order, so that the result does not depend on the number of threads.
+/// order (blocks of rows in reading order), so that the result does not depend on the number of
+/// threads.
 template <typename Rows, typename Dense>
 Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X)
 {
   constexpr long Block = 8192;
   const long blocks = (end - begin + Block - 1) / Block;
   std::vector<PointDisplacements> partial(static_cast<std::size_t>(blocks)); // rows of x, y, z: one cache line apart
+  const long* order = readingOrder(A, begin, end);
 #pragma omp parallel for schedule(dynamic)
   for (long b = 0; b < blocks; ++b)
   {
     PointDisplacements& sum = partial[b];
     sum.setZero(A.cols(), 3);
-    for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
+    for (long n = begin + b * Block; n < std::min(end, begin + (b + 1) * Block); ++n)
     {
-      const auto row = rowOf(A, i);
+      const long i = order ? order[n - begin] : n;
+      const auto& row = rowOf(A, i);
       for (long a = 0; a < row.size; ++a)
       {
         sum.row(row.column(a)) += static_cast<double>(row.value[a]) * X.row(i - begin);

@@ -119,7 +119,7 @@ void SpaceDeformation::setRegions(const std::vector<DirichletRegion>& regions, c
     RegionBegin.push_back(static_cast<long>(positions.size()));
   }
   std::vector<int> outside;
-  RegionSubspace = gatherRows(*Basis, positions, reuse, &outside);
+  RegionSubspace = gatherRows(*Basis, positions, reuse, &outside, RegionBegin); // each region read as stored
   if (!outside.empty())
   {
     throw InvalidInputException(std::to_string(outside.size()) + " region position(s) lie outside every MLS support, e.g. (" +
@@ -515,10 +515,10 @@ std::vector<double> SpaceDeformation::constraintResiduals(const Displacements& w
   return ShapeConstraints::largestDistances(positions, Constraints->project(positions, axes));
 }
 
-PointDisplacements SpaceDeformation::regionDisplacements(const Displacements& w) const
+PointDisplacements SpaceDeformation::regionDisplacements(const Displacements& w, const KnownProduct& known) const
 {
   PointDisplacements d(RegionSubspace.rows(), 3);
-  multiplyRows(RegionSubspace, w, 0, RegionSubspace.rows(), d.data());
+  multiplyRows(RegionSubspace, w, 0, RegionSubspace.rows(), d.data(), Into::Write, known);
   return d;
 }
 

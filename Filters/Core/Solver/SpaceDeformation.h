@@ -172,8 +172,9 @@ public:
   std::vector<double> constraintResiduals(const Displacements& w, const PointDisplacements& added, std::vector<Vec3> axes) const;
 
   /// Phi w at every region position (stacked in the order of setRegions): where the solution
-  /// puts the targets (their residuals are dbar - Phi w).
-  PointDisplacements regionDisplacements(const Displacements& w) const;
+  /// puts the targets (their residuals are dbar - Phi w); the positions in `known` (Phi w at the
+  /// rows given to setRegions) copied from it.
+  PointDisplacements regionDisplacements(const Displacements& w, const KnownProduct& known = {}) const;
   /// Phi_T^T e for one row of e per region position (the transpose of regionDisplacements).
   Displacements regionTransposed(const PointDisplacements& e) const;
 
