@@ -112,11 +112,12 @@ SparseRowMatrix subspaceMatrix(
 /// of mesh points costs no copy of its rows (115 MB for the patches of the 1M-cell hull case).
 /// The views stay valid while the known rows live unchanged.
 ///
-/// The products read the rows in the order they are stored (order()), within each segment of
+/// multiplyRows reads the rows in the order they are stored (order()), within each segment of
 /// consecutive rows (a region's): a region's points in the mesh's order meet Phi's rows (in the
 /// samples' spatial order) in another block at nearly every row, and a pass over a 1M-point
-/// sphere's regions' 410k rows took longer than over all 1M rows. A product's range of rows is
-/// a run of whole segments.
+/// sphere's regions' 410k rows took longer than over all 1M rows. Each row's sum is the same in
+/// any order of rows; sums over rows (multiplyTransposed) keep the rows' order. A product's
+/// range of rows is a run of whole segments.
 class GatheredRows
 {
 public:
@@ -238,7 +239,7 @@ private:
   std::vector<double> Values;
 };
 
-/// The rows begin..end - 1 of A in the order the products read them (GatheredRows' storage
+/// The rows begin..end - 1 of A in the order multiplyRows reads them (GatheredRows' storage
 /// order; other rows in turn): the n-th is rows[n - begin], or n when rows is null.
 template <typename Rows>
 const long* readingOrder(const Rows&, long, long)
@@ -320,23 +321,22 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Den
 
 /// A(begin:end, :)^T X (k x 3) for a dense X with one row per row of the range (b_r = Phi_r^T
 /// dbar_r), without a transposed copy of A: partial sums over fixed blocks of rows, added in block
-/// order (blocks of rows in reading order), so that the result does not depend on the number of
-/// threads.
+/// order, so that the result does not depend on the number of threads. The rows are summed in
+/// their own order, not in GatheredRows' storage order: that depends on where the rows lie in
+/// memory, which differs between processes and runs.
 template <typename Rows, typename Dense>
 Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X)
 {
   constexpr long Block = 8192;
   const long blocks = (end - begin + Block - 1) / Block;
   std::vector<PointDisplacements> partial(static_cast<std::size_t>(blocks)); // rows of x, y, z: one cache line apart
-  const long* order = readingOrder(A, begin, end);
 #pragma omp parallel for schedule(dynamic)
   for (long b = 0; b < blocks; ++b)
   {
     PointDisplacements& sum = partial[b];
     sum.setZero(A.cols(), 3);
-    for (long n = begin + b * Block; n < std::min(end, begin + (b + 1) * Block); ++n)
+    for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
     {
-      const long i = order ? order[n - begin] : n;
       const auto& row = rowOf(A, i);
       for (long a = 0; a < row.size; ++a)
       {
