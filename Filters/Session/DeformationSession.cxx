@@ -325,8 +325,7 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   LastField.w = Last.w;
   if (Exact.active())
   {
-    const bool dragged = std::any_of(Regions.begin(), Regions.end(), [](const RegionInput& r) { return r.dragging; });
-    if (!dragged) // the whole output follows (movingSets)
+    if (!dragged()) // the whole output follows (movingSets)
     {
       PointsProduct.resize(static_cast<long>(Points.size()), 3);
       multiplyRows(PointRows, Last.w, 0, PointRows.rows(), PointsProduct.data());
@@ -645,11 +644,15 @@ void DeformationSession::deformedPoints(double* out) const
   }
 }
 
+bool DeformationSession::dragged() const
+{
+  return std::any_of(Regions.begin(), Regions.end(), [](const RegionInput& r) { return r.dragging; });
+}
+
 std::vector<char> DeformationSession::movingSets(const std::vector<vtkPointSet*>& sets) const
 {
   const auto isSurface = [](vtkPointSet* set) { return vtkPolyData::SafeDownCast(set) != nullptr; };
-  const bool dragged = std::any_of(Regions.begin(), Regions.end(), [](const RegionInput& r) { return r.dragging; });
-  if (!dragged || std::all_of(sets.begin(), sets.end(), isSurface) || std::none_of(sets.begin(), sets.end(), isSurface))
+  if (!dragged() || std::all_of(sets.begin(), sets.end(), isSurface) || std::none_of(sets.begin(), sets.end(), isSurface))
   {
     return std::vector<char>(sets.size(), 1);
   }

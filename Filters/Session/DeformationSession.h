@@ -189,6 +189,8 @@ public:
   /// surface (polydata) sets of an input that has volume sets too (an OpenFOAM case's patches
   /// beside its internal mesh), so that a drag step costs the surface's points only.
   std::vector<char> movingSets(const std::vector<vtkPointSet*>& sets) const;
+  /// Whether a region's handle is being dragged (this update moves the surface blocks only).
+  bool dragged() const;
 
   /// x + d(x) and Displacement into the output point sets for the last solve; a set that is not
   /// moving keeps the previous update's (DeformedOutput::write).
