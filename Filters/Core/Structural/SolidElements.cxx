@@ -1,0 +1,219 @@
+#include "Structural/SolidElements.h"
+
+#include <array>
+#include <cmath>
+
+namespace mlsdeform
+{
+namespace
+{
+constexpr int TetEdges[6][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 3 }, { 2, 3 } }; // nodes 4..9
+constexpr int HexCorners[8][3] = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1 },
+  { 1, -1, 1 }, { 1, 1, 1 }, { -1, 1, 1 } };
+constexpr int HexEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 }, { 6, 7 }, { 7, 4 },
+  { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } }; // nodes 8..19
+constexpr int WedgeEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 }, { 1, 4 },
+  { 2, 5 } }; // nodes 6..14
+
+// Tetrahedra: barycentric l = (1 - xi - eta - zeta, xi, eta, zeta), dl_k/dxi the rows below.
+// Linear N_k = l_k; quadratic N_k = l_k (2 l_k - 1), edge N_ij = 4 l_i l_j.
+void tetrahedron(const Vec3& xi, bool quadratic, double* N, Vec3* dN)
+{
+  const std::array<double, 4> l = { 1 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2] };
+  const std::array<Vec3, 4> dl = { Vec3(-1, -1, -1), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1) };
+  for (int k = 0; k < 4; ++k)
+  {
+    N[k] = quadratic ? l[k] * (2 * l[k] - 1) : l[k];
+    dN[k] = quadratic ? Vec3((4 * l[k] - 1) * dl[k]) : dl[k];
+  }
+  for (int e = 0; quadratic && e < 6; ++e)
+  {
+    const int i = TetEdges[e][0], j = TetEdges[e][1];
+    N[4 + e] = 4 * l[i] * l[j];
+    dN[4 + e] = 4 * (l[j] * dl[i] + l[i] * dl[j]);
+  }
+}
+
+// Hexahedra: the node at natural coordinates a (a midside node's: its edge's mean, 0 along it).
+// Trilinear N = prod (1 + a_d xi_d) / 2; serendipity corner N = prod (1 + a_d xi_d) / 2 *
+// (sum a_d xi_d - 2), midside (1 - xi_m^2) prod_{d != m} (1 + a_d xi_d) / 2.
+void hexahedron(const Vec3& xi, bool quadratic, double* N, Vec3* dN)
+{
+  const int count = quadratic ? 20 : 8;
+  for (int n = 0; n < count; ++n)
+  {
+    std::array<int, 3> a;
+    for (int d = 0; d < 3; ++d)
+    {
+      a[d] = n < 8 ? HexCorners[n][d] : (HexCorners[HexEdges[n - 8][0]][d] + HexCorners[HexEdges[n - 8][1]][d]) / 2;
+    }
+    Vec3 f, df; // the product's factors and their derivatives
+    for (int d = 0; d < 3; ++d)
+    {
+      f[d] = a[d] == 0 ? 1 - xi[d] * xi[d] : (1 + a[d] * xi[d]) / 2;
+      df[d] = a[d] == 0 ? -2 * xi[d] : a[d] / 2.0;
+    }
+    const double product = f[0] * f[1] * f[2];
+    Vec3 gradient(df[0] * f[1] * f[2], f[0] * df[1] * f[2], f[0] * f[1] * df[2]);
+    if (quadratic && n < 8)
+    {
+      const double s = a[0] * xi[0] + a[1] * xi[1] + a[2] * xi[2] - 2;
+      gradient = gradient * s + product * Vec3(a[0], a[1], a[2]);
+      N[n] = product * s;
+    }
+    else
+    {
+      N[n] = product;
+    }
+    dN[n] = gradient;
+  }
+}
+
+// Wedges: the triangle's l = (1 - xi - eta, xi, eta) times zeta, - at the bottom (0 1 2), + at the
+// top. Linear N = l_i (1 -+ zeta) / 2. Quadratic: corners l_i (2 l_i - 1)(1 -+ zeta) / 2 -
+// l_i (1 - zeta^2) / 2, triangle edges 2 l_i l_j (1 -+ zeta), vertical edges l_i (1 - zeta^2).
+void wedge(const Vec3& xi, bool quadratic, double* N, Vec3* dN)
+{
+  const std::array<double, 3> l = { 1 - xi[0] - xi[1], xi[0], xi[1] };
+  const std::array<Vec3, 3> dl = { Vec3(-1, -1, 0), Vec3(1, 0, 0), Vec3(0, 1, 0) };
+  const double zeta = xi[2], bubble = 1 - zeta * zeta;
+  const Vec3 dzeta(0, 0, 1);
+  for (int corner = 0; corner < 6; ++corner)
+  {
+    const int i = corner % 3;
+    const double side = corner < 3 ? -1 : 1;
+    const double level = (1 + side * zeta) / 2;
+    if (quadratic)
+    {
+      N[corner] = l[i] * (2 * l[i] - 1) * level - l[i] * bubble / 2;
+      dN[corner] = ((4 * l[i] - 1) * level - bubble / 2) * dl[i] + (l[i] * (2 * l[i] - 1) * side / 2 + l[i] * zeta) * dzeta;
+    }
+    else
+    {
+      N[corner] = l[i] * level;
+      dN[corner] = level * dl[i] + l[i] * side / 2 * dzeta;
+    }
+  }
+  for (int e = 0; quadratic && e < 9; ++e)
+  {
+    const int i = WedgeEdges[e][0] % 3, j = WedgeEdges[e][1] % 3;
+    if (e < 6)
+    {
+      const double side = e < 3 ? -1 : 1;
+      N[6 + e] = 2 * l[i] * l[j] * (1 + side * zeta);
+      dN[6 + e] = 2 * (1 + side * zeta) * (l[j] * dl[i] + l[i] * dl[j]) + 2 * l[i] * l[j] * side * dzeta;
+    }
+    else
+    {
+      N[6 + e] = l[i] * bubble;
+      dN[6 + e] = bubble * dl[i] - 2 * l[i] * zeta * dzeta;
+    }
+  }
+}
+
+// The tensor product of a 1D Gauss rule on [-1, 1] with itself three times.
+std::vector<IntegrationPoint> gaussCube(const std::vector<double>& x, const std::vector<double>& w)
+{
+  std::vector<IntegrationPoint> points;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    for (std::size_t j = 0; j < x.size(); ++j)
+      for (std::size_t i = 0; i < x.size(); ++i)
+        points.push_back({ Vec3(x[i], x[j], x[k]), w[i] * w[j] * w[k] });
+  return points;
+}
+} // namespace
+
+bool solidElementOf(const std::string& name, SolidElement& element)
+{
+  for (SolidElement e : { SolidElement::C3D4, SolidElement::C3D10, SolidElement::C3D8, SolidElement::C3D20, SolidElement::C3D20R,
+         SolidElement::C3D6, SolidElement::C3D15 })
+  {
+    if (nameOf(e) == name)
+    {
+      element = e;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string nameOf(SolidElement element)
+{
+  switch (element)
+  {
+    case SolidElement::C3D4: return "C3D4";
+    case SolidElement::C3D10: return "C3D10";
+    case SolidElement::C3D8: return "C3D8";
+    case SolidElement::C3D20: return "C3D20";
+    case SolidElement::C3D20R: return "C3D20R";
+    case SolidElement::C3D6: return "C3D6";
+    case SolidElement::C3D15: return "C3D15";
+  }
+  return "";
+}
+
+int nodeCount(SolidElement element)
+{
+  switch (element)
+  {
+    case SolidElement::C3D4: return 4;
+    case SolidElement::C3D10: return 10;
+    case SolidElement::C3D8: return 8;
+    case SolidElement::C3D20:
+    case SolidElement::C3D20R: return 20;
+    case SolidElement::C3D6: return 6;
+    case SolidElement::C3D15: return 15;
+  }
+  return 0;
+}
+
+const std::vector<IntegrationPoint>& integrationPoints(SolidElement element)
+{
+  // CalculiX's tables (gauss.f: gauss3d4, gauss3d5, gauss3d2, gauss3d3, gauss3d7, gauss3d10,
+  // gauss3d8), as e_c3d.f chooses them per element type
+  static const double g2 = 1 / std::sqrt(3.0), g3 = std::sqrt(0.6);
+  static const std::vector<IntegrationPoint> tet1 = { { Vec3(0.25, 0.25, 0.25), 1 / 6.0 } };
+  static const std::vector<IntegrationPoint> tet4 = [] {
+    const double a = 0.5854101966249685, b = 0.1381966011250105;
+    return std::vector<IntegrationPoint>{ { Vec3(b, b, b), 1 / 24.0 }, { Vec3(a, b, b), 1 / 24.0 }, { Vec3(b, a, b), 1 / 24.0 },
+      { Vec3(b, b, a), 1 / 24.0 } };
+  }();
+  static const std::vector<IntegrationPoint> hex8 = gaussCube({ -g2, g2 }, { 1, 1 });
+  static const std::vector<IntegrationPoint> hex27 = gaussCube({ -g3, 0, g3 }, { 5 / 9.0, 8 / 9.0, 5 / 9.0 });
+  static const std::vector<IntegrationPoint> wedge2 = { { Vec3(1 / 3.0, 1 / 3.0, -g2), 0.5 }, { Vec3(1 / 3.0, 1 / 3.0, g2), 0.5 } };
+  static const std::vector<IntegrationPoint> wedge9 = [] {
+    std::vector<IntegrationPoint> points;
+    const double triangle[3][2] = { { 1 / 6.0, 1 / 6.0 }, { 2 / 3.0, 1 / 6.0 }, { 1 / 6.0, 2 / 3.0 } };
+    const double zeta[3] = { -g3, 0, g3 }, w[3] = { 5 / 9.0, 8 / 9.0, 5 / 9.0 };
+    for (int k = 0; k < 3; ++k)
+      for (const auto& t : triangle)
+        points.push_back({ Vec3(t[0], t[1], zeta[k]), w[k] / 6.0 });
+    return points;
+  }();
+  switch (element)
+  {
+    case SolidElement::C3D4: return tet1;
+    case SolidElement::C3D10: return tet4;
+    case SolidElement::C3D8:
+    case SolidElement::C3D20R: return hex8;
+    case SolidElement::C3D20: return hex27;
+    case SolidElement::C3D6: return wedge2;
+    case SolidElement::C3D15: return wedge9;
+  }
+  return tet1;
+}
+
+void shapeFunctions(SolidElement element, const Vec3& xi, double* N, Vec3* dN)
+{
+  switch (element)
+  {
+    case SolidElement::C3D4: return tetrahedron(xi, false, N, dN);
+    case SolidElement::C3D10: return tetrahedron(xi, true, N, dN);
+    case SolidElement::C3D8: return hexahedron(xi, false, N, dN);
+    case SolidElement::C3D20:
+    case SolidElement::C3D20R: return hexahedron(xi, true, N, dN);
+    case SolidElement::C3D6: return wedge(xi, false, N, dN);
+    case SolidElement::C3D15: return wedge(xi, true, N, dN);
+  }
+}
+} // namespace mlsdeform
