@@ -1,5 +1,7 @@
 #include "Quality/ElementJacobian.h"
 
+#include "Structural/SolidElements.h"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -92,71 +94,24 @@ ElementJacobian tetrahedron(const Vec3* x, bool quadratic)
   return least.result;
 }
 
-// ---- Hexahedra: natural coordinates in [-1, 1]^3, the corners' signs in VTK's order; a midside
-// node's coordinates are its edge's mean (0 along the edge).
+// ---- Hexahedra: natural coordinates in [-1, 1]^3 (the solver's shape functions, SolidElements.h),
+// the corners' signs in VTK's order.
 constexpr int HexCorners[8][3] = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1 },
   { 1, -1, 1 }, { 1, 1, 1 }, { -1, 1, 1 } };
-constexpr int HexEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 }, { 6, 7 }, { 7, 4 },
-  { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } }; // nodes 8..19
-
-// dN/dxi_d of the node at natural coordinates a (serendipity: corner
-// (1/8) prod(1 + a_d xi_d) (sum a_d xi_d - 2), midside (1 - xi_m^2) prod_{d != m} (1 + a_d xi_d) / 2;
-// trilinear: (1/8) prod(1 + a_d xi_d)).
-Vec3 hexShapeGradient(const std::array<int, 3>& a, const Vec3& xi, bool quadratic)
-{
-  Vec3 f, df; // the factors of the product and their derivatives
-  int middle = -1;
-  for (int d = 0; d < 3; ++d)
-  {
-    if (a[d] == 0)
-    {
-      middle = d;
-      f[d] = 1 - xi[d] * xi[d];
-      df[d] = -2 * xi[d];
-    }
-    else
-    {
-      f[d] = (1 + a[d] * xi[d]) / 2;
-      df[d] = a[d] / 2.0;
-    }
-  }
-  Vec3 gradient(df[0] * f[1] * f[2], f[0] * df[1] * f[2], f[0] * f[1] * df[2]);
-  if (quadratic && middle < 0)
-  {
-    const double s = a[0] * xi[0] + a[1] * xi[1] + a[2] * xi[2] - 2;
-    const double product = f[0] * f[1] * f[2];
-    for (int d = 0; d < 3; ++d)
-    {
-      gradient[d] = gradient[d] * s + product * a[d];
-    }
-  }
-  return gradient;
-}
 
 ElementJacobian hexahedron(const Vec3* x, bool quadratic)
 {
-  static const std::array<std::array<int, 3>, 20> nodes = [] {
-    std::array<std::array<int, 3>, 20> out;
-    for (int n = 0; n < 8; ++n)
-    {
-      out[n] = { HexCorners[n][0], HexCorners[n][1], HexCorners[n][2] };
-    }
-    for (int e = 0; e < 12; ++e)
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        out[8 + e][d] = (HexCorners[HexEdges[e][0]][d] + HexCorners[HexEdges[e][1]][d]) / 2;
-      }
-    }
-    return out;
-  }();
-  const int count = quadratic ? 20 : 8;
+  const SolidElement element = quadratic ? SolidElement::C3D20 : SolidElement::C3D8;
+  const int count = nodeCount(element);
   Least least{ 1.0, 1.0 };
   auto at = [&](const Vec3& xi) {
+    std::array<double, 20> N;
+    std::array<Vec3, 20> dN;
+    shapeFunctions(element, xi, N.data(), dN.data());
     Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero(); // columns dx/dxi_d
     for (int n = 0; n < count; ++n)
     {
-      jacobian += x[n] * hexShapeGradient(nodes[n], xi, quadratic).transpose();
+      jacobian += x[n] * dN[n].transpose();
     }
     least.add(jacobian.col(0), jacobian.col(1), jacobian.col(2));
   };

@@ -39,14 +39,21 @@ void tetrahedron(const Vec3& xi, bool quadratic, double* N, Vec3* dN)
 // (sum a_d xi_d - 2), midside (1 - xi_m^2) prod_{d != m} (1 + a_d xi_d) / 2.
 void hexahedron(const Vec3& xi, bool quadratic, double* N, Vec3* dN)
 {
+  static const std::array<std::array<int, 3>, 20> natural = [] {
+    std::array<std::array<int, 3>, 20> out;
+    for (int n = 0; n < 20; ++n)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        out[n][d] = n < 8 ? HexCorners[n][d] : (HexCorners[HexEdges[n - 8][0]][d] + HexCorners[HexEdges[n - 8][1]][d]) / 2;
+      }
+    }
+    return out;
+  }();
   const int count = quadratic ? 20 : 8;
   for (int n = 0; n < count; ++n)
   {
-    std::array<int, 3> a;
-    for (int d = 0; d < 3; ++d)
-    {
-      a[d] = n < 8 ? HexCorners[n][d] : (HexCorners[HexEdges[n - 8][0]][d] + HexCorners[HexEdges[n - 8][1]][d]) / 2;
-    }
+    const std::array<int, 3>& a = natural[n];
     Vec3 f, df; // the product's factors and their derivatives
     for (int d = 0; d < 3; ++d)
     {
