@@ -38,10 +38,10 @@ VARIABLES = {
 }
 
 
-def make_source(folder, size=0.5, holes=((3.0, 1.5, 0.7), (7.0, 2.5, 0.7)), fillet=0.8):
+def make_source(folder, size=0.5, holes=((3.0, 1.5, 0.7), (7.0, 2.5, 0.7)), fillet=0.8, responses=RESPONSES):
     """The plate deck with its sensitivity step (plate.py): folder/plate.inp."""
     plate.mesh_plate(folder, holes=holes, size=size, fillet=fillet)
-    return plate.write_analysis(folder, responses=RESPONSES)
+    return plate.write_analysis(folder, responses=responses)
 
 
 class PlateDesign:
@@ -49,8 +49,8 @@ class PlateDesign:
     one Handle region each, 'holes' both holes as one body (one pivot: a rotation moves them about
     their common centre)."""
 
-    def __init__(self, deck, work, variables=('x1', 'r1', 'x2', 'r2', 'fillet'), **settings):
-        self.deck, self.work = deck, work
+    def __init__(self, deck, work, variables=('x1', 'r1', 'x2', 'r2', 'fillet'), responses=RESPONSES, **settings):
+        self.deck, self.work, self.response_cards = deck, work, responses
         self.reader = meshfile.open_mesh(deck)
         bodies = []
         for name in variables:
@@ -84,12 +84,12 @@ class PlateDesign:
         plate.run_ccx(deck)
         self.runs += 1
         frd = deck[:-4] + '.frd'
-        return {r: mlsdeform.readCalculixObjective(frd, r) for r, _ in RESPONSES}, frd, quality
+        return {r: mlsdeform.readCalculixObjective(frd, r) for r, _ in self.response_cards}, frd, quality
 
     def evaluate(self, values, name='design'):
         """({response: J}, {response: {variable: dJ/dp}}, quality) of a design."""
         J, frd, quality = self.responses(values, name)
-        gradients = {r: self.dvs.totalSensitivity(mlsdeform.readCalculixSensitivity(self.deform, frd, r)) for r, _ in RESPONSES}
+        gradients = {r: self.dvs.totalSensitivity(mlsdeform.readCalculixSensitivity(self.deform, frd, r)) for r, _ in self.response_cards}
         return J, gradients, quality
 
 
@@ -105,8 +105,8 @@ def validate(design, steps, at=None):
         for h in steps:
             plus, _, _ = design.responses(dict(at, **{name: at[name] + h}), 'validate-plus')
             minus, _, _ = design.responses(dict(at, **{name: at[name] - h}), 'validate-minus')
-            differences[h] = {r: (plus[r] - minus[r]) / (2 * h) for r, _ in RESPONSES}
-        for r, _ in RESPONSES:
+            differences[h] = {r: (plus[r] - minus[r]) / (2 * h) for r, _ in design.response_cards}
+        for r, _ in design.response_cards:
             rows.append((name, r, gradients[r][name], {h: differences[h][r] for h in steps}))
     design.dvs.setDesignVars(at)
     return rows

@@ -17,7 +17,7 @@ sensitivities of a variant deck (``mlsdeform.meshfile`` reads decks and writes t
 from .deformer import _load_wrapping
 from .design import DesignVariables, KINDS
 from .adjoint import readFoamDictionary, readFoamObjective, readFoamSensitivity
-from .calculix import readCalculixObjective, readCalculixSensitivity
+from .calculix import exactSensitivity, readCalculixObjective, readCalculixSensitivity
 from .experiments import FEM_THRESHOLDS, THRESHOLDS, designOfExperiments, latinHypercube, meshQuality, passes, readTable
 
 # The filters' Python wrapping, now: a VTK object handed to Python before it is loaded keeps its
@@ -25,5 +25,5 @@ from .experiments import FEM_THRESHOLDS, THRESHOLDS, designOfExperiments, latinH
 _load_wrapping()
 
 __all__ = ["DesignVariables", "FEM_THRESHOLDS", "KINDS", "THRESHOLDS", "designOfExperiments", "latinHypercube", "meshQuality", "passes",
-           "readCalculixObjective", "readCalculixSensitivity", "readFoamDictionary", "readFoamObjective",
+           "exactSensitivity", "readCalculixObjective", "readCalculixSensitivity", "readFoamDictionary", "readFoamObjective",
            "readFoamSensitivity", "readTable"]

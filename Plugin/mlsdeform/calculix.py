@@ -102,7 +102,7 @@ def readCalculixObjective(frd, response):
     return _responses(folder, job)[index][1]
 
 
-def _frd_nodal(frd):
+def _frd_nodal(frd, normals_needed=True):
     """The .frd's node coordinates and NORM block: ({node: xyz}, {node: normal}). Its data lines are
     fixed-width: ' -1', the node in 10 columns, then 12 columns a value (E12.5, no separator)."""
     coordinates, normals, block = {}, {}, None
@@ -123,9 +123,41 @@ def _frd_nodal(frd):
                     raise ValueError(f"{frd}:{number}: not a nodal data line of three values: {text!r}") from None
     if not coordinates:
         raise ValueError(f"{frd} holds no node coordinates (its 2C block): is it a ccx result file?")
-    if not normals:
+    if normals_needed and not normals:
         raise ValueError(f"{frd} holds no NORM block: the run had no *SENSITIVITY step with design variables")
     return coordinates, normals
+
+
+def _output_rows(deformed, frd):
+    """The deformation's output: ({NodeId: output row}, points), checked against the run whose result
+    is frd (its node coordinates: the same mesh and shape, to the .frd's 6 significant digits), and
+    the .frd's coordinates."""
+    from .deformer import deformer as _deformer
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    filter_ = _deformer(deformed)
+    filter_.update()
+    output = filter_.algorithm.GetOutputDataObject(0)
+    error = output.GetFieldData().GetAbstractArray('DeformationError') if output is not None else None
+    if error is not None and error.GetNumberOfValues() > 0:
+        raise RuntimeError(f"the deformation failed: {error.GetValue(0)}")
+    ids = output.GetPointData().GetArray('NodeId') if output is not None else None
+    if ids is None:
+        raise ValueError("the deformation's output has no NodeId point array: its input did not come from the Mesh File reader")
+    points = vtk_to_numpy(output.GetPoints().GetData()).astype(np.float64)
+    ids = vtk_to_numpy(ids).astype(np.int64)
+    row = {int(n): i for i, n in enumerate(ids)}
+    coordinates = _frd_nodal(frd, normals_needed=False)[0]
+    missing = [n for n in coordinates if n not in row]
+    if missing or len(coordinates) != len(row):
+        raise ValueError(f"{frd} is a run on another mesh: {len(coordinates)} nodes against the deformation's {len(row)}"
+                         + (f", node {missing[0]} not among them" if missing else ""))
+    at = np.array([row[n] for n in coordinates])
+    scale = float(np.abs(points).max()) or 1.0
+    gap = float(np.abs(np.array(list(coordinates.values())) - points[at]).max())
+    if gap > 1e-5 * scale:  # E12.5: 6 significant digits, a rounding of at most 5e-6 of a coordinate
+        raise ValueError(f"{frd} is a run on another shape: its nodes are up to {gap:.3g} from the deformation's "
+                         f"current output points (write the variant deck of the current design and run ccx on it)")
+    return row, points, coordinates
 
 
 def readCalculixSensitivity(deformed, frd, response):
@@ -140,37 +172,14 @@ def readCalculixSensitivity(deformed, frd, response):
     coordinates are compared with the output points, to its 6 significant digits. Raises ValueError
     naming the file for a missing file, response or NORM block, and for a run on another mesh or
     shape; warns for a STRAINENERGY response (ccx 2.20 leaves out a term of its derivative)."""
-    from .deformer import deformer as _deformer
-    from vtkmodules.util.numpy_support import vtk_to_numpy
     folder, job = _job(frd)
     index, kind = _response_index(folder, job, response)
     if kind.upper() == 'STRAINENERGY':
         warnings.warn("ccx 2.20's coordinate sensitivity of STRAINENERGY leaves out the change of the elements' volume "
                       "(objective_shapeener_dx.f): 70-80% off on the structural example; prefer a displacement response",
                       stacklevel=2)
-    filter_ = _deformer(deformed)
-    filter_.update()
-    output = filter_.algorithm.GetOutputDataObject(0)
-    error = output.GetFieldData().GetAbstractArray('DeformationError') if output is not None else None
-    if error is not None and error.GetNumberOfValues() > 0:
-        raise RuntimeError(f"the deformation failed: {error.GetValue(0)}")
-    ids = output.GetPointData().GetArray('NodeId') if output is not None else None
-    if ids is None:
-        raise ValueError("the deformation's output has no NodeId point array: its input did not come from the Mesh File reader")
-    points = vtk_to_numpy(output.GetPoints().GetData()).astype(np.float64)
-    ids = vtk_to_numpy(ids).astype(np.int64)
-    row = {int(n): i for i, n in enumerate(ids)}
-    coordinates, normals = _frd_nodal(frd)
-    missing = [n for n in coordinates if n not in row]
-    if missing or len(coordinates) != len(row):
-        raise ValueError(f"{frd} is a run on another mesh: {len(coordinates)} nodes against the deformation's {len(row)}"
-                         + (f", node {missing[0]} not among them" if missing else ""))
-    at = np.array([row[n] for n in coordinates])
-    scale = float(np.abs(points).max()) or 1.0
-    gap = float(np.abs(np.array(list(coordinates.values())) - points[at]).max())
-    if gap > 1e-5 * scale:  # E12.5: 6 significant digits, a rounding of at most 5e-6 of a coordinate
-        raise ValueError(f"{frd} is a run on another shape: its nodes are up to {gap:.3g} from the deformation's "
-                         f"current output points (write the variant deck of the current design and run ccx on it)")
+    row, points, coordinates = _output_rows(deformed, frd)
+    normals = _frd_nodal(frd)[1]
     dJdX = np.zeros_like(points)
     for values in _numbers(os.path.join(folder, job + '.sen1')):
         node = int(values[0])
@@ -182,3 +191,105 @@ def readCalculixSensitivity(deformed, frd, response):
         if length > 0:  # a node ccx left without a normal (fully fixed) has no derivative either
             dJdX[row[node]] = values[index + 1] * normal / length
     return dJdX
+
+
+# The exact path: vtkCalculixSensitivity's responses by name, as exactSensitivity takes them.
+EXACT_RESPONSES = {'compliance': 0, 'mass': 1, 'volume': 2, 'displacement': 3, 'all-disp': 4}
+
+
+def _model_text(deck):
+    """The main deck's text before its first *STEP, without its model-level *BOUNDARY cards (the
+    adjoint load case writes the supports itself, homogeneous)."""
+    kept, dropping = [], False
+    with open(deck) as f:
+        for line in f:
+            head = line.lstrip().upper()
+            if head.startswith('*') and not head.startswith('**'):
+                if re.match(r'\*\s*STEP\b', head):
+                    break
+                dropping = re.match(r'\*\s*BOUNDARY\b', head) is not None
+            if not dropping:
+                kept.append(line)
+    return ''.join(kept)
+
+
+def writeAdjointDeck(sensitivity, deck, target):
+    """The adjoint load case of the response set up in ``sensitivity`` (a vtkCalculixSensitivity on
+    ``deck``): the deck's model (mesh, materials, sections; its includes found from target's folder,
+    which must be the deck's), one static step with the supports homogeneous and the loads dJ/du,
+    written to target. Raises ValueError with the reason (the deck's, the set's, the result's)."""
+    if not sensitivity.ComputeAdjointLoads():
+        raise ValueError(sensitivity.GetLastError())
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    if os.path.dirname(os.path.abspath(target)) != os.path.dirname(os.path.abspath(deck)):
+        raise ValueError(f"the adjoint deck {target} must be beside the deck {deck} (its includes are relative to it)")
+    nodes = vtk_to_numpy(sensitivity.GetAdjointLoadNodes())
+    loads = vtk_to_numpy(sensitivity.GetAdjointLoads()).reshape(-1, 3)
+    supports = zip(vtk_to_numpy(sensitivity.GetSupportNodes()), vtk_to_numpy(sensitivity.GetSupportDofs()))
+    lines = [_model_text(deck), '*STEP\n*STATIC\n*BOUNDARY\n']
+    lines += ['%d, %d, %d, 0.\n' % (n, d, d) for n, d in supports]
+    lines.append('*CLOAD\n')  # (ccx reads at most 20 characters a field: 14 significant digits)
+    lines += ['%d, %d, %.13e\n' % (n, d + 1, v[d]) for n, v in zip(nodes, loads) for d in range(3) if v[d] != 0]
+    lines.append('*NODE FILE\nU\n*END STEP\n')
+    partial = target + '.writing-%d' % os.getpid()
+    with open(partial, 'w') as f:
+        f.write(''.join(lines))
+    os.replace(partial, target)
+    return target
+
+
+def _run_ccx(deck, ccx, threads):
+    import subprocess
+    folder, name = os.path.split(os.path.abspath(deck))
+    job = os.path.splitext(name)[0]
+    env = dict(os.environ, **({'OMP_NUM_THREADS': str(threads)} if threads else {}))
+    result = subprocess.run([ccx, '-i', job], cwd=folder, capture_output=True, text=True, env=env)
+    log = result.stdout + result.stderr
+    if result.returncode != 0 or '*ERROR' in log:
+        raise RuntimeError(f'ccx failed on {deck}:\n' + log[-2000:])
+    return os.path.join(folder, job + '.frd')
+
+
+def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.0, 1.0), adjoint_frd=None, ccx='ccx',
+                     threads=None):
+    """(J, dJ/dX): the response of the ccx run of ``deck`` (the deformation's current variant deck)
+    whose result is ``frd``, and its exact shape gradient, an (n, 3) array in the deformation's
+    output order for DesignVariables.totalSensitivity: three components at every node, interior and
+    midside nodes too (vtkCalculixSensitivity: dJ/dX = dJ/dX|_u - lambda^T d(K u)/dX, element by
+    element as ccx integrates it).
+
+    response: 'compliance' (the point loads' work f . u), 'mass' or 'volume' (of the element set
+    ``set``, default all elements), 'displacement' (the sum of direction . u over the node set
+    ``set``) or 'all-disp' (ccx's ALL-DISP over the node set: sqrt(sum |u|^2)). The last two need
+    the adjoint load case: written beside the deck as JOB-adjoint.inp and solved by ``ccx`` (unless
+    its result ``adjoint_frd`` is given). The deck needs *NODE FILE with U in its static step.
+    Raises ValueError with the reason for an unknown response or set, a run on another mesh or
+    shape, a result without U, and what the analysis does not support (the keyword named, e.g.
+    NLGEOM); RuntimeError for a failed ccx run of the adjoint deck."""
+    key = str(response).lower()
+    if key not in EXACT_RESPONSES:
+        raise ValueError(f"unknown response {response!r} (known: {', '.join(EXACT_RESPONSES)})")
+    from .deformer import _load_wrapping
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    row, points, _ = _output_rows(deformed, frd)
+    s = _load_wrapping(readers=True).vtkCalculixSensitivity()
+    s.SetDeckFileName(os.path.abspath(deck))
+    s.SetResultFileName(os.path.abspath(frd))
+    s.SetResponse(EXACT_RESPONSES[key])
+    s.SetResponseSet(set or '')
+    s.SetDirection(*[float(v) for v in direction])
+    if s.NeedsAdjoint():
+        if adjoint_frd is None:
+            adjoint = writeAdjointDeck(s, deck, os.path.splitext(os.path.abspath(deck))[0] + '-adjoint.inp')
+            adjoint_frd = _run_ccx(adjoint, ccx, threads)
+        s.SetAdjointResultFileName(os.path.abspath(adjoint_frd))
+    if not s.Compute():
+        raise ValueError(s.GetLastError())
+    gradient = vtk_to_numpy(s.GetGradient()).reshape(-1, 3)
+    ids = vtk_to_numpy(s.GetNodeIds())
+    dJdX = np.zeros_like(points)
+    try:
+        dJdX[[row[int(n)] for n in ids]] = gradient
+    except KeyError as e:
+        raise ValueError(f"the deck {deck} has node {e.args[0]}, the deformation's output does not: another mesh") from None
+    return s.GetValue(), dJdX

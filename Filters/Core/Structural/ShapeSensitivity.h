@@ -15,6 +15,8 @@
 
 #include "Structural/SolidElements.h"
 
+#include <vector>
+
 namespace mlsdeform
 {
 /// An isotropic linear elastic material.
@@ -39,4 +41,28 @@ double elementVolume(SolidElement element, const Vec3* X);
 
 /// dV_e/dX_b added to out[b].
 void addElementVolumeDerivative(SolidElement element, const Vec3* X, Vec3* out);
+
+/// The solid elements of a mesh in flat arrays: element e, of type type[e] and material
+/// material[e], has the nodes nodes[start[e]] .. nodes[start[e + 1] - 1] (indices into the
+/// node arrays, VTK's order).
+struct SolidMesh
+{
+  std::vector<SolidElement> type;
+  std::vector<long> start{ 0 };
+  std::vector<int> nodes;
+  std::vector<int> material;
+  long elements() const { return static_cast<long>(type.size()); }
+  void add(SolidElement element, const int* elementNodes, int elementMaterial);
+};
+
+/// sum_e lambda^T K_e u and its gradient sum_e d(lambda^T K_e u)/dX at every node (X, u, lambda:
+/// one per node; materials by index). The elements in parallel, each node's sum in element order:
+/// the same bits for any thread count. Throws InvalidInputException naming a degenerate element
+/// or a node or material index out of range.
+double meshWork(const SolidMesh& mesh, const PointList& X, const PointList& u, const PointList& lambda,
+  const std::vector<IsotropicElastic>& materials, PointList* gradient);
+
+/// sum_e weight[material e] V_e (weights per material: densities for the mass, 1 for the volume,
+/// 0 leaves the material's elements out) and its gradient at every node, as meshWork.
+double meshVolume(const SolidMesh& mesh, const PointList& X, const std::vector<double>& weight, PointList* gradient);
 } // namespace mlsdeform

@@ -359,6 +359,7 @@ private:
   bool LayoutOnly;
   fs::path Folder;
   Section Current = Section::None;
+  bool Analysis = false; // the data lines go to the last of Out.analysis
   std::uint32_t File = 0;
   std::size_t Line = 0;
   std::vector<std::string_view> Fields;
@@ -473,6 +474,7 @@ private:
     }
     this->finishElement();
     this->Current = Section::Skip;
+    this->Analysis = false;
     if (keyword.name == "NODE" && !keyword.has("PRINT") && !keyword.has("FILE") && !keyword.has("OUTPUT"))
     {
       this->refuseInput(keyword);
@@ -540,6 +542,14 @@ private:
     {
       this->fail("*" + keyword.name + ": generated nodes and elements are not supported (list them with *NODE and *ELEMENT)");
     }
+    else if (!this->LayoutOnly && keyword.name != "NSET" && keyword.name != "ELSET" && keyword.name != "SURFACE" &&
+      keyword.name != "ELEMENT" && keyword.name != "NODE" && keyword.name != "HEADING")
+    {
+      // kept for the analysis (Abaqus/CalculixAnalysis.h): a material, a section, a step's loads
+      DeckKeyword kept{ keyword.name, { keyword.parameters.begin(), keyword.parameters.end() }, {}, this->where() };
+      this->Out.analysis.push_back(std::move(kept));
+      this->Analysis = true;
+    }
   }
 
   void refuseInput(const Keyword& keyword) const
@@ -597,7 +607,12 @@ private:
       case Section::ElementSet: this->setLine(line); break;
       case Section::Surface: this->surfaceLine(line); break;
       case Section::None:
-      case Section::Skip: break;
+      case Section::Skip:
+        if (this->Analysis)
+        {
+          this->Out.analysis.back().lines.emplace_back(trim(line));
+        }
+        break;
     }
   }
 
@@ -1074,6 +1089,30 @@ private:
   };
 };
 } // namespace
+
+std::string DeckKeyword::get(const std::string& key) const
+{
+  for (const auto& [name, value] : this->parameters)
+  {
+    if (name == key)
+    {
+      return value;
+    }
+  }
+  return std::string();
+}
+
+bool DeckKeyword::has(const std::string& key) const
+{
+  for (const auto& parameter : this->parameters)
+  {
+    if (parameter.first == key)
+    {
+      return true;
+    }
+  }
+  return false;
+}
 
 Deck readDeck(const std::string& path)
 {

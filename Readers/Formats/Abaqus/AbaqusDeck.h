@@ -30,8 +30,24 @@ struct NodeSlot
   std::uint64_t begin, end;
 };
 
+/// A keyword the mesh does not need (a material, a section, a step's loads), as the deck writes
+/// it: the keyword (upper case, without "*"), its parameters (keys upper case, values as written),
+/// its data lines and where it stands ("file:line").
+struct DeckKeyword
+{
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> parameters;
+  std::vector<std::string> lines;
+  std::string where;
+  /// The parameter's value ("" when it has none or is not there).
+  std::string get(const std::string& key) const;
+  bool has(const std::string& key) const;
+};
+
 struct Deck : SourceFile
 {
+  /// The keywords the mesh does not need, in the deck's order (readDeck only).
+  std::vector<DeckKeyword> analysis;
   /// The files read: the deck, then each *INCLUDE as found (paths as opened).
   std::vector<std::string> files;
   /// For each file, its name as the *INCLUDE line wrote it ("" for the deck itself).

@@ -1,0 +1,420 @@
+#include "Abaqus/CalculixAnalysis.h"
+
+#include "Common/TextFile.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace mlsformats
+{
+namespace abaqus
+{
+namespace
+{
+std::string upper(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return text;
+}
+
+std::string trimmed(const std::string& text)
+{
+  const std::size_t begin = text.find_first_not_of(" \t");
+  const std::size_t end = text.find_last_not_of(" \t");
+  return begin == std::string::npos ? std::string() : text.substr(begin, end - begin + 1);
+}
+
+// A data line's comma-separated fields, trimmed (a trailing comma leaves no empty last field).
+std::vector<std::string> fieldsOf(const std::string& line)
+{
+  std::vector<std::string> fields;
+  std::size_t begin = 0;
+  while (begin <= line.size())
+  {
+    const std::size_t comma = line.find(',', begin);
+    fields.push_back(trimmed(line.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin)));
+    if (comma == std::string::npos)
+    {
+      break;
+    }
+    begin = comma + 1;
+  }
+  while (!fields.empty() && fields.back().empty())
+  {
+    fields.pop_back();
+  }
+  return fields;
+}
+
+[[noreturn]] void refuse(const DeckKeyword& keyword, const std::string& reason)
+{
+  throw std::runtime_error(keyword.where + ": *" + keyword.name + ": " + reason);
+}
+
+double number(const DeckKeyword& keyword, const std::string& field, const char* what)
+{
+  char* end = nullptr;
+  const double value = std::strtod(field.c_str(), &end);
+  if (field.empty() || *end != '\0' || !std::isfinite(value))
+  {
+    refuse(keyword, std::string("\"") + field + "\" is not " + what);
+  }
+  return value;
+}
+
+bool integer(const std::string& field, std::int64_t& value)
+{
+  char* end = nullptr;
+  value = std::strtoll(field.c_str(), &end, 10);
+  return !field.empty() && *end == '\0';
+}
+
+// Output requests and the keywords of ccx's own sensitivity step: they change nothing in u.
+bool harmless(const std::string& name)
+{
+  static const std::vector<std::string> names = { "NODE FILE", "EL FILE", "NODE PRINT", "EL PRINT", "NODE OUTPUT", "ELEMENT OUTPUT",
+    "OUTPUT", "ELEMENT FILE", "SECTION PRINT", "DESIGNVARIABLES", "DESIGNRESPONSE", "SENSITIVITY", "OBJECTIVE", "CONSTRAINT",
+    "PREPRINT", "RESTART", "ORIENTATION", "FILTER", "GEOMETRIC TOLERANCES" };
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+} // namespace
+
+std::vector<std::size_t> CalculixAnalysis::nodeSet(const std::string& name) const
+{
+  std::string known;
+  for (const NamedSet& set : this->deck.mesh.nodeSets)
+  {
+    if (upper(set.name) == upper(name))
+    {
+      std::vector<std::size_t> nodes;
+      for (std::int64_t id : set.ids)
+      {
+        nodes.push_back(this->nodeIndex(id));
+      }
+      return nodes;
+    }
+    known += (known.empty() ? "" : ", ") + set.name;
+  }
+  throw std::runtime_error("the deck has no node set " + name + " (its node sets: " + (known.empty() ? "none" : known) + ")");
+}
+
+std::vector<long> CalculixAnalysis::elementSet(const std::string& name) const
+{
+  std::string known;
+  for (const NamedSet& set : this->deck.mesh.elementSets)
+  {
+    if (upper(set.name) == upper(name))
+    {
+      std::vector<long> elements;
+      for (std::int64_t id : set.ids)
+      {
+        elements.push_back(this->elementIndex(id));
+      }
+      return elements;
+    }
+    known += (known.empty() ? "" : ", ") + set.name;
+  }
+  throw std::runtime_error("the deck has no element set " + name + " (its element sets: " + (known.empty() ? "none" : known) + ")");
+}
+
+std::size_t CalculixAnalysis::nodeIndex(std::int64_t id) const
+{
+  const auto found = this->IndexOfNode.find(id);
+  if (found == this->IndexOfNode.end())
+  {
+    throw std::runtime_error("the deck has no node " + std::to_string(id));
+  }
+  return found->second;
+}
+
+long CalculixAnalysis::elementIndex(std::int64_t id) const
+{
+  const auto found = this->IndexOfElement.find(id);
+  if (found == this->IndexOfElement.end())
+  {
+    throw std::runtime_error("the deck has no element " + std::to_string(id));
+  }
+  return found->second;
+}
+
+CalculixAnalysis readCalculixAnalysis(const std::string& path)
+{
+  CalculixAnalysis a;
+  a.deck = readDeck(path);
+  for (std::size_t n = 0; n < a.deck.mesh.nodeIds.size(); ++n)
+  {
+    a.IndexOfNode.emplace(a.deck.mesh.nodeIds[n], n);
+  }
+  long elements = 0;
+  for (const ElementBlock& block : a.deck.mesh.blocks)
+  {
+    for (std::int64_t id : block.ids)
+    {
+      a.IndexOfElement.emplace(id, elements++);
+    }
+  }
+  a.elementMaterial.assign(static_cast<std::size_t>(elements), -1);
+  const auto materialIndex = [&](const DeckKeyword& keyword, const std::string& name) {
+    for (std::size_t m = 0; m < a.materials.size(); ++m)
+    {
+      if (upper(a.materials[m].name) == upper(name))
+      {
+        return static_cast<int>(m);
+      }
+    }
+    refuse(keyword, "no *MATERIAL named " + name + " before it");
+  };
+  // the nodes a data line's first field names: a node id or a node set
+  const auto nodesOf = [&](const DeckKeyword& keyword, const std::string& field) {
+    std::int64_t id = 0;
+    try
+    {
+      return integer(field, id) ? std::vector<std::size_t>{ a.nodeIndex(id) } : a.nodeSet(field);
+    }
+    catch (const std::runtime_error& error)
+    {
+      refuse(keyword, error.what());
+    }
+  };
+  enum class Step
+  {
+    None,
+    Static,
+    Sensitivity
+  } step = Step::None;
+  bool inStep = false, staticRead = false;
+  int material = -1;
+  for (const DeckKeyword& keyword : a.deck.analysis)
+  {
+    const std::string& name = keyword.name;
+    if (name == "MATERIAL")
+    {
+      a.materials.push_back({ keyword.get("NAME"), 0, 0, 0 });
+      material = static_cast<int>(a.materials.size()) - 1;
+    }
+    else if (name == "ELASTIC" || name == "DENSITY")
+    {
+      if (material < 0)
+      {
+        refuse(keyword, "outside a *MATERIAL");
+      }
+      const std::string type = upper(keyword.get("TYPE"));
+      if (name == "ELASTIC" && !type.empty() && type != "ISO")
+      {
+        refuse(keyword, "TYPE=" + type + ": only isotropic linear elastic materials (TYPE=ISO) are supported");
+      }
+      if (keyword.lines.size() != 1)
+      {
+        refuse(keyword, "temperature-dependent values (one data line expected, " + std::to_string(keyword.lines.size()) + " given)");
+      }
+      const std::vector<std::string> fields = fieldsOf(keyword.lines[0]);
+      if (name == "ELASTIC")
+      {
+        if (fields.size() < 2)
+        {
+          refuse(keyword, "Young's modulus and Poisson's ratio expected");
+        }
+        a.materials[material].youngs = number(keyword, fields[0], "a Young's modulus");
+        a.materials[material].poisson = number(keyword, fields[1], "a Poisson's ratio");
+        if (!(a.materials[material].youngs > 0) || !(a.materials[material].poisson > -1 && a.materials[material].poisson < 0.5))
+        {
+          refuse(keyword, "E > 0 and -1 < nu < 0.5 expected");
+        }
+      }
+      else
+      {
+        a.materials[material].density = number(keyword, fields.empty() ? "" : fields[0], "a density");
+      }
+    }
+    else if (name == "SOLID SECTION")
+    {
+      const int m = materialIndex(keyword, keyword.get("MATERIAL"));
+      std::vector<long> set;
+      try
+      {
+        set = a.elementSet(keyword.get("ELSET"));
+      }
+      catch (const std::runtime_error& error)
+      {
+        refuse(keyword, error.what());
+      }
+      for (long e : set)
+      {
+        a.elementMaterial[e] = m;
+      }
+    }
+    else if (name == "STEP")
+    {
+      const std::string nlgeom = upper(keyword.get("NLGEOM"));
+      if (keyword.has("NLGEOM") && nlgeom != "NO")
+      {
+        refuse(keyword, "NLGEOM: only linear (small-displacement) analyses are supported");
+      }
+      if (keyword.has("PERTURBATION"))
+      {
+        refuse(keyword, "PERTURBATION steps are not supported");
+      }
+      inStep = true;
+      step = Step::None;
+    }
+    else if (name == "END STEP")
+    {
+      inStep = false;
+    }
+    else if (name == "STATIC")
+    {
+      if (!inStep || staticRead)
+      {
+        refuse(keyword, staticRead ? "a second static step: one linear static step is supported" : "outside a *STEP");
+      }
+      staticRead = true;
+      step = Step::Static;
+    }
+    else if (name == "SENSITIVITY")
+    {
+      step = Step::Sensitivity; // ccx's own derivatives: they change nothing of u
+    }
+    else if (name == "BOUNDARY" || name == "CLOAD")
+    {
+      if (step == Step::Sensitivity)
+      {
+        continue;
+      }
+      if (inStep && step != Step::Static)
+      {
+        refuse(keyword, "in a step that is not *STATIC");
+      }
+      if (name == "CLOAD" && !inStep)
+      {
+        refuse(keyword, "outside a step");
+      }
+      if (keyword.has("AMPLITUDE") || keyword.has("USER") || keyword.has("SUBMODEL") || keyword.has("FIXED") || keyword.has("MASS FLOW"))
+      {
+        refuse(keyword, "only plain values are supported (no AMPLITUDE, USER, SUBMODEL, FIXED)");
+      }
+      if (upper(keyword.get("OP")) == "NEW")
+      {
+        (name == "BOUNDARY" ? a.supports : a.loads).clear();
+      }
+      for (const std::string& line : keyword.lines)
+      {
+        const std::vector<std::string> fields = fieldsOf(line);
+        if (fields.size() < 2)
+        {
+          refuse(keyword, "\"" + line + "\": a node or node set and a degree of freedom expected");
+        }
+        const std::vector<std::size_t> nodes = nodesOf(keyword, fields[0]);
+        const int first = static_cast<int>(number(keyword, fields[1], "a degree of freedom"));
+        const int last = name == "BOUNDARY" && fields.size() > 2 && !fields[2].empty() ? static_cast<int>(number(keyword, fields[2], "a degree of freedom")) : first;
+        const double value = name == "BOUNDARY" ? (fields.size() > 3 ? number(keyword, fields[3], "a value") : 0.0)
+                                                : (fields.size() > 2 ? number(keyword, fields[2], "a force") : 0.0);
+        if (first < 1 || last > 3 || last < first)
+        {
+          refuse(keyword, "\"" + line + "\": degrees of freedom 1 to 3 (displacements) only; solids have no others");
+        }
+        for (std::size_t node : nodes)
+        {
+          for (int dof = first; dof <= last; ++dof)
+          {
+            (name == "BOUNDARY" ? a.supports : a.loads).push_back({ node, dof - 1, value });
+          }
+        }
+      }
+    }
+    else if (name == "DLOAD")
+    {
+      refuse(keyword, "distributed loads (pressure, gravity) are not read yet by the exact shape derivatives");
+    }
+    else if (!harmless(name))
+    {
+      refuse(keyword, "not supported by the exact shape derivatives (linear static analyses of isotropic solids with point loads)");
+    }
+  }
+  if (!staticRead)
+  {
+    throw std::runtime_error(path + ": no *STATIC step: the exact shape derivatives need a linear static step");
+  }
+  for (long e = 0; e < elements; ++e)
+  {
+    if (a.elementMaterial[e] < 0)
+    {
+      std::int64_t id = 0;
+      for (const auto& [elementId, index] : a.IndexOfElement)
+      {
+        if (index == e)
+        {
+          id = elementId;
+        }
+      }
+      throw std::runtime_error(path + ": element " + std::to_string(id) + " has no *SOLID SECTION");
+    }
+  }
+  for (const IsotropicMaterial& m : a.materials)
+  {
+    if (!(m.youngs > 0))
+    {
+      throw std::runtime_error(path + ": *MATERIAL " + m.name + " has no *ELASTIC");
+    }
+  }
+  return a;
+}
+
+std::map<std::int64_t, std::array<double, 3>> readFrdNodalBlock(const std::string& path, const std::string& block)
+{
+  std::ifstream file(path);
+  if (!file)
+  {
+    throw FileError(path, 0, "cannot be read (a ccx result file, JOB.frd)");
+  }
+  std::map<std::int64_t, std::array<double, 3>> values, current;
+  bool inside = false, found = false;
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(file, line))
+  {
+    ++number;
+    if (line.compare(0, 3, " -4") == 0)
+    {
+      inside = trimmed(line.substr(3, 10)) == block;
+      current.clear();
+    }
+    else if (line.compare(0, 3, " -3") == 0 && inside)
+    {
+      values = current; // a later step's block replaces an earlier one's
+      found = true;
+      inside = false;
+    }
+    else if (inside && line.compare(0, 3, " -1") == 0)
+    {
+      // " -1", the node in 10 columns, then 12 columns a value (E12.5)
+      std::int64_t node = 0;
+      std::array<double, 3> v{ 0, 0, 0 };
+      if (line.size() < 13 + 36 || !integer(trimmed(line.substr(3, 10)), node))
+      {
+        throw FileError(path, number, "not a nodal data line of three values");
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        char* end = nullptr;
+        const std::string field = line.substr(13 + 12 * c, 12);
+        v[c] = std::strtod(field.c_str(), &end);
+        if (end == field.c_str() || !std::isfinite(v[c]))
+        {
+          throw FileError(path, number, "\"" + field + "\" is not a number");
+        }
+      }
+      current[node] = v;
+    }
+  }
+  if (!found)
+  {
+    throw FileError(path, 0, "holds no " + block + " block: request the displacements with *NODE FILE and U in the static step");
+  }
+  return values;
+}
+} // namespace abaqus
+} // namespace mlsformats

@@ -1,0 +1,66 @@
+// What a CalculiX deck's linear static analysis is, for its exact shape derivatives
+// (vtkCalculixSensitivity, Filters/Core/Structural): the elements' materials (isotropic linear
+// elastic), the supports and the point loads of its static step. Anything the derivatives do not cover is refused
+// naming the keyword: NLGEOM, other procedures, contact, shells, beams, constraints, other
+// materials and loads (pressure and gravity are not read yet), never silently approximated.
+#pragma once
+
+#include "Abaqus/AbaqusDeck.h"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mlsformats
+{
+namespace abaqus
+{
+/// A displacement component held (a support) or a force on it (a point load).
+struct NodeDof
+{
+  std::size_t node; // index into mesh.nodeIds
+  int dof;          // 0, 1, 2
+  double value;
+};
+
+/// A *MATERIAL with its *ELASTIC (isotropic) and *DENSITY (0 where the deck has none).
+struct IsotropicMaterial
+{
+  std::string name;
+  double youngs = 0, poisson = 0, density = 0;
+};
+
+struct CalculixAnalysis
+{
+  Deck deck;
+  std::vector<IsotropicMaterial> materials;
+  /// Per element of the deck's blocks, in their order: its material (by *SOLID SECTION), -1 for
+  /// an element without a section.
+  std::vector<int> elementMaterial;
+  std::vector<NodeDof> supports; // the static step's *BOUNDARY (the model's and the step's)
+  std::vector<NodeDof> loads;    // the static step's *CLOAD
+  /// The node indices of a node set, the element indices (over the blocks) of an element set: by
+  /// name (any case); throw std::runtime_error naming the sets there are when it does not exist.
+  std::vector<std::size_t> nodeSet(const std::string& name) const;
+  std::vector<long> elementSet(const std::string& name) const;
+  /// The node's index; throws std::runtime_error when the deck has no such node.
+  std::size_t nodeIndex(std::int64_t id) const;
+
+  /// The element's index over the blocks; throws std::runtime_error when there is none.
+  long elementIndex(std::int64_t id) const;
+
+  std::map<std::int64_t, std::size_t> IndexOfNode;
+  std::map<std::int64_t, long> IndexOfElement;
+};
+
+/// Reads the deck and its analysis. Throws FileError (reading) or std::runtime_error naming the
+/// keyword and where it stands (what the analysis does not support).
+CalculixAnalysis readCalculixAnalysis(const std::string& path);
+
+/// A nodal block of a ccx result file (.frd), e.g. DISP: the values of its last step (the ccx
+/// writes one block a step), by node id. Throws FileError when the file or the block is missing,
+/// naming what the deck needs (*NODE FILE with U).
+std::map<std::int64_t, std::array<double, 3>> readFrdNodalBlock(const std::string& path, const std::string& block);
+} // namespace abaqus
+} // namespace mlsformats

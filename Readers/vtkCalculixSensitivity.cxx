@@ -1,0 +1,321 @@
+#include "vtkCalculixSensitivity.h"
+
+#include "Abaqus/CalculixAnalysis.h"
+#include "Structural/ShapeSensitivity.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkSmartPointer.h>
+
+#include <cmath>
+#include <stdexcept>
+
+using mlsdeform::PointList;
+using mlsdeform::Vec3;
+namespace abaqus = mlsformats::abaqus;
+
+vtkStandardNewMacro(vtkCalculixSensitivity);
+
+struct vtkCalculixSensitivity::Internals
+{
+  vtkNew<vtkDoubleArray> Gradient, AdjointLoads;
+  vtkNew<vtkIdTypeArray> NodeIds, AdjointLoadNodes, SupportNodes, SupportDofs;
+  double Value = 0;
+};
+
+namespace
+{
+// The deck's solid elements with their materials (elements: all of them, or those listed), and
+// the materials as the core takes them.
+mlsdeform::SolidMesh solidMesh(const abaqus::CalculixAnalysis& a, const std::vector<long>* only)
+{
+  std::vector<char> kept;
+  if (only)
+  {
+    kept.assign(a.elementMaterial.size(), 0);
+    for (long e : *only)
+    {
+      kept[e] = 1;
+    }
+  }
+  mlsdeform::SolidMesh mesh;
+  long e = 0;
+  std::vector<int> nodes;
+  for (const mlsformats::ElementBlock& block : a.deck.mesh.blocks)
+  {
+    mlsdeform::SolidElement type;
+    if (!mlsdeform::solidElementOf(block.name, type))
+    {
+      throw std::runtime_error("element type " + block.name + " is not supported by the exact shape derivatives (solids C3D4, "
+                               "C3D10, C3D8, C3D20, C3D20R, C3D6, C3D15)");
+    }
+    const int n = mlsdeform::nodeCount(type);
+    for (std::size_t k = 0; k < block.ids.size(); ++k, ++e)
+    {
+      if (only && !kept[e])
+      {
+        continue;
+      }
+      nodes.clear();
+      for (int c = 0; c < n; ++c)
+      {
+        nodes.push_back(static_cast<int>(a.nodeIndex(block.nodes[k * n + c])));
+      }
+      mesh.add(type, nodes.data(), a.elementMaterial[e]);
+    }
+  }
+  return mesh;
+}
+
+PointList deckPoints(const abaqus::CalculixAnalysis& a)
+{
+  PointList X(a.deck.mesh.nodeIds.size());
+  for (std::size_t n = 0; n < X.size(); ++n)
+  {
+    X[n] = Vec3(a.deck.mesh.xyz[3 * n], a.deck.mesh.xyz[3 * n + 1], a.deck.mesh.xyz[3 * n + 2]);
+  }
+  return X;
+}
+
+// A nodal DISP block of a ccx result, in the deck's node order: every node of the deck and no other.
+PointList displacements(const abaqus::CalculixAnalysis& a, const std::string& path, const char* what)
+{
+  if (path.empty())
+  {
+    throw std::runtime_error(std::string("no ") + what + " file: give ccx's result (JOB.frd)");
+  }
+  const auto block = abaqus::readFrdNodalBlock(path, "DISP");
+  if (block.size() != a.deck.mesh.nodeIds.size())
+  {
+    throw std::runtime_error(path + " holds the displacements of " + std::to_string(block.size()) + " nodes, the deck has " +
+      std::to_string(a.deck.mesh.nodeIds.size()) + ": a result of another mesh");
+  }
+  PointList u(block.size());
+  for (std::size_t n = 0; n < u.size(); ++n)
+  {
+    const auto found = block.find(a.deck.mesh.nodeIds[n]);
+    if (found == block.end())
+    {
+      throw std::runtime_error(path + " has no displacement of node " + std::to_string(a.deck.mesh.nodeIds[n]) + ": a result of another mesh");
+    }
+    u[n] = Vec3(found->second[0], found->second[1], found->second[2]);
+  }
+  return u;
+}
+
+std::vector<mlsdeform::IsotropicElastic> elastic(const abaqus::CalculixAnalysis& a)
+{
+  std::vector<mlsdeform::IsotropicElastic> materials;
+  for (const abaqus::IsotropicMaterial& m : a.materials)
+  {
+    materials.push_back({ m.youngs, m.poisson });
+  }
+  return materials;
+}
+} // namespace
+
+vtkCalculixSensitivity::vtkCalculixSensitivity()
+  : State(new Internals)
+{
+  this->State->Gradient->SetName("dJdX");
+  this->State->Gradient->SetNumberOfComponents(3);
+  this->State->AdjointLoads->SetNumberOfComponents(3);
+  this->State->NodeIds->SetName("NodeId");
+}
+
+vtkCalculixSensitivity::~vtkCalculixSensitivity() = default;
+
+void vtkCalculixSensitivity::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "DeckFileName: " << this->DeckFileName << "\n"
+     << indent << "ResultFileName: " << this->ResultFileName << "\n"
+     << indent << "AdjointResultFileName: " << this->AdjointResultFileName << "\n"
+     << indent << "Response: " << this->Response << " (" << this->ResponseSet << ")\n";
+}
+
+bool vtkCalculixSensitivity::NeedsAdjoint() const
+{
+  return this->Response == Displacement || this->Response == DisplacementNorm;
+}
+
+bool vtkCalculixSensitivity::ComputeAdjointLoads()
+{
+  this->LastError.clear();
+  try
+  {
+    if (!this->NeedsAdjoint())
+    {
+      throw std::runtime_error("the response needs no adjoint run (compliance is self-adjoint; mass and volume do not depend on u)");
+    }
+    const abaqus::CalculixAnalysis a = abaqus::readCalculixAnalysis(this->DeckFileName);
+    if (this->ResponseSet.empty())
+    {
+      throw std::runtime_error("a displacement response needs the node set it measures (ResponseSet)");
+    }
+    const std::vector<std::size_t> nodes = a.nodeSet(this->ResponseSet);
+    const Vec3 direction(this->Direction[0], this->Direction[1], this->Direction[2]);
+    PointList u;
+    double norm = 0;
+    if (this->Response == DisplacementNorm)
+    {
+      u = displacements(a, this->ResultFileName, "result");
+      for (std::size_t n : nodes)
+      {
+        norm += u[n].squaredNorm();
+      }
+      norm = std::sqrt(norm);
+      if (!(norm > 0))
+      {
+        throw std::runtime_error("the node set " + this->ResponseSet + " does not move: the norm of its displacements has no derivative");
+      }
+    }
+    else if (!(direction.norm() > 0) || !direction.allFinite())
+    {
+      throw std::runtime_error("the displacement response's Direction is zero or not finite");
+    }
+    this->State->AdjointLoadNodes->SetNumberOfTuples(static_cast<vtkIdType>(nodes.size()));
+    this->State->AdjointLoads->SetNumberOfTuples(static_cast<vtkIdType>(nodes.size()));
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+    {
+      // dJ/du_i: the direction, or u_i / |u|_S for the norm (K lambda = dJ/du, eq. of the header)
+      const Vec3 load = this->Response == DisplacementNorm ? Vec3(u[nodes[k]] / norm) : direction;
+      this->State->AdjointLoadNodes->SetValue(static_cast<vtkIdType>(k), a.deck.mesh.nodeIds[nodes[k]]);
+      this->State->AdjointLoads->SetTuple3(static_cast<vtkIdType>(k), load[0], load[1], load[2]);
+    }
+    this->State->SupportNodes->SetNumberOfTuples(static_cast<vtkIdType>(a.supports.size()));
+    this->State->SupportDofs->SetNumberOfTuples(static_cast<vtkIdType>(a.supports.size()));
+    for (std::size_t k = 0; k < a.supports.size(); ++k)
+    {
+      this->State->SupportNodes->SetValue(static_cast<vtkIdType>(k), a.deck.mesh.nodeIds[a.supports[k].node]);
+      this->State->SupportDofs->SetValue(static_cast<vtkIdType>(k), a.supports[k].dof + 1);
+    }
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    this->LastError = e.what();
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+}
+
+bool vtkCalculixSensitivity::Compute()
+{
+  this->LastError.clear();
+  try
+  {
+    const abaqus::CalculixAnalysis a = abaqus::readCalculixAnalysis(this->DeckFileName);
+    const PointList X = deckPoints(a);
+    PointList gradient;
+    double value = 0;
+    if (this->Response == Mass || this->Response == Volume)
+    {
+      std::vector<long> set;
+      if (!this->ResponseSet.empty())
+      {
+        set = a.elementSet(this->ResponseSet);
+      }
+      std::vector<double> weight;
+      for (const abaqus::IsotropicMaterial& m : a.materials)
+      {
+        weight.push_back(this->Response == Mass ? m.density : 1.0);
+      }
+      if (this->Response == Mass && std::all_of(weight.begin(), weight.end(), [](double w) { return w == 0; }))
+      {
+        throw std::runtime_error("the deck's materials have no *DENSITY: the mass is zero and does not depend on the design");
+      }
+      value = mlsdeform::meshVolume(solidMesh(a, this->ResponseSet.empty() ? nullptr : &set), X, weight, &gradient);
+    }
+    else
+    {
+      const PointList u = displacements(a, this->ResultFileName, "result");
+      const mlsdeform::SolidMesh mesh = solidMesh(a, nullptr);
+      PointList lambda;
+      if (this->Response == Compliance)
+      {
+        for (const abaqus::NodeDof& load : a.loads)
+        {
+          value += load.value * u[load.node][load.dof];
+        }
+        if (a.loads.empty())
+        {
+          throw std::runtime_error("the static step has no *CLOAD: the compliance is zero and does not depend on the design");
+        }
+        lambda = u; // K lambda = f: lambda = u
+      }
+      else
+      {
+        const std::vector<std::size_t> nodes = a.nodeSet(this->ResponseSet);
+        const Vec3 direction(this->Direction[0], this->Direction[1], this->Direction[2]);
+        for (std::size_t n : nodes)
+        {
+          value += this->Response == Displacement ? direction.dot(u[n]) : u[n].squaredNorm();
+        }
+        if (this->Response == DisplacementNorm)
+        {
+          value = std::sqrt(value);
+        }
+        lambda = displacements(a, this->AdjointResultFileName, "adjoint result");
+      }
+      // dJ/dX = -lambda^T d(K u)/dX (point loads and this J have no explicit dependence on X)
+      mlsdeform::meshWork(mesh, X, u, lambda, elastic(a), &gradient);
+      for (Vec3& g : gradient)
+      {
+        g = -g;
+      }
+    }
+    this->State->Value = value;
+    this->State->Gradient->SetNumberOfTuples(static_cast<vtkIdType>(gradient.size()));
+    this->State->NodeIds->SetNumberOfTuples(static_cast<vtkIdType>(gradient.size()));
+    for (std::size_t n = 0; n < gradient.size(); ++n)
+    {
+      this->State->Gradient->SetTuple3(static_cast<vtkIdType>(n), gradient[n][0], gradient[n][1], gradient[n][2]);
+      this->State->NodeIds->SetValue(static_cast<vtkIdType>(n), a.deck.mesh.nodeIds[n]);
+    }
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    this->LastError = e.what();
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+}
+
+double vtkCalculixSensitivity::GetValue() const
+{
+  return this->State->Value;
+}
+
+vtkDoubleArray* vtkCalculixSensitivity::GetGradient()
+{
+  return this->State->Gradient;
+}
+
+vtkIdTypeArray* vtkCalculixSensitivity::GetNodeIds()
+{
+  return this->State->NodeIds;
+}
+
+vtkIdTypeArray* vtkCalculixSensitivity::GetAdjointLoadNodes()
+{
+  return this->State->AdjointLoadNodes;
+}
+
+vtkDoubleArray* vtkCalculixSensitivity::GetAdjointLoads()
+{
+  return this->State->AdjointLoads;
+}
+
+vtkIdTypeArray* vtkCalculixSensitivity::GetSupportNodes()
+{
+  return this->State->SupportNodes;
+}
+
+vtkIdTypeArray* vtkCalculixSensitivity::GetSupportDofs()
+{
+  return this->State->SupportDofs;
+}
