@@ -9,6 +9,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkSmartPointer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,7 +21,7 @@ vtkStandardNewMacro(vtkCalculixSensitivity);
 
 struct vtkCalculixSensitivity::Internals
 {
-  vtkNew<vtkDoubleArray> Gradient, AdjointLoads;
+  vtkNew<vtkDoubleArray> Gradient, AdjointLoads, NodeCoordinates;
   vtkNew<vtkIdTypeArray> NodeIds, AdjointLoadNodes, SupportNodes, SupportDofs;
   double Value = 0;
 };
@@ -79,28 +80,43 @@ PointList deckPoints(const abaqus::CalculixAnalysis& a)
   return X;
 }
 
-// A nodal DISP block of a ccx result, in the deck's node order: every node of the deck and no other.
-PointList displacements(const abaqus::CalculixAnalysis& a, const std::string& path, const char* what)
+// The displacements of a ccx result, in the deck's node order: a result of this deck (every node
+// and no other, at the deck's coordinates to the .frd's precision: 6 digits in ASCII).
+PointList displacements(const abaqus::CalculixAnalysis& a, const PointList& X, const std::string& path, const char* what)
 {
   if (path.empty())
   {
     throw std::runtime_error(std::string("no ") + what + " file: give ccx's result (JOB.frd)");
   }
-  const auto block = abaqus::readFrdNodalBlock(path, "DISP");
-  if (block.size() != a.deck.mesh.nodeIds.size())
+  const abaqus::FrdDisplacements frd = abaqus::readFrdDisplacements(path);
+  const std::size_t n = a.deck.mesh.nodeIds.size();
+  if (frd.displacements.size() != n || frd.coordinates.size() != n)
   {
-    throw std::runtime_error(path + " holds the displacements of " + std::to_string(block.size()) + " nodes, the deck has " +
-      std::to_string(a.deck.mesh.nodeIds.size()) + ": a result of another mesh");
+    throw std::runtime_error(path + " holds " + std::to_string(frd.displacements.size()) + " nodes' displacements, the deck " +
+      std::to_string(n) + " nodes: a result of another mesh");
   }
-  PointList u(block.size());
-  for (std::size_t n = 0; n < u.size(); ++n)
+  double scale = 0;
+  for (const Vec3& x : X)
   {
-    const auto found = block.find(a.deck.mesh.nodeIds[n]);
-    if (found == block.end())
+    scale = std::max(scale, x.cwiseAbs().maxCoeff());
+  }
+  PointList u(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::int64_t id = a.deck.mesh.nodeIds[k];
+    const auto found = frd.displacements.find(id);
+    const auto at = frd.coordinates.find(id);
+    if (found == frd.displacements.end() || at == frd.coordinates.end())
     {
-      throw std::runtime_error(path + " has no displacement of node " + std::to_string(a.deck.mesh.nodeIds[n]) + ": a result of another mesh");
+      throw std::runtime_error(path + " has no displacement of node " + std::to_string(id) + ": a result of another mesh");
     }
-    u[n] = Vec3(found->second[0], found->second[1], found->second[2]);
+    // E12.5: a coordinate rounded by at most 5e-6 of its size
+    if ((Vec3(at->second[0], at->second[1], at->second[2]) - X[k]).cwiseAbs().maxCoeff() > 1e-5 * (scale > 0 ? scale : 1.0))
+    {
+      throw std::runtime_error(path + " is a result of another shape: node " + std::to_string(id) + " is not where the deck " +
+        "has it (run ccx on this deck)");
+    }
+    u[k] = Vec3(found->second[0], found->second[1], found->second[2]);
   }
   return u;
 }
@@ -122,6 +138,7 @@ vtkCalculixSensitivity::vtkCalculixSensitivity()
   this->State->Gradient->SetName("dJdX");
   this->State->Gradient->SetNumberOfComponents(3);
   this->State->AdjointLoads->SetNumberOfComponents(3);
+  this->State->NodeCoordinates->SetNumberOfComponents(3);
   this->State->NodeIds->SetName("NodeId");
 }
 
@@ -161,7 +178,7 @@ bool vtkCalculixSensitivity::ComputeAdjointLoads()
     double norm = 0;
     if (this->Response == DisplacementNorm)
     {
-      u = displacements(a, this->ResultFileName, "result");
+      u = displacements(a, deckPoints(a), this->ResultFileName, "result");
       for (std::size_t n : nodes)
       {
         norm += u[n].squaredNorm();
@@ -231,7 +248,7 @@ bool vtkCalculixSensitivity::Compute()
     }
     else
     {
-      const PointList u = displacements(a, this->ResultFileName, "result");
+      const PointList u = displacements(a, X, this->ResultFileName, "result");
       const mlsdeform::SolidMesh mesh = solidMesh(a, nullptr);
       PointList lambda;
       if (this->Response == Compliance)
@@ -258,7 +275,7 @@ bool vtkCalculixSensitivity::Compute()
         {
           value = std::sqrt(value);
         }
-        lambda = displacements(a, this->AdjointResultFileName, "adjoint result");
+        lambda = displacements(a, X, this->AdjointResultFileName, "adjoint result");
       }
       // dJ/dX = -lambda^T d(K u)/dX (point loads and this J have no explicit dependence on X)
       mlsdeform::meshWork(mesh, X, u, lambda, elastic(a), &gradient);
@@ -270,10 +287,12 @@ bool vtkCalculixSensitivity::Compute()
     this->State->Value = value;
     this->State->Gradient->SetNumberOfTuples(static_cast<vtkIdType>(gradient.size()));
     this->State->NodeIds->SetNumberOfTuples(static_cast<vtkIdType>(gradient.size()));
+    this->State->NodeCoordinates->SetNumberOfTuples(static_cast<vtkIdType>(gradient.size()));
     for (std::size_t n = 0; n < gradient.size(); ++n)
     {
       this->State->Gradient->SetTuple3(static_cast<vtkIdType>(n), gradient[n][0], gradient[n][1], gradient[n][2]);
       this->State->NodeIds->SetValue(static_cast<vtkIdType>(n), a.deck.mesh.nodeIds[n]);
+      this->State->NodeCoordinates->SetTuple3(static_cast<vtkIdType>(n), X[n][0], X[n][1], X[n][2]);
     }
     return true;
   }
@@ -298,6 +317,11 @@ vtkDoubleArray* vtkCalculixSensitivity::GetGradient()
 vtkIdTypeArray* vtkCalculixSensitivity::GetNodeIds()
 {
   return this->State->NodeIds;
+}
+
+vtkDoubleArray* vtkCalculixSensitivity::GetNodeCoordinates()
+{
+  return this->State->NodeCoordinates;
 }
 
 vtkIdTypeArray* vtkCalculixSensitivity::GetAdjointLoadNodes()

@@ -52,7 +52,9 @@ public:
   ///@}
 
   ///@{
-  /// ccx's result of the deck (JOB.frd with U: *NODE FILE, U in the static step).
+  /// ccx's result of the deck (JOB.frd with U: *NODE FILE, U in the static step; *NODE FILE,
+  /// DOUBLE writes it in full precision, where the ASCII file has 6 digits, which limit dJ/dX to
+  /// about 1e-3 of its largest component on a fine mesh).
   vtkSetStdStringFromCharMacro(ResultFileName);
   vtkGetCharFromStdStringMacro(ResultFileName);
   ///@}
@@ -102,6 +104,8 @@ public:
   /// dJ/dX, 3 components a node, in the deck's node order (GetNodeIds).
   vtkDoubleArray* GetGradient();
   vtkIdTypeArray* GetNodeIds();
+  /// The deck's node coordinates, in that order.
+  vtkDoubleArray* GetNodeCoordinates();
 
   /// Why the last call failed, "" when it did not.
   const char* GetLastError() const { return this->LastError.c_str(); }

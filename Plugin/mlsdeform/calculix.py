@@ -230,7 +230,7 @@ def writeAdjointDeck(sensitivity, deck, target):
     lines += ['%d, %d, %d, 0.\n' % (n, d, d) for n, d in supports]
     lines.append('*CLOAD\n')  # (ccx reads at most 20 characters a field: 14 significant digits)
     lines += ['%d, %d, %.13e\n' % (n, d + 1, v[d]) for n, v in zip(nodes, loads) for d in range(3) if v[d] != 0]
-    lines.append('*NODE FILE\nU\n*END STEP\n')
+    lines.append('*NODE FILE, DOUBLE\nU\n*END STEP\n')  # (full precision)
     partial = target + '.writing-%d' % os.getpid()
     with open(partial, 'w') as f:
         f.write(''.join(lines))
@@ -271,7 +271,15 @@ def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.
         raise ValueError(f"unknown response {response!r} (known: {', '.join(EXACT_RESPONSES)})")
     from .deformer import _load_wrapping
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    row, points, _ = _output_rows(deformed, frd)
+    from .deformer import deformer as _deformer
+    filter_ = _deformer(deformed)
+    filter_.update()
+    output = filter_.algorithm.GetOutputDataObject(0)
+    ids = output.GetPointData().GetArray('NodeId') if output is not None else None
+    if ids is None:
+        raise ValueError("the deformation's output has no NodeId point array: its input did not come from the Mesh File reader")
+    points = vtk_to_numpy(output.GetPoints().GetData()).astype(np.float64)
+    row = {int(n): i for i, n in enumerate(vtk_to_numpy(ids))}
     s = _load_wrapping(readers=True).vtkCalculixSensitivity()
     s.SetDeckFileName(os.path.abspath(deck))
     s.SetResultFileName(os.path.abspath(frd))
@@ -287,9 +295,13 @@ def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.
         raise ValueError(s.GetLastError())
     gradient = vtk_to_numpy(s.GetGradient()).reshape(-1, 3)
     ids = vtk_to_numpy(s.GetNodeIds())
+    if len(ids) != len(row) or any(int(n) not in row for n in ids):
+        raise ValueError(f"the deck {deck} has {len(ids)} nodes, not the deformation's output's {len(row)}: another mesh")
+    at = np.array([row[int(n)] for n in ids])
+    gap = float(np.abs(vtk_to_numpy(s.GetNodeCoordinates()).reshape(-1, 3) - points[at]).max())
+    if gap > 1e-9 * (float(np.abs(points).max()) or 1.0):  # the variant deck holds the output's coordinates
+        raise ValueError(f"the deck {deck} is another shape: its nodes are up to {gap:.3g} from the deformation's current "
+                         f"output points (write the variant deck of the current design and run ccx on it)")
     dJdX = np.zeros_like(points)
-    try:
-        dJdX[[row[int(n)] for n in ids]] = gradient
-    except KeyError as e:
-        raise ValueError(f"the deck {deck} has node {e.args[0]}, the deformation's output does not: another mesh") from None
+    dJdX[at] = gradient
     return s.GetValue(), dJdX

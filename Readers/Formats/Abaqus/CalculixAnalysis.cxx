@@ -6,7 +6,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 namespace mlsformats
@@ -363,58 +366,145 @@ CalculixAnalysis readCalculixAnalysis(const std::string& path)
   return a;
 }
 
-std::map<std::int64_t, std::array<double, 3>> readFrdNodalBlock(const std::string& path, const std::string& block)
+namespace
 {
-  std::ifstream file(path);
-  if (!file)
+// ccx's .frd (frd.c, frdvector.c): ASCII lines; a nodal block is a header line (the coordinates'
+// "    2C", a result's "  100CL" then " -4 NAME" and its " -5" component lines) giving the node
+// count and, in its last column, the format (1 ASCII, 2 binary floats, 3 binary doubles), then the
+// nodes: " -1", the node in 10 columns and 12 columns a value, ended by " -3" (ASCII); or records
+// of a 4-byte node number and the values (binary, no end line).
+struct FrdFile
+{
+  std::string path, text;
+
+  // The line starting at `at` (without "\n") and the offset after it.
+  std::string line(std::size_t at, std::size_t& next) const
   {
-    throw FileError(path, 0, "cannot be read (a ccx result file, JOB.frd)");
+    const std::size_t end = std::min(this->text.find('\n', at), this->text.size());
+    next = std::min(end + 1, this->text.size());
+    return this->text.substr(at, end - at);
   }
-  std::map<std::int64_t, std::array<double, 3>> values, current;
-  bool inside = false, found = false;
-  std::string line;
-  std::size_t number = 0;
-  while (std::getline(file, line))
+
+  // The nodes of the block whose data start at `at`, count nodes, `values` a node, format flag.
+  std::map<std::int64_t, std::array<double, 3>> nodes(std::size_t at, long count, int values, char format, const char* what) const
   {
-    ++number;
-    if (line.compare(0, 3, " -4") == 0)
+    std::map<std::int64_t, std::array<double, 3>> out;
+    if (format == '1')
     {
-      inside = trimmed(line.substr(3, 10)) == block;
-      current.clear();
-    }
-    else if (line.compare(0, 3, " -3") == 0 && inside)
-    {
-      values = current; // a later step's block replaces an earlier one's
-      found = true;
-      inside = false;
-    }
-    else if (inside && line.compare(0, 3, " -1") == 0)
-    {
-      // " -1", the node in 10 columns, then 12 columns a value (E12.5)
-      std::int64_t node = 0;
-      std::array<double, 3> v{ 0, 0, 0 };
-      if (line.size() < 13 + 36 || !integer(trimmed(line.substr(3, 10)), node))
+      std::size_t next = at;
+      for (std::string l = this->line(at, next); l.compare(0, 3, " -3") != 0; l = this->line(at = next, next))
       {
-        throw FileError(path, number, "not a nodal data line of three values");
+        if (at >= this->text.size())
+        {
+          throw FileError(this->path, 0, std::string("the ") + what + " block has no end (\" -3\")");
+        }
+        std::int64_t node = 0;
+        std::array<double, 3> v{ 0, 0, 0 };
+        if (l.compare(0, 3, " -1") != 0 || l.size() < 13 + 12 * 3 || !integer(trimmed(l.substr(3, 10)), node))
+        {
+          throw FileError(this->path, 0, std::string("not a nodal line of three values in the ") + what + " block: \"" + l + "\"");
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          const std::string field = l.substr(13 + 12 * c, 12);
+          char* end = nullptr;
+          v[c] = std::strtod(field.c_str(), &end);
+          if (end == field.c_str() || !std::isfinite(v[c]))
+          {
+            throw FileError(this->path, 0, "\"" + field + "\" is not a number (" + what + ")");
+          }
+        }
+        out[node] = v;
       }
+      return out;
+    }
+    const std::size_t size = format == '2' ? 4 : 8, record = 4 + size * static_cast<std::size_t>(values);
+    if (count < 0 || at + record * static_cast<std::size_t>(count) > this->text.size())
+    {
+      throw FileError(this->path, 0, std::string("the binary ") + what + " block is cut short");
+    }
+    for (long n = 0; n < count; ++n, at += record)
+    {
+      std::int32_t node = 0;
+      std::memcpy(&node, this->text.data() + at, 4);
+      std::array<double, 3> v{ 0, 0, 0 };
       for (int c = 0; c < 3; ++c)
       {
-        char* end = nullptr;
-        const std::string field = line.substr(13 + 12 * c, 12);
-        v[c] = std::strtod(field.c_str(), &end);
-        if (end == field.c_str() || !std::isfinite(v[c]))
+        if (size == 4)
         {
-          throw FileError(path, number, "\"" + field + "\" is not a number");
+          float f = 0;
+          std::memcpy(&f, this->text.data() + at + 4 + 4 * c, 4);
+          v[c] = f;
+        }
+        else
+        {
+          std::memcpy(&v[c], this->text.data() + at + 4 + 8 * c, 8);
         }
       }
-      current[node] = v;
+      out[node] = v;
     }
+    return out;
   }
-  if (!found)
+};
+
+// The node count (the whitespace-separated field `field`) and the format flag of a header line.
+void headerOf(const std::string& line, int field, long& count, char& format)
+{
+  std::istringstream fields(line);
+  std::string token;
+  for (int k = 0; k <= field && fields >> token; ++k)
   {
-    throw FileError(path, 0, "holds no " + block + " block: request the displacements with *NODE FILE and U in the static step");
   }
-  return values;
+  count = std::strtol(token.c_str(), nullptr, 10);
+  const std::string last = trimmed(line);
+  format = last.empty() ? '1' : last.back(); // the line's last column (74 for 2C, 75 for 100CL)
+}
+} // namespace
+
+FrdDisplacements readFrdDisplacements(const std::string& path)
+{
+  FrdFile frd{ path, {} };
+  {
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+    {
+      throw FileError(path, 0, "cannot be read (a ccx result file, JOB.frd)");
+    }
+    frd.text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  }
+  FrdDisplacements out;
+  std::size_t next = 0;
+  const std::size_t coordinates = frd.text.find("\n    2C");
+  if (coordinates == std::string::npos)
+  {
+    throw FileError(path, 0, "holds no node coordinates (its 2C block): is it a ccx result file?");
+  }
+  long count = 0;
+  char format = '1';
+  headerOf(frd.line(coordinates + 1, next), 1, count, format);
+  out.coordinates = frd.nodes(next, count, 3, format == '1' ? '1' : '3', "coordinates"); // binary coordinates are doubles
+  // the last DISP block: its " -4" line, the "  100CL" line before it, the " -5" lines after
+  const std::size_t block = frd.text.rfind("\n -4  DISP ");
+  const std::size_t header = block == std::string::npos ? block : frd.text.rfind("\n  100C", block);
+  if (block == std::string::npos || header == std::string::npos)
+  {
+    throw FileError(path, 0, "holds no displacements (DISP): request them with *NODE FILE and U in the static step "
+                             "(*NODE FILE, DOUBLE writes them in full precision)");
+  }
+  headerOf(frd.line(header + 1, next), 3, count, format);
+  frd.line(block + 1, next);
+  int values = 0;
+  for (std::size_t at = next; frd.text.compare(at, 3, " -5") == 0; at = next)
+  {
+    const std::string component = frd.line(at, next);
+    values += component.find("ALL", 5) == std::string::npos ? 1 : 0; // ALL: the magnitude, not stored
+  }
+  if (values != 3)
+  {
+    throw FileError(path, 0, "its DISP block has " + std::to_string(values) + " components, not 3");
+  }
+  out.displacements = frd.nodes(next, count, 3, format, "DISP");
+  return out;
 }
 } // namespace abaqus
 } // namespace mlsformats

@@ -58,9 +58,16 @@ struct CalculixAnalysis
 /// keyword and where it stands (what the analysis does not support).
 CalculixAnalysis readCalculixAnalysis(const std::string& path);
 
-/// A nodal block of a ccx result file (.frd), e.g. DISP: the values of its last step (the ccx
-/// writes one block a step), by node id. Throws FileError when the file or the block is missing,
-/// naming what the deck needs (*NODE FILE with U).
-std::map<std::int64_t, std::array<double, 3>> readFrdNodalBlock(const std::string& path, const std::string& block);
+/// What a ccx result file (.frd) holds of a static step: the node coordinates and the last
+/// nodal displacement block (DISP: the last step's), by node id. ASCII (*NODE FILE: 6
+/// significant digits) and binary (*NODE FILE, DOUBLE: full precision; *NODE OUTPUT: floats).
+struct FrdDisplacements
+{
+  std::map<std::int64_t, std::array<double, 3>> coordinates, displacements;
+};
+
+/// Throws FileError when the file or its blocks are missing, naming what the deck needs (*NODE
+/// FILE with U).
+FrdDisplacements readFrdDisplacements(const std::string& path);
 } // namespace abaqus
 } // namespace mlsformats
