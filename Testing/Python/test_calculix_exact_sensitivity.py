@@ -56,6 +56,8 @@ check(abs((exact['MASS'][1] * points).sum() / (3 * J['MASS']) - 1) < 1e-9,
 # (O(h^2), seen as |d(h) - d(h/2)|) and the displacements' 6 digits (1e-5 of J): within 1% of the
 # largest dJ/dp of the response, or the differences' own uncertainty where that is larger
 chained = {name: design.dvs.totalSensitivity(exact[name][1]) for name in EXACT}
+# beside it, ccx's own normal-only chain (readCalculixSensitivity), as the README's table shows it
+_, normal_only, _ = design.evaluate(base, 'base')
 steps = (2e-3, 1e-3)
 rows = []
 for variable in names:
@@ -65,13 +67,14 @@ for variable in names:
         minus, _, _ = design.responses(dict(base, **{variable: -h}), 'minus')
         differences[h] = {r: (plus[r] - minus[r]) / (2 * h) for r in EXACT}
     for r, (_, _, factor) in EXACT.items():
-        rows.append((variable, r, factor * chained[r][variable], differences[steps[0]][r], differences[steps[1]][r]))
+        rows.append((variable, r, factor * chained[r][variable], differences[steps[0]][r], differences[steps[1]][r],
+                     normal_only[r][variable]))
 design.dvs.setDesignVars(base)
-print('| variable | response | dJ/dp exact | central difference h = %g | h = %g |' % steps)
-print('|---|---|---|---|---|')
+print('| variable | response | dJ/dp exact | central difference h = %g | h = %g | ccx\'s normal-only chain |' % steps)
+print('|---|---|---|---|---|---|')
 for row in rows:
-    print('| %s | %s | %.6g | %.6g | %.6g |' % row)
-for variable, r, chain, d1, d2 in rows:
+    print('| %s | %s | %.6g | %.6g | %.6g | %.6g |' % row)
+for variable, r, chain, d1, d2, _ in rows:
     largest = max(abs(row[4]) for row in rows if row[1] == r)
     uncertainty = abs(d1 - d2) + 1e-5 * J[r] / steps[1]
     check(abs(chain - d2) <= max(0.01 * largest, uncertainty),
