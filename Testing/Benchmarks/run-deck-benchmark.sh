@@ -27,26 +27,12 @@ while (($#)); do
     *) echo "unknown argument $1 (--nodes small|1M, --runs N, --threads LIST)" >&2; exit 2 ;;
   esac
 done
-case "$size" in
-  small) mesh_size=0.3 ;;
-  1M) mesh_size=0.062 ;;
-  *) echo "--nodes small or 1M, not $size" >&2; exit 2 ;;
-esac
 build=${MLSDEFORM_BUILD:-$root/build}
 plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
 [ -f "$plugin" ] || bash "$root/Testing/setup.sh"
 /usr/bin/python3 -c 'import meshio' 2>/dev/null || bash "$root/Testing/setup.sh"
 work=$build/deck-benchmark
-deck=$work/plate-$size/plate.inp
-if [ ! -f "$deck" ]; then
-  echo "Meshing the plate (mesh size $mesh_size) into $work/plate-$size ..."
-  rm -rf "$work/plate-$size.partial"
-  PYTHONPATH="$root/Examples/Structural" /usr/bin/python3 -c "
-import plate, sys
-plate.mesh_plate(sys.argv[1], holes=((3.0, 2.0, 0.8), (7.0, 2.0, 0.8)), size=float(sys.argv[2]))
-plate.write_analysis(sys.argv[1])" "$work/plate-$size.partial" "$mesh_size"
-  mv "$work/plate-$size.partial" "$work/plate-$size"
-fi
+deck=$(bash "$root/Testing/Benchmarks/structural/cached-plate.sh" "$size" "$build")
 echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs; $(lscpu | sed -n 's/^Core(s) per socket: */cores per socket /p'), $(lscpu | sed -n 's/^Thread(s) per core: */threads per core /p')"
 echo "Deck: $deck ($(du -h "$(dirname "$deck")/mesh.inp" | cut -f1) mesh file), medians of $runs runs"
 lines=()

@@ -23,26 +23,12 @@ while (($#)); do
     *) echo "unknown argument $1 (--nodes small|1M, --runs N, --threads LIST)" >&2; exit 2 ;;
   esac
 done
-case "$size" in
-  small) mesh_size=0.3 ;;
-  1M) mesh_size=0.062 ;;
-  *) echo "--nodes small or 1M, not $size" >&2; exit 2 ;;
-esac
 build=${MLSDEFORM_BUILD:-$root/build}
 plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
 [ -f "$plugin" ] || bash "$root/Testing/setup.sh"
 command -v ccx > /dev/null || bash "$root/Testing/setup.sh"
 # the deck benchmark's cached plate (the same mesh sizes)
-source=$build/deck-benchmark/plate-$size
-if [ ! -f "$source/plate.inp" ]; then
-  echo "Meshing the plate (mesh size $mesh_size) into $source ..."
-  rm -rf "$source.partial"
-  PYTHONPATH="$root/Examples/Structural" /usr/bin/python3 -c "
-import plate, sys
-plate.mesh_plate(sys.argv[1], holes=((3.0, 2.0, 0.8), (7.0, 2.0, 0.8)), size=float(sys.argv[2]))
-plate.write_analysis(sys.argv[1])" "$source.partial" "$mesh_size"
-  mv "$source.partial" "$source"
-fi
+source=$(dirname "$(bash "$root/Testing/Benchmarks/structural/cached-plate.sh" "$size" "$build")")
 work=$build/structural-sensitivity-benchmark/$size
 rm -rf "$work"
 mkdir -p "$work"

@@ -26,11 +26,13 @@ const std::string Model = "*Material, name=Steel\n*Elastic\n210000., 0.3\n*DENSI
                           "*Solid Section, elset=part, material=STEEL\n";
 const std::string Step = "*STEP\n*STATIC\n*BOUNDARY\nfixed, 1, 3\n2, 2, 2, 0.5\n*CLOAD\n2, 3, -10.\n7, 1, 4.\n*NODE FILE\nU\n*END STEP\n";
 
-std::string analysisError(const std::string& path)
+// The message of what call throws, printed; "" when it throws nothing.
+template <typename Call>
+std::string errorOf(Call call)
 {
   try
   {
-    abaqus::readCalculixAnalysis(path);
+    call();
   }
   catch (const std::exception& e)
   {
@@ -39,19 +41,13 @@ std::string analysisError(const std::string& path)
   }
   return "";
 }
-
+std::string analysisError(const std::string& path)
+{
+  return errorOf([&] { abaqus::readCalculixAnalysis(path); });
+}
 std::string frdError(const std::string& path)
 {
-  try
-  {
-    abaqus::readFrdDisplacements(path);
-  }
-  catch (const std::exception& e)
-  {
-    std::printf("expected error: %s\n", e.what());
-    return e.what();
-  }
-  return "";
+  return errorOf([&] { abaqus::readFrdDisplacements(path); });
 }
 
 // A result file of the cube's 8 nodes as ccx writes it: the coordinates, then DISP (format '1':
