@@ -155,8 +155,67 @@ void vtkCalculixSensitivity::PrintSelf(ostream& os, vtkIndent indent)
 
 bool vtkCalculixSensitivity::NeedsAdjoint() const
 {
-  return this->Response == Displacement || this->Response == DisplacementNorm;
+  return this->Response == Displacement || this->Response == DisplacementNorm || this->Response == Stress;
 }
+
+namespace
+{
+// The elements of the set, or all of them.
+std::vector<long> elementsOf(const abaqus::CalculixAnalysis& a, const std::string& set)
+{
+  if (!set.empty())
+  {
+    return a.elementSet(set);
+  }
+  std::vector<long> all(a.elementMaterial.size());
+  for (std::size_t e = 0; e < all.size(); ++e)
+  {
+    all[e] = static_cast<long>(e);
+  }
+  return all;
+}
+
+// dJ/du at every node (zero where J does not depend on the node's u): the adjoint load case
+PointList adjointLoads(vtkCalculixSensitivity& self, const abaqus::CalculixAnalysis& a, const PointList& X)
+{
+  PointList dJdu(X.size(), Vec3::Zero());
+  const std::string set = self.GetResponseSet();
+  if (self.GetResponse() == vtkCalculixSensitivity::Stress)
+  {
+    const PointList u = displacements(a, X, self.GetResultFileName(), "result");
+    mlsdeform::meshStressAggregate(solidMesh(a, nullptr), X, u, elastic(a), elementsOf(a, set), self.GetKSWeight(),
+      self.GetReferenceStress(), &dJdu, nullptr);
+    return dJdu;
+  }
+  if (set.empty())
+  {
+    throw std::runtime_error("a displacement response needs the node set it measures (ResponseSet)");
+  }
+  const std::vector<std::size_t> nodes = a.nodeSet(set);
+  const Vec3 direction(self.GetDirection()[0], self.GetDirection()[1], self.GetDirection()[2]);
+  PointList u;
+  double norm = 0;
+  if (self.GetResponse() == vtkCalculixSensitivity::DisplacementNorm)
+  {
+    u = displacements(a, X, self.GetResultFileName(), "result");
+    for (std::size_t n : nodes)
+    {
+      norm += u[n].squaredNorm();
+    }
+    norm = std::sqrt(norm);
+  }
+  else if (!(direction.norm() > 0) || !direction.allFinite())
+  {
+    throw std::runtime_error("the displacement response's Direction is zero or not finite");
+  }
+  for (std::size_t n : nodes)
+  {
+    // the direction, or u_i / |u|_S for the norm
+    dJdu[n] = self.GetResponse() == vtkCalculixSensitivity::DisplacementNorm ? (norm > 0 ? Vec3(u[n] / norm) : Vec3::Zero()) : direction;
+  }
+  return dJdu;
+}
+} // namespace
 
 bool vtkCalculixSensitivity::ComputeAdjointLoads()
 {
@@ -168,38 +227,28 @@ bool vtkCalculixSensitivity::ComputeAdjointLoads()
       throw std::runtime_error("the response needs no adjoint run (compliance is self-adjoint; mass and volume do not depend on u)");
     }
     const abaqus::CalculixAnalysis a = abaqus::readCalculixAnalysis(this->DeckFileName);
-    if (this->ResponseSet.empty())
+    const PointList X = deckPoints(a);
+    const PointList dJdu = adjointLoads(*this, a, X);
+    std::vector<std::size_t> loaded;
+    for (std::size_t n = 0; n < dJdu.size(); ++n)
     {
-      throw std::runtime_error("a displacement response needs the node set it measures (ResponseSet)");
-    }
-    const std::vector<std::size_t> nodes = a.nodeSet(this->ResponseSet);
-    const Vec3 direction(this->Direction[0], this->Direction[1], this->Direction[2]);
-    PointList u;
-    double norm = 0;
-    if (this->Response == DisplacementNorm)
-    {
-      u = displacements(a, deckPoints(a), this->ResultFileName, "result");
-      for (std::size_t n : nodes)
+      if (!dJdu[n].isZero(0))
       {
-        norm += u[n].squaredNorm();
-      }
-      norm = std::sqrt(norm);
-      if (!(norm > 0))
-      {
-        throw std::runtime_error("the node set " + this->ResponseSet + " does not move: the norm of its displacements has no derivative");
+        loaded.push_back(n);
       }
     }
-    else if (!(direction.norm() > 0) || !direction.allFinite())
+    if (loaded.empty())
     {
-      throw std::runtime_error("the displacement response's Direction is zero or not finite");
+      throw std::runtime_error(this->Response == Stress ? "the element set has no stress: the stress aggregate has no derivative"
+                                                        : "the node set " + this->ResponseSet +
+            " does not move: the norm of its displacements has no derivative");
     }
-    this->State->AdjointLoadNodes->SetNumberOfTuples(static_cast<vtkIdType>(nodes.size()));
-    this->State->AdjointLoads->SetNumberOfTuples(static_cast<vtkIdType>(nodes.size()));
-    for (std::size_t k = 0; k < nodes.size(); ++k)
+    this->State->AdjointLoadNodes->SetNumberOfTuples(static_cast<vtkIdType>(loaded.size()));
+    this->State->AdjointLoads->SetNumberOfTuples(static_cast<vtkIdType>(loaded.size()));
+    for (std::size_t k = 0; k < loaded.size(); ++k)
     {
-      // dJ/du_i: the direction, or u_i / |u|_S for the norm (K lambda = dJ/du, eq. of the header)
-      const Vec3 load = this->Response == DisplacementNorm ? Vec3(u[nodes[k]] / norm) : direction;
-      this->State->AdjointLoadNodes->SetValue(static_cast<vtkIdType>(k), a.deck.mesh.nodeIds[nodes[k]]);
+      const Vec3& load = dJdu[loaded[k]];
+      this->State->AdjointLoadNodes->SetValue(static_cast<vtkIdType>(k), a.deck.mesh.nodeIds[loaded[k]]);
       this->State->AdjointLoads->SetTuple3(static_cast<vtkIdType>(k), load[0], load[1], load[2]);
     }
     this->State->SupportNodes->SetNumberOfTuples(static_cast<vtkIdType>(a.supports.size()));
@@ -244,24 +293,53 @@ bool vtkCalculixSensitivity::Compute()
       {
         throw std::runtime_error("the deck's materials have no *DENSITY: the mass is zero and does not depend on the design");
       }
-      value = mlsdeform::meshVolume(solidMesh(a, this->ResponseSet.empty() ? nullptr : &set), X, weight, &gradient);
+      value = mlsdeform::meshVolume(solidMesh(a, this->ResponseSet.empty() ? nullptr : &set), X, weight, this->ValueOnly ? nullptr : &gradient);
     }
     else
     {
       const PointList u = displacements(a, X, this->ResultFileName, "result");
       const mlsdeform::SolidMesh mesh = solidMesh(a, nullptr);
-      PointList lambda;
+      // gravity: the body force per unit volume of each element, rho g
+      std::vector<Vec3> body(a.elementMaterial.size(), Vec3::Zero());
+      bool gravity = false;
+      for (std::size_t e = 0; e < body.size(); ++e)
+      {
+        const auto& g = a.elementAcceleration[e];
+        body[e] = a.materials[a.elementMaterial[e]].density * Vec3(g[0], g[1], g[2]);
+        gravity = gravity || !body[e].isZero(0);
+      }
+      std::vector<mlsdeform::FacePressure> pressures;
+      for (const abaqus::ElementPressure& p : a.pressures)
+      {
+        pressures.push_back({ p.element, p.face, p.pressure });
+      }
+      PointList lambda, stressGradient;
       if (this->Response == Compliance)
       {
         for (const abaqus::NodeDof& load : a.loads)
         {
           value += load.value * u[load.node][load.dof];
         }
-        if (a.loads.empty())
+        if (gravity)
         {
-          throw std::runtime_error("the static step has no *CLOAD: the compliance is zero and does not depend on the design");
+          value += mlsdeform::meshBodyWork(mesh, X, u, body, nullptr);
+        }
+        if (!pressures.empty())
+        {
+          value += mlsdeform::meshPressureWork(mesh, X, u, pressures, nullptr);
+        }
+        if (a.loads.empty() && !gravity && pressures.empty())
+        {
+          throw std::runtime_error("the static step has no loads (*CLOAD, *DLOAD pressure, gravity with a *DENSITY): the compliance "
+                                   "is zero and does not depend on the design");
         }
         lambda = u; // K lambda = f: lambda = u
+      }
+      else if (this->Response == Stress)
+      {
+        // dJ/dX at fixed u: the stresses' gradients move with the nodes
+        value = mlsdeform::meshStressAggregate(mesh, X, u, elastic(a), elementsOf(a, this->ResponseSet), this->KSWeight,
+          this->ReferenceStress, nullptr, this->ValueOnly ? nullptr : &stressGradient);
       }
       else
       {
@@ -275,13 +353,62 @@ bool vtkCalculixSensitivity::Compute()
         {
           value = std::sqrt(value);
         }
-        lambda = displacements(a, X, this->AdjointResultFileName, "adjoint result");
       }
-      // dJ/dX = -lambda^T d(K u)/dX (point loads and this J have no explicit dependence on X)
-      mlsdeform::meshWork(mesh, X, u, lambda, elastic(a), &gradient);
-      for (Vec3& g : gradient)
+      if (this->Response != Compliance && !this->ValueOnly)
       {
-        g = -g;
+        lambda = displacements(a, X, this->AdjointResultFileName, "adjoint result");
+        // K symmetric: lambda . f = lambda^T K u = u^T K lambda = u . dJ/du where the supports hold
+        // zero (a nonzero support adds its reaction): the adjoint of this response and design
+        const PointList dJdu = adjointLoads(*this, a, X);
+        double lambdaF = gravity ? mlsdeform::meshBodyWork(mesh, X, lambda, body, nullptr) : 0.0, uG = 0;
+        lambdaF += pressures.empty() ? 0.0 : mlsdeform::meshPressureWork(mesh, X, lambda, pressures, nullptr);
+        for (const abaqus::NodeDof& load : a.loads)
+        {
+          lambdaF += load.value * lambda[load.node][load.dof];
+        }
+        for (std::size_t n = 0; n < u.size(); ++n)
+        {
+          uG += u[n].dot(dJdu[n]);
+        }
+        const bool homogeneous = std::all_of(a.supports.begin(), a.supports.end(), [](const abaqus::NodeDof& s) { return s.value == 0; });
+        // (1e-4: an adjoint result written in ASCII has six digits)
+        if (homogeneous && !(std::abs(lambdaF - uG) <= 1e-4 * (std::abs(lambdaF) + std::abs(uG))))
+        {
+          throw std::runtime_error(this->AdjointResultFileName + " is not the adjoint of this response and design (lambda . f = " +
+            std::to_string(lambdaF) + ", u . dJ/du = " + std::to_string(uG) + "): run ccx on the adjoint deck written for them");
+        }
+      }
+      // dJ/dX = dJ/dX|_u + lambda^T (df/dX - d(K u)/dX): point loads do not depend on X, gravity
+      // and pressure do; the compliance f . u has dJ/dX|_u = u^T df/dX, with lambda = u
+      if (!this->ValueOnly)
+      {
+        mlsdeform::meshWork(mesh, X, u, lambda, elastic(a), &gradient);
+      }
+      for (std::size_t n = 0; n < gradient.size(); ++n)
+      {
+        gradient[n] = (stressGradient.empty() ? Vec3::Zero() : stressGradient[n]) - gradient[n];
+      }
+      // the loads that move with the shape: gravity (the volumes), pressure (the faces' areas)
+      const double times = this->Response == Compliance ? 2.0 : 1.0;
+      for (int kind = 0; kind < 2 && !this->ValueOnly; ++kind)
+      {
+        if (kind == 0 ? !gravity : pressures.empty())
+        {
+          continue;
+        }
+        PointList load;
+        if (kind == 0)
+        {
+          mlsdeform::meshBodyWork(mesh, X, lambda, body, &load);
+        }
+        else
+        {
+          mlsdeform::meshPressureWork(mesh, X, lambda, pressures, &load);
+        }
+        for (std::size_t n = 0; n < gradient.size(); ++n)
+        {
+          gradient[n] += times * load[n];
+        }
       }
     }
     this->State->Value = value;
@@ -302,6 +429,14 @@ bool vtkCalculixSensitivity::Compute()
     vtkErrorMacro(<< this->LastError);
     return false;
   }
+}
+
+bool vtkCalculixSensitivity::ComputeValue()
+{
+  this->ValueOnly = true;
+  const bool computed = this->Compute();
+  this->ValueOnly = false;
+  return computed;
 }
 
 double vtkCalculixSensitivity::GetValue() const

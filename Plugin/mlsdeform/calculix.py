@@ -194,7 +194,7 @@ def readCalculixSensitivity(deformed, frd, response):
 
 
 # The exact path: vtkCalculixSensitivity's responses by name, as exactSensitivity takes them.
-EXACT_RESPONSES = {'compliance': 0, 'mass': 1, 'volume': 2, 'displacement': 3, 'all-disp': 4}
+EXACT_RESPONSES = {'compliance': 0, 'mass': 1, 'volume': 2, 'displacement': 3, 'all-disp': 4, 'ks-stress': 5}
 
 
 def _model_text(deck):
@@ -250,8 +250,8 @@ def _run_ccx(deck, ccx, threads):
     return os.path.join(folder, job + '.frd')
 
 
-def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.0, 1.0), adjoint_frd=None, ccx='ccx',
-                     threads=None):
+def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.0, 1.0), ks_weight=50.0, reference_stress=1.0,
+                     adjoint_frd=None, ccx='ccx', threads=None):
     """(J, dJ/dX): the response of the ccx run of ``deck`` (the deformation's current variant deck)
     whose result is ``frd``, and its exact shape gradient, an (n, 3) array in the deformation's
     output order for DesignVariables.totalSensitivity: three components at every node, interior and
@@ -260,8 +260,11 @@ def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.
 
     response: 'compliance' (the point loads' work f . u), 'mass' or 'volume' (of the element set
     ``set``, default all elements), 'displacement' (the sum of direction . u over the node set
-    ``set``) or 'all-disp' (ccx's ALL-DISP over the node set: sqrt(sum |u|^2)). The last two need
-    the adjoint load case: written beside the deck as JOB-adjoint.inp and solved by ``ccx`` (unless
+    ``set``), 'all-disp' (ccx's ALL-DISP over the node set: sqrt(sum |u|^2)) or 'ks-stress' (the KS
+    aggregate of the von Mises stresses at the integration points of the element set ``set``,
+    default all: m + (S / rho) ln sum exp(rho (sigma - m) / S), m the largest, S
+    ``reference_stress``, rho ``ks_weight``: at most S ln(N) / rho above the largest of the N
+    points' stresses). The last three need the adjoint load case: written beside the deck as JOB-adjoint.inp and solved by ``ccx`` (unless
     its result ``adjoint_frd`` is given). The deck needs *NODE FILE with U in its static step.
     Raises ValueError with the reason for an unknown response or set, a run on another mesh or
     shape, a result without U, and what the analysis does not support (the keyword named, e.g.
@@ -286,6 +289,10 @@ def exactSensitivity(deformed, deck, frd, response, set=None, direction=(0.0, 0.
     s.SetResponse(EXACT_RESPONSES[key])
     s.SetResponseSet(set or '')
     s.SetDirection(*[float(v) for v in direction])
+    if not (ks_weight > 0 and reference_stress > 0):
+        raise ValueError(f"ks_weight ({ks_weight}) and reference_stress ({reference_stress}) must be positive")
+    s.SetKSWeight(float(ks_weight))
+    s.SetReferenceStress(float(reference_stress))
     if s.NeedsAdjoint():
         if adjoint_frd is None:
             adjoint = writeAdjointDeck(s, deck, os.path.splitext(os.path.abspath(deck))[0] + '-adjoint.inp')

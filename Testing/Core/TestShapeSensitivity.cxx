@@ -3,7 +3,8 @@
 // the element has midside nodes): the shape functions are a partition of unity, 1 at their own
 // node and 0 at the others; the integration weights sum to the reference volume; a uniform strain
 // passes the patch test (its work is V a(E, F) exactly) and a rigid motion does no work; and the
-// derivatives of the work lambda^T K_e u and of the volume agree with central differences.
+// derivatives of the work lambda^T K_e u, of the volume and of a body force's work agree with
+// central differences.
 #include "../TestHarness.h"
 #include "Structural/ShapeSensitivity.h"
 
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -96,6 +98,23 @@ std::vector<Vec3> distorted(SolidElement element, Sequence& random)
 }
 
 const IsotropicElastic Steel{ 210000, 0.3 };
+
+// The nodes in VTK's order, as the Mesh File reader gives a deck's elements: the same for
+// tetrahedra and hexahedra; a deck's wedge turned over (its 1-2-3 the other way round).
+std::vector<Vec3> inVtkOrder(SolidElement element, const std::vector<Vec3>& deck)
+{
+  if (element != SolidElement::C3D6 && element != SolidElement::C3D15)
+  {
+    return deck;
+  }
+  const int order[15] = { 0, 2, 1, 3, 5, 4, 8, 7, 6, 11, 10, 9, 12, 14, 13 };
+  std::vector<Vec3> vtk;
+  for (std::size_t i = 0; i < deck.size(); ++i)
+  {
+    vtk.push_back(deck[order[i]]);
+  }
+  return vtk;
+}
 } // namespace
 
 TEST(ShapeFunctionsArePartitionsOfUnity)
@@ -231,42 +250,207 @@ TEST(WorkAndVolumeDerivativesMatchCentralDifferences)
       u[a] = 1e-3 * random.vector();
       lambda[a] = 1e-3 * random.vector();
     }
-    std::vector<Vec3> dW(n, Vec3::Zero()), dV(n, Vec3::Zero());
+    const Vec3 b(1, -2, 0.5); // a body force
+    std::vector<Vec3> dW(n, Vec3::Zero()), dV(n, Vec3::Zero()), dB(n, Vec3::Zero());
     addElementWorkDerivative(element, X.data(), u.data(), lambda.data(), Steel, dW.data());
     addElementVolumeDerivative(element, X.data(), dV.data());
-    double scaleW = 0, scaleV = 0;
+    addElementBodyWorkDerivative(element, X.data(), lambda.data(), b, dB.data());
+    double scaleW = 0, scaleV = 0, scaleB = 0;
     for (int a = 0; a < n; ++a)
     {
       scaleW = std::max(scaleW, dW[a].cwiseAbs().maxCoeff());
       scaleV = std::max(scaleV, dV[a].cwiseAbs().maxCoeff());
+      scaleB = std::max(scaleB, dB[a].cwiseAbs().maxCoeff());
     }
-    CHECK(scaleW > 0 && scaleV > 0);
-    const auto central = [&](int a, int d, double h, bool volume) {
+    CHECK(scaleW > 0 && scaleV > 0 && scaleB > 0);
+    // the three functions of the nodes: the work, the volume, the body force's work on lambda
+    const auto value = [&](const std::vector<Vec3>& x, int which) {
+      return which == 0 ? elementWork(element, x.data(), u.data(), lambda.data(), Steel)
+                        : which == 1 ? elementVolume(element, x.data()) : elementBodyWork(element, x.data(), lambda.data(), b);
+    };
+    const auto central = [&](int a, int d, double h, int which) {
       std::vector<Vec3> plus = X, minus = X;
       plus[a][d] += h;
       minus[a][d] -= h;
-      return volume ? (elementVolume(element, plus.data()) - elementVolume(element, minus.data())) / (2 * h)
-                    : (elementWork(element, plus.data(), u.data(), lambda.data(), Steel) -
-                        elementWork(element, minus.data(), u.data(), lambda.data(), Steel)) / (2 * h);
+      return (value(plus, which) - value(minus, which)) / (2 * h);
     };
     const double h = 1e-4;
-    double worstW = 0, worstV = 0, worstAgreement = 0;
+    double worstW = 0, worstV = 0, worstB = 0, worstAgreement = 0;
     for (int a = 0; a < n; ++a)
     {
       for (int d = 0; d < 3; ++d)
       {
-        const double w1 = central(a, d, h, false), w2 = central(a, d, h / 2, false);
-        const double v1 = central(a, d, h, true), v2 = central(a, d, h / 2, true);
+        const double w1 = central(a, d, h, 0), w2 = central(a, d, h / 2, 0);
+        const double v1 = central(a, d, h, 1), v2 = central(a, d, h / 2, 1);
+        const double b1 = central(a, d, h, 2), b2 = central(a, d, h / 2, 2);
         worstAgreement = std::max(worstAgreement, std::abs(w1 - w2) / scaleW);
         worstW = std::max(worstW, std::abs(dW[a][d] - w2) / scaleW);
         worstV = std::max({ worstV, std::abs(dV[a][d] - v2) / scaleV, std::abs(v1 - v2) / scaleV });
+        worstB = std::max({ worstB, std::abs(dB[a][d] - b2) / scaleB, std::abs(b1 - b2) / scaleB });
       }
     }
-    std::printf("%s: exact against central differences (h/2) %.2e of the largest, h against h/2 %.2e (work); volume %.2e\n",
-      nameOf(element).c_str(), worstW, worstAgreement, worstV);
+    std::printf("%s: exact against central differences (h/2) %.2e of the largest, h against h/2 %.2e (work); volume %.2e; "
+                "body force %.2e\n",
+      nameOf(element).c_str(), worstW, worstAgreement, worstV, worstB);
     CHECK(worstAgreement < 1e-6);
     CHECK(worstW < 1e-6);
     CHECK(worstV < 1e-6);
+    CHECK(worstB < 1e-6);
+    // a uniform lambda: the body force's work is V lambda . b
+    const std::vector<Vec3> uniform(n, Vec3(0.3, 0.1, -0.2));
+    CHECK_NEAR(elementBodyWork(element, X.data(), uniform.data(), b), elementVolume(element, X.data()) * uniform[0].dot(b),
+      1e-13 * elementVolume(element, X.data()));
+  }
+}
+
+TEST(VonMisesDerivativesMatchCentralDifferences)
+{
+  // sum_g c_g sigma_vm,g with positive weights: its derivatives along u (dU) and X at fixed u (dX)
+  // against central differences, h and h/2 as above; a uniform strain gives every point the same
+  // stress, that of the strain's sigma (a patch test)
+  Sequence random{ 17 };
+  for (SolidElement element : Elements)
+  {
+    const int n = nodeCount(element);
+    const std::vector<Vec3> X = distorted(element, random);
+    std::vector<Vec3> u(n);
+    for (Vec3& x : u)
+    {
+      x = 1e-3 * random.vector();
+    }
+    std::vector<double> c;
+    for (std::size_t g = 0; g < integrationPoints(element).size(); ++g)
+    {
+      c.push_back(0.5 + 0.5 * random.next());
+    }
+    const auto weighted = [&](const std::vector<Vec3>& x, const std::vector<Vec3>& v) {
+      const std::vector<double> sigma = elementVonMises(element, x.data(), v.data(), Steel);
+      double sum = 0;
+      for (std::size_t g = 0; g < sigma.size(); ++g)
+      {
+        sum += c[g] * sigma[g];
+      }
+      return sum;
+    };
+    std::vector<Vec3> dU(n, Vec3::Zero()), dX(n, Vec3::Zero());
+    addElementVonMisesDerivatives(element, X.data(), u.data(), Steel, c.data(), dU.data(), dX.data());
+    double scaleU = 0, scaleX = 0;
+    for (int a = 0; a < n; ++a)
+    {
+      scaleU = std::max(scaleU, dU[a].cwiseAbs().maxCoeff());
+      scaleX = std::max(scaleX, dX[a].cwiseAbs().maxCoeff());
+    }
+    CHECK(scaleU > 0 && scaleX > 0);
+    for (int a = 0; a < n; ++a)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        const auto central = [&](bool alongU, double h) {
+          std::vector<Vec3> xp = X, xm = X, up = u, um = u;
+          (alongU ? up : xp)[a][d] += h;
+          (alongU ? um : xm)[a][d] -= h;
+          return (weighted(xp, up) - weighted(xm, um)) / (2 * h);
+        };
+        CHECK_NEAR(dU[a][d], central(true, 5e-8), 1e-6 * scaleU);
+        CHECK_NEAR(central(true, 1e-7), central(true, 5e-8), 1e-6 * scaleU);
+        CHECK_NEAR(dX[a][d], central(false, 5e-5), 1e-6 * scaleX);
+        CHECK_NEAR(central(false, 1e-4), central(false, 5e-5), 1e-6 * scaleX);
+      }
+    }
+    Eigen::Matrix3d E;
+    E << 1e-3, 2e-4, -3e-4, 5e-4, -2e-3, 1e-4, 0, 7e-4, 4e-4;
+    std::vector<Vec3> uniform;
+    for (const Vec3& x : X)
+    {
+      uniform.push_back(E * x);
+    }
+    const Eigen::Matrix3d sigma = Steel.lame() * E.trace() * Eigen::Matrix3d::Identity() + Steel.shear() * (E + E.transpose());
+    const Eigen::Matrix3d s = sigma - sigma.trace() / 3 * Eigen::Matrix3d::Identity();
+    for (double v : elementVonMises(element, X.data(), uniform.data(), Steel))
+    {
+      CHECK_NEAR(v, std::sqrt(1.5 * s.cwiseProduct(s).sum()), 1e-9 * v);
+    }
+  }
+}
+
+TEST(PressureActsOnEveryFaceOutward)
+{
+  // On an affine image of each element (its nodes in VTK's order), the faces' area vectors (the work of a uniform v = e_d
+  // divided by -p) point out of the element and sum to zero over its closed surface (each face
+  // rule integrates a straight-sided face's normal exactly: round-off); on a distorted element,
+  // the work's derivative against central differences (h, h/2, as above) for every face.
+  Eigen::Matrix3d M;
+  M << 1.3, 0.2, -0.1, 0.15, 0.9, 0.25, -0.05, 0.3, 1.1;
+  Sequence random{ 13 };
+  for (SolidElement element : Elements)
+  {
+    const int n = nodeCount(element);
+    std::vector<Vec3> affine;
+    for (const Vec3& xi : inVtkOrder(element, referenceNodes(element)))
+    {
+      affine.push_back(M * xi);
+    }
+    Vec3 centre = Vec3::Zero();
+    for (const Vec3& x : affine)
+    {
+      centre += x / n;
+    }
+    Vec3 closed = Vec3::Zero();
+    double size = 0;
+    ElementFace face;
+    int faces = 0;
+    for (int f = 1; elementFace(element, f, face); ++f, ++faces)
+    {
+      Vec3 area, faceCentre = Vec3::Zero();
+      for (int d = 0; d < 3; ++d)
+      {
+        const std::vector<Vec3> v(n, Vec3::Unit(d));
+        area[d] = -facePressureWork(face, affine.data(), v.data(), 1.0);
+      }
+      for (int a : face.nodes)
+      {
+        faceCentre += affine[a] / static_cast<double>(face.nodes.size());
+      }
+      CHECK(area.dot(faceCentre - centre) > 0); // out of the element
+      closed += area;
+      size = std::max(size, area.norm());
+    }
+    CHECK(faces == (n == 4 || n == 10 ? 4 : n == 6 || n == 15 ? 5 : 6));
+    CHECK_NEAR(closed.norm(), 0.0, 1e-13 * size);
+
+    const std::vector<Vec3> X = inVtkOrder(element, distorted(element, random));
+    std::vector<Vec3> v(n);
+    for (Vec3& x : v)
+    {
+      x = random.vector();
+    }
+    for (int f = 1; elementFace(element, f, face); ++f)
+    {
+      std::vector<Vec3> dP(n, Vec3::Zero());
+      addFacePressureWorkDerivative(face, X.data(), v.data(), 2.5, dP.data());
+      double scale = 0;
+      for (const Vec3& g : dP)
+      {
+        scale = std::max(scale, g.cwiseAbs().maxCoeff());
+      }
+      CHECK(scale > 0);
+      for (int a = 0; a < n; ++a)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          const auto central = [&](double h) {
+            std::vector<Vec3> plus = X, minus = X;
+            plus[a][d] += h;
+            minus[a][d] -= h;
+            return (facePressureWork(face, plus.data(), v.data(), 2.5) - facePressureWork(face, minus.data(), v.data(), 2.5)) / (2 * h);
+          };
+          const double d1 = central(1e-4), d2 = central(5e-5);
+          CHECK_NEAR(d1, d2, 1e-6 * scale);
+          CHECK_NEAR(dP[a][d], d2, 1e-6 * scale);
+        }
+      }
+    }
+    CHECK(!elementFace(element, 0, face) && !elementFace(element, 7, face));
   }
 }
 
@@ -275,7 +459,8 @@ TEST(MeshSumsAreTheElementsSumsForAnyThreadCount)
   // the unit cube as 2 x 2 x 2 C3D8 elements, its centre node moved: the elements still tile the
   // cube, so the volume is 1 and does not change with the centre node (2 x 2 x 2 Gauss points
   // integrate a trilinear element's det J exactly: round-off only); the work's gradient at the
-  // centre and at a corner against central differences as above; 1 and 2 threads the same bits
+  // centre and at a corner against central differences as above; 1 and 2 threads the same bits;
+  // the stresses' KS aggregate and its gradients
   PointList X;
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
@@ -323,6 +508,51 @@ TEST(MeshSumsAreTheElementsSumsForAnyThreadCount)
       minus[node][d] -= h;
       const double difference = (meshWork(mesh, plus, u, lambda, materials, nullptr) - meshWork(mesh, minus, u, lambda, materials, nullptr)) / (2 * h);
       CHECK_NEAR(dW[node][d], difference, 1e-6 * scale);
+    }
+  }
+  // the stresses' KS aggregate over all elements: between the largest and the largest + S ln(N) /
+  // rho, its gradients along u and X against central differences
+  std::vector<long> all(mesh.elements());
+  std::iota(all.begin(), all.end(), 0L);
+  const double rho = 20, reference = 100;
+  PointList dKu, dKx;
+  const double K = meshStressAggregate(mesh, X, u, materials, all, rho, reference, &dKu, &dKx);
+  double largest = 0;
+  for (long e = 0; e < mesh.elements(); ++e)
+  {
+    std::vector<Vec3> x, ue;
+    for (long r = mesh.start[e]; r < mesh.start[e + 1]; ++r)
+    {
+      x.push_back(X[mesh.nodes[r]]);
+      ue.push_back(u[mesh.nodes[r]]);
+    }
+    for (double v : elementVonMises(mesh.type[e], x.data(), ue.data(), materials[mesh.material[e]]))
+    {
+      largest = std::max(largest, v);
+    }
+  }
+  CHECK(K >= largest && K <= largest + reference * std::log(64.0) / rho);
+  double scaleU = 0, scaleX = 0;
+  for (std::size_t k = 0; k < X.size(); ++k)
+  {
+    scaleU = std::max(scaleU, dKu[k].cwiseAbs().maxCoeff());
+    scaleX = std::max(scaleX, dKx[k].cwiseAbs().maxCoeff());
+  }
+  for (int node : { centre, 26 })
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      PointList up = u, um = u, xp = X, xm = X;
+      up[node][d] += 5e-8;
+      um[node][d] -= 5e-8;
+      xp[node][d] += 5e-5;
+      xm[node][d] -= 5e-5;
+      CHECK_NEAR(dKu[node][d],
+        (meshStressAggregate(mesh, X, up, materials, all, rho, reference, nullptr, nullptr) -
+          meshStressAggregate(mesh, X, um, materials, all, rho, reference, nullptr, nullptr)) / 1e-7, 1e-5 * scaleU);
+      CHECK_NEAR(dKx[node][d],
+        (meshStressAggregate(mesh, xp, u, materials, all, rho, reference, nullptr, nullptr) -
+          meshStressAggregate(mesh, xm, u, materials, all, rho, reference, nullptr, nullptr)) / 1e-4, 1e-5 * scaleX);
     }
   }
   bool refused = false; // a material index out of range

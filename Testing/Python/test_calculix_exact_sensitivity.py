@@ -87,6 +87,8 @@ for variable, r, chain, d1, d2, _ in rows:
 raises(lambda: mlsdeform.exactSensitivity(design.deform, variant, frd, 'stress'), 'known: compliance', 'an unknown response')
 raises(lambda: mlsdeform.exactSensitivity(design.deform, variant, frd, 'all-disp', set='nowhere'), 'no node set nowhere',
        'a node set that does not exist')
+raises(lambda: mlsdeform.exactSensitivity(design.deform, variant, frd, 'all-disp', set='tip', adjoint_frd=frd),
+       'is not the adjoint of this response', 'the primal result given as the adjoint one')
 unsupported = os.path.join(work, 'base', 'nlgeom.inp')
 with open(variant) as f:
     text = f.read()
@@ -94,6 +96,7 @@ with open(unsupported, 'w') as f:
     f.write(text.replace('*STEP\n*STATIC', '*STEP, NLGEOM\n*STATIC', 1))
 raises(lambda: mlsdeform.exactSensitivity(design.deform, unsupported, frd, 'compliance'), 'NLGEOM', 'NLGEOM is refused by name')
 with open(unsupported, 'w') as f:
-    f.write(text.replace('*STATIC\n', '*STATIC\n*DLOAD\npart, GRAV, 9810., 0., 0., -1.\n', 1))
-raises(lambda: mlsdeform.exactSensitivity(design.deform, unsupported, frd, 'compliance'), '*DLOAD', 'a distributed load is refused by name')
+    f.write(text.replace('*STATIC\n', '*STATIC\n*DLOAD\npart, BX, 2.\n', 1))
+raises(lambda: mlsdeform.exactSensitivity(design.deform, unsupported, frd, 'compliance'), 'BX loads are not supported',
+       'a body force other than gravity is refused by name')
 finish()

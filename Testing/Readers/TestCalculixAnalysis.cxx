@@ -24,7 +24,8 @@ const std::string Mesh = "*NODE, NSET=all\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4
                          "*NSET, NSET=fixed\n1, 4, 5, 8\n";
 const std::string Model = "*Material, name=Steel\n*Elastic\n210000., 0.3\n*DENSITY\n7.85e-9\n"
                           "*Solid Section, elset=part, material=STEEL\n";
-const std::string Step = "*STEP\n*STATIC\n*BOUNDARY\nfixed, 1, 3\n2, 2, 2, 0.5\n*CLOAD\n2, 3, -10.\n7, 1, 4.\n*NODE FILE\nU\n*END STEP\n";
+const std::string Step = "*STEP\n*STATIC\n*BOUNDARY\nfixed, 1, 3\n2, 2, 2, 0.5\n*CLOAD\n2, 3, -10.\n7, 1, 4.\n"
+                         "*DLOAD\npart, GRAV, 9810., 0, 0, -2\n1, GRAV, 10., 1, 0, 0\n1, P2, 3.\n*NODE FILE\nU\n*END STEP\n";
 
 // The message of what call throws, printed; "" when it throws nothing.
 template <typename Call>
@@ -109,6 +110,9 @@ TEST(ReadsMaterialsSectionsSupportsAndLoads)
   CHECK(a.supports.back().node == a.nodeIndex(2) && a.supports.back().dof == 1 && a.supports.back().value == 0.5);
   CHECK(a.loads.size() == 2 && a.loads[0].node == a.nodeIndex(2) && a.loads[0].dof == 2 && a.loads[0].value == -10);
   CHECK(a.nodeSet("FIXED").size() == 4 && a.elementSet("Part").size() == 1);
+  // the two GRAV lines summed, their directions normalized as ccx does; the pressure on face 2
+  CHECK((a.elementAcceleration == std::vector<std::array<double, 3>>{ { 10, 0, -9810 } }));
+  CHECK(a.pressures.size() == 1 && a.pressures[0].element == 0 && a.pressures[0].face == 2 && a.pressures[0].pressure == 3);
   CHECK(contains(analysisError(writeFile(dir + "/nostep.inp", Mesh + Model)), "no *STATIC step"));
 }
 
@@ -117,7 +121,10 @@ TEST(RefusesWhatTheDerivativesDoNotCover)
   const std::string dir = folder("refuses");
   const std::vector<std::pair<std::string, std::string>> cases = {
     { Mesh + Model + "*STEP, NLGEOM\n*STATIC\n*END STEP\n", "NLGEOM" },
-    { Mesh + Model + "*STEP\n*STATIC\n*DLOAD\npart, GRAV, 9810, 0, 0, -1\n*END STEP\n", "*DLOAD" },
+    { Mesh + Model + "*STEP\n*STATIC\n*DLOAD\n1, P7, 2.\n*END STEP\n", "P7 loads are not supported" },
+    { Mesh + Model + "*STEP\n*STATIC\n*DLOAD\n1, BX, 2.\n*END STEP\n", "BX loads are not supported" },
+    { Mesh + Model + "*STEP\n*STATIC\n*DLOAD\npart, GRAV, 9810, 0, 0, 0\n*END STEP\n", "direction is zero" },
+    { Mesh + Model + "*STEP\n*STATIC\n*DLOAD\npart, GRAV, 9810\n*END STEP\n", "the direction's three components" },
     { Mesh + Model + "*STEP\n*DYNAMIC\n*END STEP\n", "*DYNAMIC" },
     { Mesh + Model + "*CONTACT PAIR, INTERACTION=i\na, b\n" + Step, "*CONTACT PAIR" },
     { Mesh + "*MATERIAL, NAME=steel\n*ELASTIC, TYPE=ORTHO\n1, 2, 3, 4, 5, 6, 7, 8, 9\n*SOLID SECTION, ELSET=part, MATERIAL=steel\n" + Step,

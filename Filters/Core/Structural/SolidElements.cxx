@@ -223,4 +223,156 @@ void shapeFunctions(SolidElement element, const Vec3& xi, double* N, Vec3* dN)
     case SolidElement::C3D15: return wedge(xi, true, N, dN);
   }
 }
+namespace
+{
+// ccx's faces (e_c3d.f: ifaceq, ifacet, ifacew), 1-based in the deck's node order: corners, then
+// midside nodes; 0 ends a shorter face
+constexpr int HexFaces[6][8] = { { 4, 3, 2, 1, 11, 10, 9, 12 }, { 5, 6, 7, 8, 13, 14, 15, 16 }, { 1, 2, 6, 5, 9, 18, 13, 17 },
+  { 2, 3, 7, 6, 10, 19, 14, 18 }, { 3, 4, 8, 7, 11, 20, 15, 19 }, { 4, 1, 5, 8, 12, 17, 16, 20 } };
+constexpr int TetFaces[4][6] = { { 1, 3, 2, 7, 6, 5 }, { 1, 2, 4, 5, 9, 8 }, { 2, 3, 4, 6, 10, 9 }, { 1, 4, 3, 8, 10, 7 } };
+constexpr int WedgeFaces[5][8] = { { 1, 3, 2, 9, 8, 7, 0, 0 }, { 4, 5, 6, 10, 11, 12, 0, 0 }, { 1, 2, 5, 4, 7, 14, 10, 13 },
+  { 2, 3, 6, 5, 8, 15, 11, 14 }, { 4, 6, 3, 1, 12, 15, 9, 13 } };
+// the deck's wedge node k is VTK's node WedgeOrder[k] (the Mesh File reader turns the wedge
+// over: Abaqus' 1-2-3 runs the other way round); hexahedra and tetrahedra keep the deck's order
+constexpr int WedgeOrder[15] = { 0, 2, 1, 3, 5, 4, 8, 7, 6, 11, 10, 9, 12, 14, 13 };
+
+// gauss.f's face rules (gauss2d1 .. gauss2d5)
+std::vector<IntegrationPoint> faceRule(int nodes, int points)
+{
+  const double g2 = 1 / std::sqrt(3.0), g3 = std::sqrt(0.6);
+  if (nodes == 3 || nodes == 6)
+  {
+    return points == 1 ? std::vector<IntegrationPoint>{ { Vec3(1 / 3.0, 1 / 3.0, 0), 0.5 } }
+                       : std::vector<IntegrationPoint>{ { Vec3(1 / 6.0, 1 / 6.0, 0), 1 / 6.0 }, { Vec3(2 / 3.0, 1 / 6.0, 0), 1 / 6.0 },
+                           { Vec3(1 / 6.0, 2 / 3.0, 0), 1 / 6.0 } };
+  }
+  if (points == 1)
+  {
+    return { { Vec3(0, 0, 0), 4.0 } };
+  }
+  const std::vector<double> x = points == 4 ? std::vector<double>{ -g2, g2 } : std::vector<double>{ -g3, 0, g3 };
+  const std::vector<double> w = points == 4 ? std::vector<double>{ 1, 1 } : std::vector<double>{ 5 / 9.0, 8 / 9.0, 5 / 9.0 };
+  std::vector<IntegrationPoint> rule;
+  for (std::size_t j = 0; j < x.size(); ++j)
+    for (std::size_t i = 0; i < x.size(); ++i)
+      rule.push_back({ Vec3(x[i], x[j], 0), w[i] * w[j] });
+  return rule;
+}
+} // namespace
+
+bool elementFace(SolidElement element, int face, ElementFace& out)
+{
+  out.nodes.clear();
+  const bool quadratic = element == SolidElement::C3D10 || element == SolidElement::C3D20 || element == SolidElement::C3D20R ||
+    element == SolidElement::C3D15;
+  const int* listed = nullptr;
+  const int* order = nullptr;
+  switch (element)
+  {
+    case SolidElement::C3D4:
+    case SolidElement::C3D10:
+      if (face < 1 || face > 4)
+      {
+        return false;
+      }
+      listed = TetFaces[face - 1];
+      break;
+    case SolidElement::C3D8:
+    case SolidElement::C3D20:
+    case SolidElement::C3D20R:
+      if (face < 1 || face > 6)
+      {
+        return false;
+      }
+      listed = HexFaces[face - 1];
+      break;
+    case SolidElement::C3D6:
+    case SolidElement::C3D15:
+      if (face < 1 || face > 5)
+      {
+        return false;
+      }
+      listed = WedgeFaces[face - 1];
+      order = WedgeOrder;
+      break;
+  }
+  const bool triangle = element == SolidElement::C3D4 || element == SolidElement::C3D10 ||
+    ((element == SolidElement::C3D6 || element == SolidElement::C3D15) && face <= 2);
+  const int corners = triangle ? 3 : 4;
+  const int count = quadratic ? 2 * corners : corners;
+  for (int k = 0; k < count; ++k)
+  {
+    const int deckNode = listed[k] - 1;
+    out.nodes.push_back(order ? order[deckNode] : deckNode);
+  }
+  // e_c3d.f's mint2d: C3D6's quadrilaterals 1 point, C3D20's 3 x 3, C3D10's and C3D15's
+  // triangles 3, C3D4's and C3D6's triangles 1, the other quadrilaterals 2 x 2
+  int points = 4;
+  if (triangle)
+  {
+    points = quadratic ? 3 : 1;
+  }
+  else if (element == SolidElement::C3D6)
+  {
+    points = 1;
+  }
+  else if (element == SolidElement::C3D20)
+  {
+    points = 9;
+  }
+  out.points = faceRule(count, points);
+  return true;
+}
+
+void faceShapeFunctions(std::size_t nodes, const Vec3& xi, double* N, Vec3* dN)
+{
+  const double x = xi[0], e = xi[1];
+  if (nodes == 3 || nodes == 6)
+  {
+    // shape3tri, shape6tri: l = (1 - xi - eta, xi, eta)
+    const double l[3] = { 1 - x - e, x, e };
+    const Vec3 dl[3] = { Vec3(-1, -1, 0), Vec3(1, 0, 0), Vec3(0, 1, 0) };
+    for (int k = 0; k < 3; ++k)
+    {
+      N[k] = nodes == 6 ? l[k] * (2 * l[k] - 1) : l[k];
+      dN[k] = nodes == 6 ? Vec3((4 * l[k] - 1) * dl[k]) : dl[k];
+    }
+    for (int k = 0; nodes == 6 && k < 3; ++k)
+    {
+      const int i = k, j = (k + 1) % 3;
+      N[3 + k] = 4 * l[i] * l[j];
+      dN[3 + k] = 4 * (l[j] * dl[i] + l[i] * dl[j]);
+    }
+    return;
+  }
+  // shape4q, shape8q: corners at (-1, -1), (1, -1), (1, 1), (-1, 1); midside nodes on the edges
+  // 1-2 (eta = -1), 2-3 (xi = 1), 3-4 (eta = 1), 4-1 (xi = -1)
+  const double cx[4] = { -1, 1, 1, -1 }, ce[4] = { -1, -1, 1, 1 };
+  for (int k = 0; k < 4; ++k)
+  {
+    const double fx = (1 + cx[k] * x) / 2, fe = (1 + ce[k] * e) / 2;
+    if (nodes == 4)
+    {
+      N[k] = fx * fe;
+      dN[k] = Vec3(cx[k] / 2 * fe, fx * ce[k] / 2, 0);
+    }
+    else
+    {
+      const double s = cx[k] * x + ce[k] * e - 1;
+      N[k] = fx * fe * s;
+      dN[k] = Vec3(cx[k] / 2 * fe * s + fx * fe * cx[k], fx * ce[k] / 2 * s + fx * fe * ce[k], 0);
+    }
+  }
+  if (nodes == 8)
+  {
+    N[4] = (1 - x * x) * (1 - e) / 2;
+    dN[4] = Vec3(-x * (1 - e), -(1 - x * x) / 2, 0);
+    N[5] = (1 + x) * (1 - e * e) / 2;
+    dN[5] = Vec3((1 - e * e) / 2, -(1 + x) * e, 0);
+    N[6] = (1 - x * x) * (1 + e) / 2;
+    dN[6] = Vec3(-x * (1 + e), (1 - x * x) / 2, 0);
+    N[7] = (1 - x) * (1 - e * e) / 2;
+    dN[7] = Vec3(-(1 - e * e) / 2, -(1 - x) * e, 0);
+  }
+}
 } // namespace mlsdeform

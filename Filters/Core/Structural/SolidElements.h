@@ -46,4 +46,22 @@ const std::vector<IntegrationPoint>& integrationPoints(SolidElement element);
 
 /// N_a(xi) into N[a] and dN_a/dxi into dN[a], a = 0 .. nodeCount - 1.
 void shapeFunctions(SolidElement element, const Vec3& xi, double* N, Vec3* dN);
+
+/// A face of an element as ccx loads it (*DLOAD Pn; e_c3d.f's ifaceq, ifacet, ifacew): its nodes,
+/// indices into the element's nodes in VTK's order, listed so that dx/dxi x dx/deta points out of
+/// the element; its shape (3, 6, 4 or 8 nodes: triangles on 0 <= xi, eta, xi + eta <= 1, corners
+/// first and the midside node of corners k, k + 1 after; quadrilaterals on [-1, 1]^2, corners
+/// (-1, -1), (1, -1), (1, 1), (-1, 1)) and the solver's integration points on it (xi, eta, weight).
+struct ElementFace
+{
+  std::vector<int> nodes;
+  std::vector<IntegrationPoint> points; // xi[2] unused
+};
+
+/// Face `face` (1 .. 6 for hexahedra, 4 for tetrahedra, 5 for wedges) of the element; false for a
+/// face it does not have.
+bool elementFace(SolidElement element, int face, ElementFace& out);
+
+/// The face's N_a(xi, eta) and their derivatives along xi (dN[a][0]) and eta (dN[a][1]).
+void faceShapeFunctions(std::size_t nodes, const Vec3& xi, double* N, Vec3* dN);
 } // namespace mlsdeform

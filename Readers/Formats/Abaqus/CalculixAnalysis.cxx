@@ -161,6 +161,7 @@ CalculixAnalysis readCalculixAnalysis(const std::string& path)
     }
   }
   a.elementMaterial.assign(static_cast<std::size_t>(elements), -1);
+  a.elementAcceleration.assign(static_cast<std::size_t>(elements), { 0, 0, 0 });
   const auto materialIndex = [&](const DeckKeyword& keyword, const std::string& name) {
     for (std::size_t m = 0; m < a.materials.size(); ++m)
     {
@@ -330,7 +331,72 @@ CalculixAnalysis readCalculixAnalysis(const std::string& path)
     }
     else if (name == "DLOAD")
     {
-      refuse(keyword, "distributed loads (pressure, gravity) are not read yet by the exact shape derivatives");
+      if (step == Step::Sensitivity)
+      {
+        continue;
+      }
+      if (!inStep || step != Step::Static)
+      {
+        refuse(keyword, "outside a static step");
+      }
+      if (keyword.has("AMPLITUDE") || keyword.has("OP") && upper(keyword.get("OP")) != "MOD" && upper(keyword.get("OP")) != "NEW")
+      {
+        refuse(keyword, "only plain values are supported (no AMPLITUDE)");
+      }
+      if (upper(keyword.get("OP")) == "NEW")
+      {
+        std::fill(a.elementAcceleration.begin(), a.elementAcceleration.end(), std::array<double, 3>{ 0, 0, 0 });
+        a.pressures.clear();
+      }
+      for (const std::string& line : keyword.lines)
+      {
+        const std::vector<std::string> fields = fieldsOf(line);
+        const std::string label = fields.size() > 1 ? upper(fields[1]) : std::string();
+        const bool pressure = label.size() == 2 && label[0] == 'P' && label[1] >= '1' && label[1] <= '6';
+        if (label != "GRAV" && !pressure)
+        {
+          refuse(keyword, "\"" + line + "\": " + (label.empty() ? "no load label" : label) +
+            " loads are not supported by the exact shape derivatives (pressure on a face, P1 to P6, and gravity, GRAV, are)");
+        }
+        if (fields.size() < (pressure ? 3u : 6u))
+        {
+          refuse(keyword, "\"" + line + "\": " + (pressure ? "a pressure needs its magnitude" : "GRAV needs the magnitude and the direction's three components"));
+        }
+        std::vector<long> elements;
+        std::int64_t id = 0;
+        try
+        {
+          elements = integer(fields[0], id) ? std::vector<long>{ a.elementIndex(id) } : a.elementSet(fields[0]);
+        }
+        catch (const std::runtime_error& error)
+        {
+          refuse(keyword, error.what());
+        }
+        const double magnitude = number(keyword, fields[2], pressure ? "a pressure" : "a magnitude");
+        if (pressure)
+        {
+          for (long e : elements)
+          {
+            a.pressures.push_back({ e, label[1] - '0', magnitude });
+          }
+          continue;
+        }
+        // ccx normalizes the direction (bodyadd.f): the body force is rho times magnitude times it
+        std::array<double, 3> direction = { number(keyword, fields[3], "a direction"), number(keyword, fields[4], "a direction"),
+          number(keyword, fields[5], "a direction") };
+        const double length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+        if (!(length > 0))
+        {
+          refuse(keyword, "\"" + line + "\": the gravity's direction is zero");
+        }
+        for (long e : elements)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            a.elementAcceleration[e][c] += magnitude * direction[c] / length;
+          }
+        }
+      }
     }
     else if (!harmless(name))
     {

@@ -1,8 +1,9 @@
 // What a CalculiX deck's linear static analysis is, for its exact shape derivatives
 // (vtkCalculixSensitivity, Filters/Core/Structural): the elements' materials (isotropic linear
-// elastic), the supports and the point loads of its static step. Anything the derivatives do not cover is refused
-// naming the keyword: NLGEOM, other procedures, contact, shells, beams, constraints, other
-// materials and loads (pressure and gravity are not read yet), never silently approximated.
+// elastic), the supports, the point loads, the pressures on element faces and the gravity of its
+// static step. Anything the derivatives do not cover is refused naming the keyword: NLGEOM, other
+// procedures, contact, shells, beams, constraints, other materials and loads, never silently
+// approximated.
 #pragma once
 
 #include "Abaqus/AbaqusDeck.h"
@@ -24,6 +25,14 @@ struct NodeDof
   double value;
 };
 
+/// A pressure on face `face` (1 ..) of an element (its index over the blocks): *DLOAD Pn.
+struct ElementPressure
+{
+  long element;
+  int face;
+  double pressure;
+};
+
 /// A *MATERIAL with its *ELASTIC (isotropic) and *DENSITY (0 where the deck has none).
 struct IsotropicMaterial
 {
@@ -40,6 +49,11 @@ struct CalculixAnalysis
   std::vector<int> elementMaterial;
   std::vector<NodeDof> supports; // the static step's *BOUNDARY (the model's and the step's)
   std::vector<NodeDof> loads;    // the static step's *CLOAD
+  /// Per element (over the blocks): the static step's gravity (*DLOAD GRAV), the acceleration's
+  /// magnitude times its direction (the body force is the density times it); zero without.
+  std::vector<std::array<double, 3>> elementAcceleration;
+  /// The static step's pressures (*DLOAD P1 .. P6), in the deck's order.
+  std::vector<ElementPressure> pressures;
   /// The node indices of a node set, the element indices (over the blocks) of an element set: by
   /// name (any case); throw std::runtime_error naming the sets there are when it does not exist.
   std::vector<std::size_t> nodeSet(const std::string& name) const;
