@@ -7,7 +7,8 @@ names regions by (node sets fixed, load, tip: the loaded end away from the fille
 element set part), without the boundary triangles Gmsh adds for the surface groups (ccx
 would take them for plane-stress elements). write_analysis(folder) writes folder/plate.inp: steel,
 the fixed end clamped, a load on the far end, a static step, and, with responses, the sensitivity
-step whose derivatives mlsdeform.readCalculixSensitivity reads. run_ccx(deck) runs ccx on a deck in
+step whose derivatives mlsdeform.readCalculixSensitivity reads (the exact path,
+mlsdeform.exactSensitivity, needs no sensitivity step). run_ccx(deck) runs ccx on a deck in
 its folder and returns what it printed for the load nodes (the displacements, from the .dat file).
 """
 import os
@@ -50,7 +51,7 @@ Plate with holes: clamped at x = 0, pulled down at x = {length}
 fixed, 1, 3
 *CLOAD
 {loads}
-*NODE FILE
+*NODE FILE{precision}
 U
 *NODE PRINT, NSET=load
 U
@@ -141,19 +142,20 @@ def volume_elements_only(deck):
     return text if text.endswith('\n') else text + '\n'
 
 
-def write_analysis(folder, length=10.0, force=-100.0, responses=()):
+def write_analysis(folder, length=10.0, force=-100.0, responses=(), double=False):
     """folder/plate.inp: the static analysis of folder/mesh.inp, force (N, along z) spread evenly over
     the load nodes; responses: (name, definition) pairs of a sensitivity step on the surface nodes,
     e.g. (('MASS', 'MASS'), ('TIP', 'ALL-DISP, tip')): the tip displacement's norm over the tip
     nodes, which the morph keeps fixed (a displacement response over nodes it moves would measure
-    the mesh, not the part)."""
+    the mesh, not the part). double: the displacements in full precision (*NODE FILE, DOUBLE: a
+    binary .frd, which the exact gradient reads and ccx's own sensitivity path cannot)."""
     load = node_set(os.path.join(folder, 'mesh.inp'), 'load')
     loads = '\n'.join(f'{n}, 3, {force / len(load):.9g}' for n in load)
     design = '*DESIGNVARIABLES, TYPE=COORDINATE\nsurface\n' if responses else ''
     cards = ''.join(f'*DESIGNRESPONSE, NAME={name}\n{definition}\n' for name, definition in responses)
     deck = os.path.join(folder, 'plate.inp')
     with open(deck, 'w') as f:
-        f.write(ANALYSIS.format(length=length, loads=loads, design=design,
+        f.write(ANALYSIS.format(length=length, loads=loads, design=design, precision=', DOUBLE' if double else '',
                                 sensitivity=SENSITIVITY.format(responses=cards) if responses else ''))
     return deck
 

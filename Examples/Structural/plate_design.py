@@ -3,7 +3,8 @@ folder on sys.path, or pvpython): the deck read by the Mesh File reader, MLS Def
 and the fillet as handle bodies (their sets), the clamped end and the tip fixed and the plane faces
 slipping in their planes (the plate keeps its thickness and width), design
 variables on them, and for a design: its variant deck written, ccx run on it, the responses and
-their dJ/dp through CalculiX's shape sensitivities (mlsdeform.readCalculixSensitivity).
+their dJ/dp through the exact structural gradient (mlsdeform.exactSensitivity, exact=True) or
+CalculiX's own normal-only shape sensitivities (mlsdeform.readCalculixSensitivity).
 
     design = PlateDesign(source_deck, work_folder)
     J, dJdp, quality = design.evaluate({'x1': 0.2, 'r1': -0.1})
@@ -38,10 +39,15 @@ VARIABLES = {
 }
 
 
-def make_source(folder, size=0.5, holes=((3.0, 1.5, 0.7), (7.0, 2.5, 0.7)), fillet=0.8, responses=RESPONSES):
-    """The plate deck with its sensitivity step (plate.py): folder/plate.inp."""
+# The same responses by the exact path (mlsdeform.exactSensitivity): its response and set.
+EXACT = {'MASS': ('mass', None), 'TIP': ('all-disp', 'tip')}
+
+
+def make_source(folder, size=0.5, holes=((3.0, 1.5, 0.7), (7.0, 2.5, 0.7)), fillet=0.8, responses=RESPONSES, exact=False):
+    """The plate deck (plate.py): folder/plate.inp, with ccx's sensitivity step for the responses,
+    or (exact) without it and with the displacements in full precision for the exact path."""
     plate.mesh_plate(folder, holes=holes, size=size, fillet=fillet)
-    return plate.write_analysis(folder, responses=responses)
+    return plate.write_analysis(folder, responses=() if exact else responses, double=exact)
 
 
 class PlateDesign:
@@ -49,8 +55,10 @@ class PlateDesign:
     one Handle region each, 'holes' both holes as one body (one pivot: a rotation moves them about
     their common centre)."""
 
-    def __init__(self, deck, work, variables=('x1', 'r1', 'x2', 'r2', 'fillet'), responses=RESPONSES, **settings):
-        self.deck, self.work, self.response_cards = deck, work, responses
+    def __init__(self, deck, work, variables=('x1', 'r1', 'x2', 'r2', 'fillet'), responses=RESPONSES, exact=False, **settings):
+        """exact: J and dJ/dX by mlsdeform.exactSensitivity (the deck of make_source(exact=True));
+        otherwise ccx's responses and its own normal-only sensitivities."""
+        self.deck, self.work, self.response_cards, self.exact = deck, work, responses, exact
         self.reader = meshfile.open_mesh(deck)
         bodies = []
         for name in variables:
@@ -84,13 +92,21 @@ class PlateDesign:
         plate.run_ccx(deck)
         self.runs += 1
         frd = deck[:-4] + '.frd'
+        if self.exact:
+            self.exact_gradients = {}
+            J = {}
+            for r, _ in self.response_cards:
+                response, subset = EXACT[r]
+                J[r], self.exact_gradients[r] = mlsdeform.exactSensitivity(self.deform, deck, frd, response, set=subset)
+                self.runs += 1 if response == 'all-disp' else 0  # its adjoint run
+            return J, frd, quality
         return {r: mlsdeform.readCalculixObjective(frd, r) for r, _ in self.response_cards}, frd, quality
 
     def evaluate(self, values, name='design'):
         """({response: J}, {response: {variable: dJ/dp}}, quality) of a design."""
         J, frd, quality = self.responses(values, name)
-        gradients = {r: self.dvs.totalSensitivity(mlsdeform.readCalculixSensitivity(self.deform, frd, r)) for r, _ in self.response_cards}
-        return J, gradients, quality
+        dJdX = self.exact_gradients if self.exact else {r: mlsdeform.readCalculixSensitivity(self.deform, frd, r) for r, _ in self.response_cards}
+        return J, {r: self.dvs.totalSensitivity(dJdX[r]) for r, _ in self.response_cards}, quality
 
 
 def validate(design, steps, at=None):
@@ -120,7 +136,7 @@ def table(rows):
     largest = {}
     for _, response, _, differences in rows:
         largest[response] = max(largest.get(response, 0.0), abs(differences[steps[-1]]))
-    lines = ['| variable | response | dJ/dp (ccx chained) | ' + ' | '.join('central difference, h = %g' % h for h in steps) +
+    lines = ['| variable | response | dJ/dp (chained) | ' + ' | '.join('central difference, h = %g' % h for h in steps) +
              ' | gap | gap / largest |', '|---|---|---|' + '---|' * len(steps) + '---|---|']
     for name, response, chain, differences in rows:
         fd = differences[steps[-1]]
