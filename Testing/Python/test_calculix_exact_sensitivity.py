@@ -99,4 +99,7 @@ with open(unsupported, 'w') as f:
     f.write(text.replace('*STATIC\n', '*STATIC\n*DLOAD\npart, BX, 2.\n', 1))
 raises(lambda: mlsdeform.exactSensitivity(design.deform, unsupported, frd, 'compliance'), 'BX loads are not supported',
        'a body force other than gravity is refused by name')
+with open(unsupported, 'w') as f:  # shells: the deck's first *STEP with a shell element and its section before it
+    f.write(text.replace('*STEP\n', '*ELEMENT, TYPE=S3, ELSET=skin\n999999, 1, 2, 3\n*SHELL SECTION, ELSET=skin, MATERIAL=STEEL\n0.1\n*STEP\n', 1))
+raises(lambda: mlsdeform.exactSensitivity(design.deform, unsupported, frd, 'compliance'), '*SHELL SECTION', 'shells are refused by name')
 finish()

@@ -400,7 +400,7 @@ CalculixAnalysis readCalculixAnalysis(const std::string& path)
     }
     else if (!harmless(name))
     {
-      refuse(keyword, "not supported by the exact shape derivatives (linear static analyses of isotropic solids with point loads)");
+      refuse(keyword, "not supported by the exact shape derivatives (linear static analyses of isotropic solids under point loads, pressure and gravity)");
     }
   }
   if (!staticRead)
