@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The exact structural shape gradient against a ccx solve (issue 65, point 6): on the plate of
-# run-deck-benchmark.sh (C3D10, --nodes 1M: about 1M nodes, or small), the static step's
+# run-deck-benchmark.sh (C3D10, --nodes 1M: about 1M nodes, 300k, or small), the static step's
 # displacements written in full precision (*NODE FILE, DOUBLE), one ccx run timed (OMP_NUM_THREADS 2,
 # its solver's threads), then dJ/dX of the compliance at every node by vtkCalculixSensitivity (the
 # deck and the .frd read, every element's derivative) with OMP_NUM_THREADS 1 and 2 (--threads),
 # medians of --runs runs (default 3). Prints the machine, a table, the target (dJ/dX within the time
 # of the ccx solve on 2 threads) met or not, and a JSON line per thread count (STRUCTSENS ...).
 #
-# Usage: Testing/Benchmarks/run-structural-sensitivity-benchmark.sh [--nodes small|1M] [--runs N] [--threads "1 2"]
+# Usage: Testing/Benchmarks/run-structural-sensitivity-benchmark.sh [--nodes small|300k|1M] [--runs N] [--threads "1 2"]
 # Environment: MLSDEFORM_BUILD (default build/), MLSDEFORM_PLUGIN (the plugin .so).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
@@ -16,11 +16,11 @@ runs=3
 threads="1 2"
 while (($#)); do
   case "$1" in
-    --nodes) size=${2:?--nodes small|1M}; shift 2 ;;
+    --nodes) size=${2:?--nodes small|300k|1M}; shift 2 ;;
     --runs) runs=${2:?--runs N}; shift 2 ;;
     --threads) threads=${2:?--threads LIST}; shift 2 ;;
     -h|--help) sed -n '2,/^set -e/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
-    *) echo "unknown argument $1 (--nodes small|1M, --runs N, --threads LIST)" >&2; exit 2 ;;
+    *) echo "unknown argument $1 (--nodes small|300k|1M, --runs N, --threads LIST)" >&2; exit 2 ;;
   esac
 done
 build=${MLSDEFORM_BUILD:-$root/build}

@@ -126,40 +126,36 @@ std::vector<long> CalculixAnalysis::elementSet(const std::string& name) const
 
 std::size_t CalculixAnalysis::nodeIndex(std::int64_t id) const
 {
-  const auto found = this->IndexOfNode.find(id);
-  if (found == this->IndexOfNode.end())
+  const std::size_t found = this->IndexOfNode->find(id);
+  if (found == IdIndex::none)
   {
     throw std::runtime_error("the deck has no node " + std::to_string(id));
   }
-  return found->second;
+  return found;
 }
 
 long CalculixAnalysis::elementIndex(std::int64_t id) const
 {
-  const auto found = this->IndexOfElement.find(id);
-  if (found == this->IndexOfElement.end())
+  const std::size_t found = this->IndexOfElement->find(id);
+  if (found == IdIndex::none)
   {
     throw std::runtime_error("the deck has no element " + std::to_string(id));
   }
-  return found->second;
+  return static_cast<long>(found);
 }
 
 CalculixAnalysis readCalculixAnalysis(const std::string& path)
 {
   CalculixAnalysis a;
   a.deck = readDeck(path);
-  for (std::size_t n = 0; n < a.deck.mesh.nodeIds.size(); ++n)
-  {
-    a.IndexOfNode.emplace(a.deck.mesh.nodeIds[n], n);
-  }
-  long elements = 0;
+  a.IndexOfNode.emplace(a.deck.mesh.nodeIds);
+  std::vector<std::int64_t> elementIds;
   for (const ElementBlock& block : a.deck.mesh.blocks)
   {
-    for (std::int64_t id : block.ids)
-    {
-      a.IndexOfElement.emplace(id, elements++);
-    }
+    elementIds.insert(elementIds.end(), block.ids.begin(), block.ids.end());
   }
+  a.IndexOfElement.emplace(elementIds);
+  const long elements = static_cast<long>(elementIds.size());
   a.elementMaterial.assign(static_cast<std::size_t>(elements), -1);
   a.elementAcceleration.assign(static_cast<std::size_t>(elements), { 0, 0, 0 });
   const auto materialIndex = [&](const DeckKeyword& keyword, const std::string& name) {
@@ -411,15 +407,7 @@ CalculixAnalysis readCalculixAnalysis(const std::string& path)
   {
     if (a.elementMaterial[e] < 0)
     {
-      std::int64_t id = 0;
-      for (const auto& [elementId, index] : a.IndexOfElement)
-      {
-        if (index == e)
-        {
-          id = elementId;
-        }
-      }
-      throw std::runtime_error(path + ": element " + std::to_string(id) + " has no *SOLID SECTION");
+      throw std::runtime_error(path + ": element " + std::to_string(elementIds[e]) + " has no *SOLID SECTION");
     }
   }
   for (const IsotropicMaterial& m : a.materials)

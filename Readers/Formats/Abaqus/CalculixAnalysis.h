@@ -7,9 +7,11 @@
 #pragma once
 
 #include "Abaqus/AbaqusDeck.h"
+#include "Common/IdIndex.h"
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,8 +66,7 @@ struct CalculixAnalysis
   /// The element's index over the blocks; throws std::runtime_error when there is none.
   long elementIndex(std::int64_t id) const;
 
-  std::map<std::int64_t, std::size_t> IndexOfNode;
-  std::map<std::int64_t, long> IndexOfElement;
+  std::optional<IdIndex> IndexOfNode, IndexOfElement; // of deck.mesh.nodeIds, of the blocks' element ids
 };
 
 /// Reads the deck and its analysis. Throws FileError (reading) or std::runtime_error naming the

@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # The structural benchmarks' plate deck (Examples/Structural/plate.py, two holes, C3D10) of the given
 # size, meshed by Gmsh once and cached in BUILD/deck-benchmark/plate-SIZE (small: mesh size 0.3,
-# seconds; 1M: mesh size 0.062, about 1M nodes, a few minutes). Prints the deck's path; what it does
-# goes to stderr. Usage: cached-plate.sh small|1M BUILD
+# seconds; 300k: mesh size 0.093; 1M: mesh size 0.062, about 1M nodes, a few minutes). Prints the
+# deck's path; what it does goes to stderr. Usage: cached-plate.sh small|300k|1M BUILD
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 size=${1:?small or 1M}
 build=${2:?the build folder}
 case "$size" in
   small) mesh_size=0.3 ;;
+  300k) mesh_size=0.093 ;;
   1M) mesh_size=0.062 ;;
-  *) echo "--nodes small or 1M, not $size" >&2; exit 2 ;;
+  *) echo "--nodes small, 300k or 1M, not $size" >&2; exit 2 ;;
 esac
 folder=$build/deck-benchmark/plate-$size
 if [ ! -f "$folder/plate.inp" ]; then
