@@ -190,4 +190,33 @@ for kind in KINDS:
     deck, X = write_deck(os.path.join(work, kind + '-stress.inp'), kind)
     J, dJdX = response(deck, ccx(deck), 5, gradient=True)
     check_derivative(kind, kind + '-stress', kind, 'tip', J, dJdX, X, lambda deck, frd: response(deck, frd, 5)[0])
+# Bad input: a result of another mesh, of another shape, an element set that does not exist, a
+# mass without densities (it does not depend on the design)
+def error_of(call):
+    try:
+        call()
+    except RuntimeError as e:
+        print('expected error: %s' % e)
+        return str(e)
+    return ''
+
+
+tet, X = write_deck(os.path.join(work, 'bad-tet.inp'), 'C3D4')
+quadratic, _ = write_deck(os.path.join(work, 'bad-quadratic.inp'), 'C3D10')
+moved, _ = write_deck(os.path.join(work, 'bad-moved.inp'), 'C3D4', np.ones(X.shape), 0.01)
+tet_frd, quadratic_frd = ccx(tet), ccx(quadratic)
+check('another mesh' in error_of(lambda: response(tet, quadratic_frd)), 'a result of another mesh is refused')
+check('another shape' in error_of(lambda: response(moved, tet_frd)), 'a result of another shape is refused')
+s = _load_wrapping(readers=True).vtkCalculixSensitivity()
+s.SetDeckFileName(tet)
+s.SetResponse(1)
+s.SetResponseSet('nowhere')
+check(not s.Compute() and 'no element set nowhere' in s.GetLastError(), 'an element set that does not exist is named')
+with open(tet) as f:
+    text = f.read()
+with open(os.path.join(work, 'bad-density.inp'), 'w') as f:
+    f.write(text.replace('*DENSITY\n7.85e-9\n', ''))
+s.SetDeckFileName(os.path.join(work, 'bad-density.inp'))
+s.SetResponseSet('')
+check(not s.Compute() and 'no *DENSITY' in s.GetLastError(), 'a mass without densities does not depend on the design: said so')
 finish()
