@@ -295,6 +295,36 @@ void requireConsistent(const SolidMesh& mesh, std::size_t nodeCount, std::size_t
   }
 }
 
+// body(k) for k = 0 .. count - 1 in parallel; a failure rethrown after the loop, the first by k,
+// naming element elementOf(k) (an exception may not leave an OpenMP loop)
+template <typename ElementOf, typename Body>
+void forEachElement(long count, ElementOf elementOf, Body body)
+{
+  long failed = count;
+  std::string message;
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (long k = 0; k < count; ++k)
+  {
+    try
+    {
+      body(k);
+    }
+    catch (const std::exception& error)
+    {
+#pragma omp critical(ForEachElementFailure)
+      if (k < failed)
+      {
+        failed = k;
+        message = error.what();
+      }
+    }
+  }
+  if (failed < count)
+  {
+    throw InvalidInputException("element " + std::to_string(elementOf(failed)) + ": " + message);
+  }
+}
+
 // sum_e value(e, X_e, out_e) over the mesh's elements with their contributions to the nodes'
 // gradient out_e (one entry per node of the element, zeroed), the elements in parallel into one
 // buffer, then summed node by node in element order (the same for any thread count); a failing
@@ -306,29 +336,8 @@ double meshSum(const SolidMesh& mesh, std::size_t nodeCount, std::size_t materia
   requireConsistent(mesh, nodeCount, materialCount);
   PointList contributions(gradient ? mesh.nodes.size() : 0, Vec3::Zero());
   std::vector<double> values(static_cast<std::size_t>(count), 0.0);
-  long failed = count;
-  std::string message;
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (long e = 0; e < count; ++e)
-  {
-    try
-    {
-      values[e] = element(e, gradient ? contributions.data() + mesh.start[e] : nullptr);
-    }
-    catch (const std::exception& error)
-    {
-#pragma omp critical(MeshSumFailure)
-      if (e < failed)
-      {
-        failed = e;
-        message = error.what();
-      }
-    }
-  }
-  if (failed < count)
-  {
-    throw InvalidInputException("element " + std::to_string(failed) + ": " + message);
-  }
+  forEachElement(count, [](long e) { return e; },
+    [&](long e) { values[e] = element(e, gradient ? contributions.data() + mesh.start[e] : nullptr); });
   if (gradient)
   {
     gradient->assign(nodeCount, Vec3::Zero());
@@ -424,33 +433,13 @@ double meshStressAggregate(const SolidMesh& mesh, const PointList& X, const Poin
   }
   // the stresses, element by element (in parallel), then m and the sum in order
   std::vector<std::vector<double>> stress(static_cast<std::size_t>(count));
-  long failed = count;
-  std::string message;
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (long k = 0; k < count; ++k)
-  {
-    try
-    {
-      const long e = elements[k];
-      std::array<Vec3, MaxNodes> x, ue;
-      gather(mesh, e, X, x);
-      gather(mesh, e, u, ue);
-      stress[k] = elementVonMises(mesh.type[e], x.data(), ue.data(), materials[mesh.material[e]]);
-    }
-    catch (const std::exception& error)
-    {
-#pragma omp critical(StressAggregateFailure)
-      if (k < failed)
-      {
-        failed = k;
-        message = error.what();
-      }
-    }
-  }
-  if (failed < count)
-  {
-    throw InvalidInputException("element " + std::to_string(elements[failed]) + ": " + message);
-  }
+  forEachElement(count, [&](long k) { return elements[k]; }, [&](long k) {
+    const long e = elements[k];
+    std::array<Vec3, MaxNodes> x, ue;
+    gather(mesh, e, X, x);
+    gather(mesh, e, u, ue);
+    stress[k] = elementVonMises(mesh.type[e], x.data(), ue.data(), materials[mesh.material[e]]);
+  });
   double largest = 0;
   for (const auto& values : stress)
   {
