@@ -251,18 +251,9 @@ void splitFields(std::string_view line, std::vector<std::string_view>& fields)
   }
 }
 
-// A keyword line: its keyword (upper case, without "*") and its parameters (keys upper case).
-struct Keyword
-{
-  std::string name;
-  std::map<std::string, std::string> parameters;
-  bool has(const char* key) const { return this->parameters.count(key) != 0; }
-  std::string get(const char* key) const
-  {
-    const auto found = this->parameters.find(key);
-    return found == this->parameters.end() ? std::string() : found->second;
-  }
-};
+// A keyword line: its keyword (upper case, without "*") and its parameters (keys upper case); the
+// analysis keeps those the mesh does not need, with their data lines and where they stand.
+using Keyword = DeckKeyword;
 
 Keyword parseKeyword(std::string_view text)
 {
@@ -546,8 +537,8 @@ private:
       keyword.name != "ELEMENT" && keyword.name != "NODE" && keyword.name != "HEADING")
     {
       // kept for the analysis (Abaqus/CalculixAnalysis.h): a material, a section, a step's loads
-      DeckKeyword kept{ keyword.name, { keyword.parameters.begin(), keyword.parameters.end() }, {}, this->where() };
-      this->Out.analysis.push_back(std::move(kept));
+      this->Out.analysis.push_back(keyword);
+      this->Out.analysis.back().where = this->where();
       this->Analysis = true;
     }
   }
@@ -1092,26 +1083,13 @@ private:
 
 std::string DeckKeyword::get(const std::string& key) const
 {
-  for (const auto& [name, value] : this->parameters)
-  {
-    if (name == key)
-    {
-      return value;
-    }
-  }
-  return std::string();
+  const auto found = this->parameters.find(key);
+  return found == this->parameters.end() ? std::string() : found->second;
 }
 
 bool DeckKeyword::has(const std::string& key) const
 {
-  for (const auto& parameter : this->parameters)
-  {
-    if (parameter.first == key)
-    {
-      return true;
-    }
-  }
-  return false;
+  return this->parameters.count(key) != 0;
 }
 
 Deck readDeck(const std::string& path)

@@ -14,6 +14,7 @@
 #include "SourceFile.h"
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,7 @@ struct NodeSlot
 struct DeckKeyword
 {
   std::string name;
-  std::vector<std::pair<std::string, std::string>> parameters;
+  std::map<std::string, std::string> parameters;
   std::vector<std::string> lines;
   std::string where;
   /// The parameter's value ("" when it has none or is not there).
