@@ -1,5 +1,6 @@
 """The design-of-experiments benchmark's table (run-doe-benchmark.sh): MLS Deform's batches (one per
-thread count) beside moveMesh's timed variants, against issue 30's targets.
+thread count) beside moveMesh's timed variants, against issue 64's targets (variants per hour by
+thread count, the first variant within 0.6x moveMesh) and issue 30's (disk, memory).
 Usage: python3 doe_report.py RUN_FOLDER "THREADS" MOVEMESH"""
 import json
 import os
@@ -8,7 +9,7 @@ import statistics
 import sys
 
 run, threads, movemesh = sys.argv[1], sys.argv[2].split(), int(sys.argv[3])
-TARGET_PER_HOUR, TARGET_DISK = 5000, 1.2
+TARGET_PER_HOUR, TARGET_DISK = {'1': 5000, '2': 10000}, 1.2  # per thread count; more threads: the 2 threads' target
 
 
 def elapsed(path):
@@ -95,9 +96,10 @@ if os.path.exists(tuned):
 for t, r in zip(threads, T):
     first = r['first_s'] / mm
     memory = r['rss_mib'] / figures['moveMesh']['rss_mib']
+    per_hour = TARGET_PER_HOUR.get(t, TARGET_PER_HOUR['2'])
     print('targets, %s thread(s): %d variants/hour (target %d: %s); a variant %.2fx its points file (target <= %.1f: %s); '
           'the first variant %.2fx moveMesh (target <= 0.6: %s); memory %.2fx moveMesh (target <= 1.5: %s)' % (
-              t, r['per_hour'], TARGET_PER_HOUR, 'met' if r['per_hour'] >= TARGET_PER_HOUR else 'NOT met', r['disk_ratio'],
+              t, r['per_hour'], per_hour, 'met' if r['per_hour'] >= per_hour else 'NOT met', r['disk_ratio'],
               TARGET_DISK, 'met' if r['disk_ratio'] <= TARGET_DISK else 'NOT met', first, 'met' if first <= 0.6 else 'NOT met',
               memory, 'met' if memory <= 1.5 else 'NOT met'))
 print('DOEBENCHMARK ' + json.dumps(figures))
