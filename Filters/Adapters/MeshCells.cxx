@@ -244,32 +244,17 @@ int cellDimension(int type)
   return known[type] - 1;
 }
 
-mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group)
+std::vector<BoundaryFaces> boundaryFaces(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group)
 {
-  mlsdeform::SamplingDomain domain;
-  domain.points = points(sets);
-  int offset = 0;
-  for (vtkPointSet* set : sets)
-  {
-    simplices<3>(set, 2, nullptr, offset, domain.triangles);
-    simplices<4>(set, 3, nullptr, offset, domain.tetrahedra);
-    offset += static_cast<int>(set->GetNumberOfPoints());
-  }
-  if (group.any(!domain.triangles.empty()) || !group.any(!domain.tetrahedra.empty()))
-  {
-    return domain;
-  }
-  // A volume mesh without surface cells: its boundary faces are the surface. Split over
-  // processes, a piece's boundary also holds the faces it shares with another piece: those are
-  // found by their vertices' positions on two processes, and left out.
-  std::vector<vtkSmartPointer<vtkPolyData>> boundaries;
+  // Split over processes, a piece's boundary also holds the faces it shares with another piece:
+  // those are found by their vertices' positions on two processes, and left out.
+  std::vector<BoundaryFaces> boundaries(sets.size());
   std::vector<std::int64_t> keys;
-  for (vtkPointSet* set : sets)
+  for (std::size_t s = 0; s < sets.size(); ++s)
   {
-    auto* grid = vtkUnstructuredGrid::SafeDownCast(set);
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(sets[s]);
     if (!grid)
     {
-      boundaries.emplace_back();
       continue;
     }
     vtkNew<vtkGeometryFilter> boundary;
@@ -278,8 +263,8 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, 
     boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
     boundary->MergingOff();
     boundary->Update();
-    boundaries.emplace_back(boundary->GetOutput());
-    vtkPolyData* faces = boundaries.back();
+    boundaries[s].faces = boundary->GetOutput();
+    vtkPolyData* faces = boundaries[s].faces;
     vtkNew<vtkIdList> ids;
     for (vtkIdType f = 0; group.size() > 1 && f < faces->GetNumberOfCells(); ++f)
     {
@@ -297,33 +282,58 @@ mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, 
   std::vector<std::int64_t> shared = group.size() > 1 ? group.gather(keys) : std::vector<std::int64_t>();
   std::sort(shared.begin(), shared.end());
   std::size_t face = 0;
+  for (BoundaryFaces& b : boundaries)
+  {
+    if (!b.faces)
+    {
+      continue;
+    }
+    if (group.size() > 1)
+    {
+      vtkNew<vtkCellArray> outer;
+      vtkNew<vtkIdList> facePoints;
+      for (vtkIdType f = 0; f < b.faces->GetNumberOfCells(); ++f, ++face)
+      {
+        const auto range = std::equal_range(shared.begin(), shared.end(), keys[face]);
+        if (range.second - range.first < 2)
+        {
+          b.faces->GetCellPoints(f, facePoints);
+          outer->InsertNextCell(facePoints);
+        }
+      }
+      b.faces->SetPolys(outer); // the geometry filter's output holds polygons only
+    }
+    // The faces refer to renumbered points with their original ids in an array, or (the fast
+    // path for unstructured grids) to the grid's own points.
+    auto* ids = vtkIdTypeArray::SafeDownCast(b.faces->GetPointData()->GetArray("MLSOriginalPointIds"));
+    b.originalIds = ids ? ids->GetPointer(0) : nullptr;
+  }
+  return boundaries;
+}
+
+mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group)
+{
+  mlsdeform::SamplingDomain domain;
+  domain.points = points(sets);
+  int offset = 0;
+  for (vtkPointSet* set : sets)
+  {
+    simplices<3>(set, 2, nullptr, offset, domain.triangles);
+    simplices<4>(set, 3, nullptr, offset, domain.tetrahedra);
+    offset += static_cast<int>(set->GetNumberOfPoints());
+  }
+  if (group.any(!domain.triangles.empty()) || !group.any(!domain.tetrahedra.empty()))
+  {
+    return domain;
+  }
+  // A volume mesh without surface cells: its boundary faces are the surface.
+  const std::vector<BoundaryFaces> boundaries = boundaryFaces(sets, group);
   offset = 0;
   for (std::size_t s = 0; s < sets.size(); ++s)
   {
-    if (vtkPolyData* faces = boundaries[s])
+    if (const BoundaryFaces& b = boundaries[s]; b.faces && (b.originalIds || b.faces->GetNumberOfPoints() == sets[s]->GetNumberOfPoints()))
     {
-      // The faces refer to renumbered points with their original ids in an array, or (the fast
-      // path for unstructured grids) to the grid's own points.
-      auto* ids = vtkIdTypeArray::SafeDownCast(faces->GetPointData()->GetArray("MLSOriginalPointIds"));
-      if (group.size() > 1)
-      {
-        vtkNew<vtkCellArray> outer;
-        vtkNew<vtkIdList> facePoints;
-        for (vtkIdType f = 0; f < faces->GetNumberOfCells(); ++f, ++face)
-        {
-          const auto range = std::equal_range(shared.begin(), shared.end(), keys[face]);
-          if (range.second - range.first < 2)
-          {
-            faces->GetCellPoints(f, facePoints);
-            outer->InsertNextCell(facePoints);
-          }
-        }
-        faces->SetPolys(outer); // the geometry filter's output holds polygons only
-      }
-      if (ids || faces->GetNumberOfPoints() == sets[s]->GetNumberOfPoints())
-      {
-        simplices<3>(faces, 2, ids ? ids->GetPointer(0) : nullptr, offset, domain.triangles);
-      }
+      simplices<3>(b.faces, 2, b.originalIds, offset, domain.triangles);
     }
     offset += static_cast<int>(sets[s]->GetNumberOfPoints());
   }

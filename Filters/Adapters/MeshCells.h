@@ -4,6 +4,7 @@
 
 #include "Common/Collective.h"
 #include "Common/SamplingDomain.h"
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 #include <vtkUnstructuredGrid.h>
@@ -20,6 +21,17 @@ namespace mlsvtk
 /// processes of group), the boundary faces of the 3D cells are the surface, without the faces
 /// that pieces on different processes share.
 mlsdeform::SamplingDomain samplingDomain(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group = mlsdeform::serial());
+
+/// A volume set's boundary faces as polygons (vtkGeometryFilter: each face as its cell lists it,
+/// its normal out of the mesh), without the faces that pieces on different processes share;
+/// originalIds maps their points to the set's (nullptr: the set's own ids). Null faces for a set
+/// that is not an unstructured grid.
+struct BoundaryFaces
+{
+  vtkSmartPointer<vtkPolyData> faces;
+  const vtkIdType* originalIds = nullptr;
+};
+std::vector<BoundaryFaces> boundaryFaces(const std::vector<vtkPointSet*>& sets, const mlsdeform::Collective& group);
 
 /// The dimension of a VTK cell type (0 for an unknown type). vtkCellTypes::GetDimension builds a
 /// cell of the type on every call (for a snappyHexMesh cell, a polyhedron object); this asks it
