@@ -3,6 +3,7 @@
 #include "Common/BoundingBox.h"
 #include "Adapters/BlockSelection.h"
 #include "Adapters/FailurePolicy.h"
+#include "Adapters/ControlPoints.h"
 #include "Adapters/DesignVariables.h"
 #include "Adapters/HandleMotion.h"
 #include "Common/KdTree.h"
@@ -57,7 +58,8 @@ static_assert(vtkConstraintRegion::Handle == mlsvtk::roles::Handle && vtkConstra
   "vtkConstraintRegion::Roles follows mlsvtk::roles");
 
 static_assert(vtkConstraintRegion::TranslateVariable == mlsvtk::Translate && vtkConstraintRegion::RotateVariable == mlsvtk::Rotate &&
-    vtkConstraintRegion::ScaleVariable == mlsvtk::Scale && std::size(mlsvtk::DesignKindNames) == 3,
+    vtkConstraintRegion::ScaleVariable == mlsvtk::Scale && vtkConstraintRegion::LocalVariable == mlsvtk::Local &&
+    std::size(mlsvtk::DesignKindNames) == 4,
   "vtkConstraintRegion::DesignVariableKinds follows mlsvtk::DesignKind");
 
 namespace
@@ -407,6 +409,12 @@ struct vtkConstraintRegion::Selection
 struct vtkConstraintRegion::DesignVariableList
 {
   std::vector<mlsvtk::DesignVariable> variables;
+  std::vector<mlsvtk::ControlPoint> controls;
+  // the positions the controls hold, kept while the selection and the controls stay
+  std::vector<mlsvtk::ControlPoint> heldControls;
+  int heldSelection = -1;
+  mlsvtk::HeldPositions held;
+  vtkSmartPointer<vtkPolyData> heldCloud;
 };
 
 vtkConstraintRegion::vtkConstraintRegion()
@@ -455,6 +463,92 @@ void vtkConstraintRegion::RemoveAllDesignVariables()
     this->Designs->variables.clear();
     this->Modified();
   }
+}
+
+void vtkConstraintRegion::AddControlPoint(
+  const char* variable, double px, double py, double pz, double dx, double dy, double dz, double ax, double ay, double az)
+{
+  mlsvtk::ControlPoint control;
+  control.variable = variable ? variable : "";
+  control.position = mlsdeform::Vec3(px, py, pz);
+  control.direction = mlsdeform::Vec3(dx, dy, dz);
+  control.lineAxis = mlsdeform::Vec3(ax, ay, az);
+  this->Designs->controls.push_back(control); // checked by RequestData
+  this->Modified();
+}
+
+void vtkConstraintRegion::RemoveAllControlPoints()
+{
+  if (!this->Designs->controls.empty())
+  {
+    this->Designs->controls.clear();
+    this->Modified();
+  }
+}
+
+int vtkConstraintRegion::GetNumberOfControlPoints()
+{
+  return static_cast<int>(this->Designs->controls.size());
+}
+
+const char* vtkConstraintRegion::GetControlPointVariable(int i)
+{
+  return i >= 0 && i < this->GetNumberOfControlPoints() ? this->Designs->controls[i].variable.c_str() : nullptr;
+}
+
+void vtkConstraintRegion::GetControlPoint(int i, double row[9])
+{
+  if (i < 0 || i >= this->GetNumberOfControlPoints())
+  {
+    return;
+  }
+  const mlsvtk::ControlPoint& c = this->Designs->controls[i];
+  for (int k = 0; k < 3; ++k)
+  {
+    row[k] = c.position[k];
+    row[3 + k] = c.direction[k];
+    row[6 + k] = c.lineAxis[k];
+  }
+}
+
+bool vtkConstraintRegion::SpreadControlPoints(int count, double ax, double ay, double az, vtkDoubleArray* out)
+{
+  const mlsvtk::ProcessCollective group;
+  this->ControlPointError.clear();
+  try
+  {
+    if (!out)
+    {
+      throw mlsdeform::InvalidInputException("SpreadControlPoints needs an output array");
+    }
+    const mlsdeform::Vec3 axis(ax, ay, az);
+    if (!axis.allFinite())
+    {
+      throw mlsdeform::InvalidInputException("the line axis must be finite");
+    }
+    if (!group.any(this->Selected->valid))
+    {
+      throw mlsdeform::InvalidInputException("the region has no selection yet: update it first");
+    }
+    const mlsdeform::PointList picked = mlsvtk::spreadControlPoints(this->Selected->positions, count, axis, group);
+    out->SetNumberOfComponents(3);
+    out->SetNumberOfTuples(static_cast<vtkIdType>(picked.size()));
+    for (std::size_t i = 0; i < picked.size(); ++i)
+    {
+      out->SetTuple(static_cast<vtkIdType>(i), picked[i].data());
+    }
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    this->ControlPointError = e.what();
+    return false;
+  }
+}
+
+const char* vtkConstraintRegion::GetControlPointError()
+{
+  return this->ControlPointError.c_str();
 }
 
 void vtkConstraintRegion::AddBlock(const char* entry)
@@ -607,7 +701,7 @@ int vtkConstraintRegion::RequestData(vtkInformation*, vtkInformationVector** inp
         vtkWarningMacro(<< GetRoleName(role) << " region selects no point: " << why << ".");
       }
     }
-    this->WriteOutput(output, role, in);
+    this->WriteOutput(output, role, in, group);
   }
   catch (const std::exception& e)
   {
@@ -700,6 +794,7 @@ int vtkConstraintRegion::CheckedRole(const Inputs& in, const mlsdeform::Collecti
       GetRoleName(role) + " (remove its design variables or make it a Handle)");
   }
   mlsvtk::checkDesignVariables(this->Designs->variables);
+  mlsvtk::checkControlPoints(this->Designs->controls, this->Designs->variables);
   // a shape constraint per cell: the constraint roles that keep shapes, not places (measuresPlaces)
   const auto perCell = [](int r) { return mlsvtk::isConstraint(r) && !mlsdeform::measuresPlaces(*mlsvtk::regionRole(r).constraint); };
   if (this->CellSets && !perCell(role))
@@ -804,10 +899,19 @@ void vtkConstraintRegion::UpdateSelection(const Inputs& in, const mlsdeform::Col
   }
 }
 
-void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role, const Inputs& in)
+void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role, const Inputs& in, const mlsdeform::Collective& group)
 {
   Selection& selection = *this->Selected;
-  const mlsdeform::PointList& selected = selection.positions;
+  DesignVariableList& designs = *this->Designs;
+  const bool controlled = !designs.controls.empty(); // then only the control points are held
+  if (controlled && (designs.heldSelection != this->NumberOfSelections || !(designs.heldControls == designs.controls)))
+  {
+    designs.held = mlsvtk::holdControlPoints(designs.controls, selection.positions, in.sets, group);
+    designs.heldCloud = mlsvtk::pointCloud(designs.held.positions, {});
+    designs.heldControls = designs.controls;
+    designs.heldSelection = this->NumberOfSelections;
+  }
+  const mlsdeform::PointList& selected = controlled ? designs.held.positions : selection.positions;
   // Prescribed displacement of a handle: scale, rotate, translate about the pivot.
   const mlsdeform::Vec3 pivot = this->UseCentroid && selection.selectedAnywhere ? selection.centroid : mlsdeform::Vec3(this->Center);
   std::copy(pivot.data(), pivot.data() + 3, this->Pivot);
@@ -818,7 +922,7 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role, const Input
   const std::vector<mlsvtk::DesignVariable>& variables = this->Designs->variables;
   const mlsvtk::DesignedMotion map(motion, pivot, variables);
 
-  output->ShallowCopy(selection.cloud);
+  output->ShallowCopy(controlled ? designs.heldCloud : selection.cloud);
   if (!selection.displacement || selection.displacement->GetReferenceCount() > 1)
   {
     selection.displacement = vtkSmartPointer<vtkDoubleArray>::New(); // the last one is still in use downstream
@@ -833,19 +937,45 @@ void vtkConstraintRegion::WriteOutput(vtkPolyData* output, int role, const Input
   derivatives->SetNumberOfComponents(3 * static_cast<int>(std::max<std::size_t>(1, variables.size())));
   derivatives->SetNumberOfTuples(variables.empty() ? 0 : static_cast<vtkIdType>(selected.size()));
   const bool moves = role == Handle;
+  // the Local variables' columns: x' = x + motion(x) + p_v a at a control point of v (ControlPoints.h)
+  std::vector<int> column(designs.controls.size());
+  for (std::size_t c = 0; c < designs.controls.size(); ++c)
+  {
+    column[c] = static_cast<int>(std::find_if(variables.begin(), variables.end(),
+      [&](const mlsvtk::DesignVariable& v) { return v.name == designs.controls[c].variable; }) - variables.begin());
+  }
+  vtkNew<vtkDoubleArray> directions;
+  directions->SetName(mlsvtk::fields::ControlDirection);
+  directions->SetNumberOfComponents(3);
   for (std::size_t i = 0; i < selected.size(); ++i)
   {
+    double* derivative = variables.empty() ? nullptr : derivatives->GetPointer(3 * variables.size() * i);
     if (moves)
     {
-      map.displace(selected[i], d + 3 * i, variables.empty() ? nullptr : derivatives->GetPointer(3 * variables.size() * i));
+      map.displace(selected[i], d + 3 * i, derivative);
     }
     else
     {
       std::fill_n(d + 3 * i, 3, 0.0);
     }
+    if (controlled)
+    {
+      const int c = designs.held.control[i];
+      const mlsdeform::Vec3& a = designs.held.directions[c];
+      for (int k = 0; k < 3; ++k)
+      {
+        d[3 * i + k] += variables[column[c]].value * a[k];
+        derivative[3 * column[c] + k] = a[k];
+      }
+      directions->InsertNextTuple(a.data());
+    }
   }
   displacement->Modified();
   output->GetPointData()->AddArray(displacement);
+  if (controlled)
+  {
+    output->GetPointData()->AddArray(directions);
+  }
 
   vtkNew<vtkIntArray> roleArray;
   roleArray->SetName(mlsvtk::fields::Role);
@@ -937,5 +1067,6 @@ void vtkConstraintRegion::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "UseCentroid: " << this->UseCentroid << "\n"
      << indent << "Weight: " << this->Weight << "\n"
      << indent << "Dragging: " << this->Dragging << "\n"
-     << indent << "DesignVariables: " << this->Designs->variables.size() << "\n";
+     << indent << "DesignVariables: " << this->Designs->variables.size() << "\n"
+     << indent << "ControlPoints: " << this->Designs->controls.size() << "\n";
 }

@@ -65,6 +65,7 @@
 #include <string>
 #include <vector>
 
+class vtkDoubleArray;
 class vtkImplicitFunction;
 namespace mlsdeform
 {
@@ -220,14 +221,16 @@ public:
   {
     TranslateVariable = 0,
     RotateVariable,
-    ScaleVariable
+    ScaleVariable,
+    LocalVariable
   };
 
   ///@{
   /// Design variables on a Handle region's motion (Adapters/DesignVariables.h), for design
-  /// optimization: each a name, a kind (0 Translate, 1 Rotate, 2 Scale), an axis vector (its
-  /// direction times its coefficient: model units, degrees or change of the scale factor per
-  /// unit of p), the value p and its bounds. A value adds to the typed motion (p = 0 leaves it as
+  /// optimization: each a name, a kind (0 Translate, 1 Rotate, 2 Scale, 3 Local), an axis vector
+  /// (its direction times its coefficient: model units, degrees or change of the scale factor per
+  /// unit of p; 0 0 0 for Local, whose directions are its control points'), the value p and its
+  /// bounds. A value adds to the typed motion (p = 0 leaves it as
   /// typed); the output carries the prescribed displacements' derivative per variable (point
   /// array PrescribedDisplacementDerivatives) and the variables in field data, for MLS Deform's
   /// sensitivities. One name may appear on several regions (one variable moving a pair of
@@ -240,6 +243,30 @@ public:
   /// (nullptr and row untouched for an i out of range).
   const char* GetDesignVariableName(int i);
   void GetDesignVariable(int i, double row[7]);
+  ///@}
+
+  ///@{
+  /// Control points of the Local design variables (Adapters/ControlPoints.h: pyGeo's local shape
+  /// variables): each the name of its variable, a position (snapped to the region's nearest
+  /// point), a direction times its coefficient (0 0 0: the unit normal of the region's surface
+  /// there, out of the mesh) and a line axis (0 0 0: the point alone; otherwise every point of
+  /// the region on the line through it along the axis, e.g. the depth of a 2D case). A region
+  /// with control points holds only them: its other points are free, so that the surface between
+  /// them bends. Its output then carries the point array ControlDirection (each held point's
+  /// direction) for drawing. Several control points may share a variable (a mirrored pair).
+  void AddControlPoint(const char* variable, double px, double py, double pz, double dx, double dy, double dz, double ax,
+    double ay, double az);
+  void RemoveAllControlPoints();
+  int GetNumberOfControlPoints();
+  /// Control point i's variable, and its row after the name: position, direction, line axis.
+  const char* GetControlPointVariable(int i);
+  void GetControlPoint(int i, double row[9]);
+  /// count positions spread evenly over the selection of the last update (all processes'; the
+  /// same on every one): farthest-point sampling from the least position, distances measured
+  /// across lineAxis unless it is zero. Fills out (3 components) and returns true, or returns
+  /// false with the reason in GetControlPointError(), e.g. fewer points than count.
+  bool SpreadControlPoints(int count, double ax, double ay, double az, vtkDoubleArray* out);
+  const char* GetControlPointError();
   ///@}
 
   ///@{
@@ -338,7 +365,7 @@ private:
   void UpdateSelection(const Inputs& in, const mlsdeform::Collective& group);
   /// The selected positions with their prescribed displacements (the handle motion about the
   /// pivot, with the design variables) and their derivatives, and the role's field data.
-  void WriteOutput(vtkPolyData* output, int role, const Inputs& in);
+  void WriteOutput(vtkPolyData* output, int role, const Inputs& in, const mlsdeform::Collective& group);
 
   struct Selection;
   std::unique_ptr<Selection> Selected;
@@ -348,6 +375,7 @@ private:
   std::vector<std::string> SetNames;      // mode Blocks: a mesh file's sets
   std::vector<std::string> SelectedNames() const; // BlockNames, then SetNames
   std::vector<std::string> SelectedBlocks; // the blocks the last selection took whole
+  std::string ControlPointError;           // SpreadControlPoints' last failure
 
 };
 

@@ -1,5 +1,7 @@
 #include "pqDesignVariablesWidget.h"
 
+#include "Adapters/DesignVariables.h"
+
 #include <QComboBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -8,6 +10,8 @@
 #include <QSet>
 #include <QSignalBlocker>
 #include <QTableWidget>
+
+#include <iterator>
 #include <QVBoxLayout>
 
 #include <algorithm>
@@ -22,13 +26,12 @@ constexpr int NameColumn = 0;
 constexpr int KindColumn = 1;
 const char* const Headers[Columns] = { "Name", "Kind", "Axis X", "Axis Y", "Axis Z", "Value", "Lower", "Upper" };
 const char* const HeaderTips[Columns] = { "The variable's name: its sensitivity array is dX/d<name>.",
-  "Translate, Rotate (about the pivot) or Scale (about the pivot) the handle.",
+  "Translate, Rotate (about the pivot) or Scale (about the pivot) the handle, or Local: a local shape variable "
+  "(its control points, set up by mlsdeform.DesignVariables.addLocalDV; axis 0 0 0).",
   "The axis vector's x: its direction times its coefficient (model units, degrees or change of the scale "
   "factor per unit of the variable).",
   "The axis vector's y.", "The axis vector's z.", "The variable's value; it adds to the typed motion (0: the motion as typed).",
   "The value's lower bound.", "The value's upper bound." };
-// The kinds in the order of their values 0, 1, 2 (Adapters/DesignVariables.h).
-const char* const Kinds[3] = { "Translate", "Rotate", "Scale" };
 // A new row: translate along z by the value, at 0 within [-1, 1].
 const char* const NewRow[Columns - 1] = { "0", "0", "0", "1", "0", "-1", "1" };
 // The table grows with its rows up to this many, then scrolls.
@@ -137,13 +140,13 @@ void pqDesignVariablesWidget::appendRow(const QStringList& values)
     if (c == KindColumn)
     {
       auto* kind = new QComboBox;
-      for (const char* text : Kinds)
+      for (const char* text : mlsvtk::DesignKindNames)
       {
         kind->addItem(text);
       }
       bool ok = false;
       const int value = values[c].toInt(&ok);
-      kind->setCurrentIndex(ok && value >= 0 && value < 3 ? value : -1);
+      kind->setCurrentIndex(ok && value >= 0 && value < static_cast<int>(std::size(mlsvtk::DesignKindNames)) ? value : -1);
       kind->setToolTip(HeaderTips[c]);
       this->connect(kind, SIGNAL(currentIndexChanged(int)), SIGNAL(rowsChanged()));
       this->Table->setCellWidget(row, c, kind);

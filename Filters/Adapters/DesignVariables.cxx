@@ -37,11 +37,15 @@ void checkDesignVariables(const std::vector<DesignVariable>& variables)
     {
       throw InvalidInputException(which + " is defined twice on this region (one name, one variable)");
     }
-    if (v.kind < Translate || v.kind > Scale)
+    if (v.kind < Translate || v.kind > Local)
     {
-      throw InvalidInputException(which + " has an unknown kind " + std::to_string(v.kind) + " (0 Translate, 1 Rotate, 2 Scale)");
+      throw InvalidInputException(which + " has an unknown kind " + std::to_string(v.kind) + " (0 Translate, 1 Rotate, 2 Scale, 3 Local)");
     }
-    if (!v.axis.allFinite() || !(v.axis.norm() > 0))
+    if (v.kind == Local && v.axis != Vec3::Zero())
+    {
+      throw InvalidInputException(which + " is Local: its directions are its control points' (ControlPoints), its axis must be 0 0 0");
+    }
+    if (v.kind != Local && (!v.axis.allFinite() || !(v.axis.norm() > 0)))
     {
       throw InvalidInputException(which + " needs a non-zero, finite axis (its direction times its coefficient)");
     }
@@ -78,6 +82,10 @@ DesignedMotion::DesignedMotion(const HandleMotion& typed, const Vec3& pivot, con
   std::vector<Eigen::Matrix3d> rotations; // R_i of the rotation variables, in order
   for (const DesignVariable& v : variables)
   {
+    if (v.kind == Local)
+    {
+      continue;
+    }
     const double c = v.axis.norm();
     const Vec3 n = v.axis / c;
     if (v.kind == Translate)
@@ -102,10 +110,10 @@ DesignedMotion::DesignedMotion(const HandleMotion& typed, const Vec3& pivot, con
   std::size_t rotation = 0;
   for (const DesignVariable& v : variables)
   {
-    const double c = v.axis.norm();
-    const Vec3 n = v.axis / c;
     Kinds.push_back(v.kind);
-    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d M = Eigen::Matrix3d::Zero(); // Local: no term in this map (ControlPoints.h)
+    const double c = v.axis.norm();
+    const Vec3 n = v.kind == Local ? Vec3::Zero() : Vec3(v.axis / c);
     if (v.kind == Translate)
     {
       M.col(0) = v.axis;
@@ -114,7 +122,7 @@ DesignedMotion::DesignedMotion(const HandleMotion& typed, const Vec3& pivot, con
     {
       M = Rdv * R * (c * n * n.transpose());
     }
-    else
+    else if (v.kind == Rotate)
     {
       // d/dp of R_1 .. R_i .. R_m: R_i(p) = exp(p c [n]x) in radians, dR_i/dp = c [n]x R_i
       Eigen::Matrix3d before = Eigen::Matrix3d::Identity(), after = Eigen::Matrix3d::Identity();
@@ -157,7 +165,7 @@ void DesignedMotion::displace(const Vec3& x, double displacement[3], double* der
   }
   for (std::size_t v = 0; v < Kinds.size(); ++v)
   {
-    const Vec3 d = Kinds[v] == Translate ? Vec3(Linear[v].col(0)) : Vec3(Linear[v] * y);
+    const Vec3 d = Kinds[v] == Translate || Kinds[v] == Local ? Vec3(Linear[v].col(0)) : Vec3(Linear[v] * y);
     std::copy(d.data(), d.data() + 3, derivatives + 3 * v);
   }
 }

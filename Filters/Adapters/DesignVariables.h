@@ -11,6 +11,9 @@
 // the rotation variables' product in their order. At p = 0 every variable's term is exactly zero
 // (the typed motion is unchanged), and the derivatives below are those of this map:
 //   Translate: a;  Scale: R_dv R |a| n n^T (x - pivot);  Rotate i: R_1 .. dR_i/dp .. R_m (A + R S_dv)(x - pivot).
+// A Local variable (pyGeo's addLocalDV) moves no region as a body: it holds the region's control
+// points (ControlPoints.h) at x + p a, a per control point, and has no axis of its own (zero);
+// this map leaves it out (its derivative here is zero).
 #pragma once
 
 #include "Adapters/HandleMotion.h"
@@ -22,24 +25,25 @@
 namespace mlsvtk
 {
 /// One row per kind of design variable: its name (the Python layer's keyword is its lower case).
-inline constexpr const char* DesignKindNames[] = { "Translate", "Rotate", "Scale" };
+inline constexpr const char* DesignKindNames[] = { "Translate", "Rotate", "Scale", "Local" };
 enum DesignKind
 {
   Translate = 0,
   Rotate,
-  Scale
+  Scale,
+  Local
 };
 
 struct DesignVariable
 {
   std::string name;
   int kind = Translate;
-  mlsdeform::Vec3 axis = mlsdeform::Vec3::Zero(); // a: direction times coefficient
+  mlsdeform::Vec3 axis = mlsdeform::Vec3::Zero(); // a: direction times coefficient (zero for Local)
   double value = 0, lower = 0, upper = 0;
 };
 
 /// Throws mlsdeform::InvalidInputException for an empty or repeated name, an unknown kind, a zero
-/// or non-finite axis, lower > upper or a value outside its bounds.
+/// or non-finite axis (a non-zero one for Local), lower > upper or a value outside its bounds.
 void checkDesignVariables(const std::vector<DesignVariable>& variables);
 
 /// A handle's map with its design variables, and its derivatives.

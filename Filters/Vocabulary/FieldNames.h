@@ -22,6 +22,7 @@ constexpr const char* DesignVariableNames = "DesignVariableNames";   // field da
 constexpr const char* DesignVariableValues = "DesignVariableValues"; // field data, double per variable
 constexpr const char* DesignVariableBounds = "DesignVariableBounds"; // field data, (lower, upper) per variable
 constexpr const char* PrescribedDerivatives = "PrescribedDisplacementDerivatives"; // point data: d(dbar)/dp, 3 per variable
+constexpr const char* ControlDirection = "ControlDirection"; // point data of a region with control points: each held point's direction a
 // MLS Deform / Shell Deform output
 constexpr const char* Displacement = "Displacement";       // point data, 3 components
 constexpr const char* TargetConflicts = "TargetConflicts";         // field data, string: regions whose targets disagree

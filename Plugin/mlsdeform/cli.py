@@ -25,7 +25,11 @@ A role's patches are names, patterns of whole names ("motorBike.*") or patch gro
 *SURFACE) by name. The handle's patches move as one body (one pivot for
 rotations and scales); several bodies are named in "handles" instead of "handle", e.g.
 {"bike": ["motorBikeGroup"], "rider": ["rider.*"]}, and a variable acts on the bodies it names in
-its own "handles" (default: all of them), with one axis for all or one per body. Slip patches each
+its own "handles" (default: all of them), with one axis for all or one per body. A variable with
+"local" instead of an axis is a set of local shape variables on one body (DesignVariables.addLocalDV:
+its control points hold the body's surface there, the rest of it is free), named name_0, name_1, ...,
+e.g. {"name": "bump", "local": {"count": 8, "direction": "normal"}, "handles": ["hull"], "lower": -0.01,
+"upper": 0.01}; its keys are count or points, and optionally direction, axis and mirror. Slip patches each
 slide in their own plane. "settings" are MLS Deform properties (the VTK filter's Set<Name>):
 numbers, or an enumeration value by its name in the VTK class ("Basis": "Wendland"). A relative
 "case" or "deck" is relative to the design file. A case's variants get checkMesh's verdict
@@ -39,7 +43,8 @@ import os
 import sys
 
 KEYS = {'case', 'deck', 'handle', 'handles', 'fixed', 'slip', 'variables', 'settings'}
-VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'lower', 'upper', 'value', 'handles'}
+VARIABLE_KEYS = {'name', 'translate', 'rotate', 'scale', 'local', 'lower', 'upper', 'value', 'handles'}
+LOCAL_KEYS = {'count', 'points', 'direction', 'axis', 'mirror'}  # DesignVariables.addLocalDV's
 
 
 def _names(value):
@@ -100,6 +105,15 @@ def setUp(design_path):
         if unknown or not named:
             raise ValueError(f"{design_path}: variable {variable['name']!r} names the bodies {named!r}; the design's are "
                              f"{list(bodies)}")
+        if 'local' in variable:
+            local = variable['local']
+            if not isinstance(local, dict) or set(local) - LOCAL_KEYS or len(named) != 1 or \
+                    any(k in variable for k in ('translate', 'rotate', 'scale')):
+                raise ValueError(f"{design_path}: variable {variable['name']!r}: 'local' takes {sorted(LOCAL_KEYS)} and acts on "
+                                 f"one body (its 'handles'), without translate/rotate/scale; not {variable!r}")
+            dvs.addLocalDV(variable['name'], regions[named[0]], lower=variable.get('lower'), upper=variable.get('upper'),
+                           value=variable.get('value', 0.0), **local)
+            continue
         axes = {k: variable[k] for k in ('translate', 'rotate', 'scale') if k in variable}
         dvs.addHandleDV(variable['name'], [regions[b] for b in named], lower=variable.get('lower'), upper=variable.get('upper'),
                         value=variable.get('value', 0.0), **axes)

@@ -11,6 +11,7 @@ import os
 import sys
 
 _ROW = 8   # name, kind, axis x, y, z, value, lower, upper: one DesignVariables property row
+_CONTROL_ROW = 10  # variable, position, direction, line axis: one ControlPoints property row
 
 
 def check_foam_file(foam_file, local=True):
@@ -137,6 +138,28 @@ def _checked(algorithm):
     return algorithm
 
 
+def _property_rows(values, width):
+    """A repeated property's rows (a name, then width - 1 numbers) as (name, [numbers])."""
+    values = list(values)
+    return [(str(values[r]), [float(x) for x in values[r + 1:r + width]]) for r in range(0, len(values), width)]
+
+
+def _getter_rows(count, name, get, width):
+    """The same rows from a VTK object's getters: name(i) and get(i, row) for i < count."""
+    rows = []
+    for i in range(count):
+        row = [0.0] * (width - 1)
+        get(i, row)
+        rows.append((name(i), row))
+    return rows
+
+
+def _add_rows(rows, add):
+    """add(name, *numbers) for each (name, numbers) row, the numbers as floats."""
+    for name, row in rows:
+        add(name, *(float(v) for v in row))
+
+
 class ProxyDeformer:
     """A paraview.simple MLS Deform proxy; its regions are the proxies of its Regions input."""
 
@@ -166,12 +189,24 @@ class ProxyDeformer:
 
     @staticmethod
     def rows(region):
-        values = list(region.DesignVariables)
-        return [(str(values[r]), [float(x) for x in values[r + 1:r + _ROW]]) for r in range(0, len(values), _ROW)]
+        return _property_rows(region.DesignVariables, _ROW)
 
     @staticmethod
     def write(region, rows):
         region.DesignVariables = [x for name, row in rows for x in [name, str(int(row[0]))] + [repr(float(v)) for v in row[1:]]]
+
+    @staticmethod
+    def controls(region):
+        return _property_rows(region.ControlPoints, _CONTROL_ROW)
+
+    @staticmethod
+    def write_controls(region, rows):
+        region.ControlPoints = [x for name, row in rows for x in [name] + [repr(float(v)) for v in row]]
+
+    @staticmethod
+    def region_algorithm(region):
+        region.UpdatePipeline()
+        return region.GetClientSideObject()
 
     def update(self):
         self.proxy.UpdatePipeline()
@@ -206,18 +241,26 @@ class VTKDeformer:
 
     @staticmethod
     def rows(region):
-        rows = []
-        for i in range(region.GetNumberOfDesignVariables()):
-            row = [0.0] * (_ROW - 1)
-            region.GetDesignVariable(i, row)
-            rows.append((region.GetDesignVariableName(i), row))
-        return rows
+        return _getter_rows(region.GetNumberOfDesignVariables(), region.GetDesignVariableName, region.GetDesignVariable, _ROW)
 
     @staticmethod
     def write(region, rows):
         region.RemoveAllDesignVariables()
-        for name, row in rows:
-            region.AddDesignVariable(name, int(row[0]), *(float(v) for v in row[1:]))
+        _add_rows(rows, lambda name, kind, *row: region.AddDesignVariable(name, int(kind), *row))
+
+    @staticmethod
+    def controls(region):
+        return _getter_rows(region.GetNumberOfControlPoints(), region.GetControlPointVariable, region.GetControlPoint, _CONTROL_ROW)
+
+    @staticmethod
+    def write_controls(region, rows):
+        region.RemoveAllControlPoints()
+        _add_rows(rows, region.AddControlPoint)
+
+    @staticmethod
+    def region_algorithm(region):
+        region.Update()
+        return region
 
     def update(self):
         self.algorithm.Update()

@@ -17,18 +17,18 @@ from .ranks import all_reduce
 
 # The kinds of design variable, in the order of vtkConstraintRegion's kind numbers
 # (Filters/Adapters/DesignVariables.h: DesignKindNames).
-KINDS = ("translate", "rotate", "scale")
+KINDS = ("translate", "rotate", "scale", "local")
 _UNBOUNDED = 1e300  # a missing bound (the filter needs finite numbers)
 
 
-def _vector(value, what):
+def _vector(value, what, zero=False):
     try:
         v = [float(x) for x in value]
-    except TypeError:
+    except (TypeError, ValueError):
         raise ValueError(f"{what} must be 3 numbers, not {value!r}") from None
     if len(v) != 3 or not all(math.isfinite(x) for x in v):
         raise ValueError(f"{what} must be 3 finite numbers, not {value!r}")
-    if not any(v):
+    if not zero and not any(v):
         raise ValueError(f"{what} must not be zero: it is the variable's direction times its coefficient")
     return v
 
@@ -64,19 +64,12 @@ class DesignVariables:
         or a list of one per region (e.g. [[0, 1, 0], [0, -1, 0]] for a symmetric pair).
         ``lower``/``upper`` bound p (None: unbounded); ``value`` is its start (default 0: the
         motion as typed). Raises ValueError and changes nothing when an argument is wrong."""
-        if not isinstance(name, str) or not name or any(c in name for c in ",\n"):
-            raise ValueError(f"a design variable's name must be a non-empty string without commas, not {name!r}")
-        if name in self._variables:
-            raise ValueError(f"design variable {name!r} is defined already")
+        self._check_name(name)
         given = [(k, v) for k, v in zip(KINDS, (translate, rotate, scale)) if v is not None]
         if len(given) != 1:
             raise ValueError("give exactly one of translate=, rotate= or scale=")
         kind, axes = given[0]
         regions = list(regions) if isinstance(regions, (list, tuple)) else [regions]
-        named = [r for r in regions if isinstance(r, str)]
-        if named:
-            raise ValueError(f"design variable {name!r}: its regions are MLS Deform's Handle regions (e.g. deformed.Regions[0]), "
-                             f"not patch or set names ({', '.join(map(repr, named))})")
         if not regions:
             raise ValueError("a design variable needs at least one Handle region")
         axes = np.asarray(axes, dtype=float)
@@ -85,26 +78,130 @@ class DesignVariables:
         if axes.shape != (len(regions), 3):
             raise ValueError(f"{kind}= needs one 3-vector, or one per region ({len(regions)}), not shape {axes.shape}")
         axes = [_vector(a, f"the {kind} axis of {name!r}") for a in axes]
-        lower = -_UNBOUNDED if lower is None else float(lower)
-        upper = _UNBOUNDED if upper is None else float(upper)
-        value = float(value)
-        if not (math.isfinite(lower) and math.isfinite(upper)) or lower > upper:
-            raise ValueError(f"design variable {name!r}: lower ({lower}) must not exceed upper ({upper})")
-        if not (lower <= value <= upper):
-            raise ValueError(f"design variable {name!r}: the value {value} is outside its bounds [{lower}, {upper}]")
+        lower, upper, value = self._bounds(name, lower, upper, value)
         key = self._filter.key
-        connected = {key(c) for c in self._filter.regions()}
         for region in regions:
-            if key(region) not in connected:
-                raise ValueError(f"design variable {name!r}: a region is not among this MLS Deform's Regions inputs")
-            role = self._filter.role(region)
-            if role != _load_wrapping().vtkConstraintRegion.Handle:
-                raise ValueError(f"design variable {name!r}: it acts on a Handle region's motion, not on a region of role "
-                                 f"{_load_wrapping().vtkConstraintRegion.GetRoleName(role)}")
+            self._check_handle(name, region)
+            if any(v["kind"] == "local" and key(v["regions"][0]) == key(region) for v in self._variables.values()):
+                raise ValueError(f"design variable {name!r}: this region holds the control points of local variables, "
+                                 "not a body: move the body with another Handle region")
         if len(set(key(r) for r in regions)) != len(regions):
             raise ValueError(f"design variable {name!r}: a region is named twice")
         self._variables[name] = {"kind": kind, "regions": regions, "axes": axes, "value": value, "lower": lower, "upper": upper}
         self._write(regions)
+
+    def addLocalDV(self, name, region, count=None, points=None, direction="normal", axis=None, mirror=None,
+                   lower=None, upper=None, value=0.0):
+        """Local shape variables on a Handle region (pyGeo's addLocalDV): control points, each its
+        own variable ``name_0``, ``name_1``, ... (returned, in the order of the points), holding
+        its point at x + p a while every other point of the region is free, so the surface between
+        control points bends smoothly (a bump about as wide as their spacing).
+
+        ``count``: that many control points spread evenly over the region's points
+        (farthest-point sampling, deterministic); or ``points``: an (n, 3) array of positions,
+        each snapped to the region's nearest point. ``direction``: ``'normal'`` (the surface's
+        unit normal there, pointing out of the mesh: on a CFD case's wall into the body, on a
+        solid out of it) or a 3-vector (model units per unit of p). ``axis``: a line axis: each
+        control point then holds every region point on the line through it along the axis (the
+        depth of a one-cell-thick 2D case, a plate's thickness), so an extruded shape stays
+        extruded. ``mirror``: ``(origin, normal)`` of a plane: each control point gets its mirror
+        image, moved by the same variable (the direction mirrored). ``lower``/``upper`` bound
+        every variable (None: unbounded), ``value`` is their start (default 0: in place).
+        Raises ValueError and changes nothing when an argument is wrong or the control points do
+        not fit the region (more than its points, two on one point, no surface for a normal)."""
+        self._check_name(name)
+        if (count is None) == (points is None):
+            raise ValueError(f"local variables {name!r}: give count= or points=, not both or neither")
+        lower, upper, value = self._bounds(name, lower, upper, value)
+        self._check_handle(name, region)
+        key = self._filter.key
+        if any(v["kind"] != "local" and any(key(r) == key(region) for r in v["regions"]) for v in self._variables.values()):
+            raise ValueError(f"local variables {name!r}: this region's motion has design variables already; "
+                             "control points need a Handle region of their own (its other points are free)")
+        normal = isinstance(direction, str)
+        if normal and direction != "normal":
+            raise ValueError(f"local variables {name!r}: direction is 'normal' or a 3-vector, not {direction!r}")
+        a = [0.0, 0.0, 0.0] if normal else _vector(direction, f"the direction of {name!r}")
+        line = [0.0, 0.0, 0.0] if axis is None else _vector(axis, f"the line axis of {name!r}")
+        plane = None
+        if mirror is not None:
+            try:
+                origin, plane_normal = mirror
+            except (TypeError, ValueError):
+                raise ValueError(f"local variables {name!r}: mirror is (origin, normal) of a plane, not {mirror!r}") from None
+            origin = np.array(_vector(origin, "the mirror plane's origin", zero=True))
+            plane_normal = np.array(_vector(plane_normal, "the mirror plane's normal"))
+            plane = (origin, plane_normal / np.linalg.norm(plane_normal))
+        algorithm = self._filter.region_algorithm(region)
+        if points is not None:
+            positions = np.asarray(points, dtype=float)
+            if positions.ndim == 1 and positions.size == 3:
+                positions = positions.reshape(1, 3)
+            if positions.ndim != 2 or positions.shape[1] != 3 or len(positions) == 0:
+                raise ValueError(f"local variables {name!r}: points= must be an (n, 3) array, not shape {positions.shape}")
+            if not np.all(np.isfinite(positions)):
+                raise ValueError(f"local variables {name!r}: points= has values that are not finite")
+        else:
+            if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
+                raise ValueError(f"local variables {name!r}: count= must be a whole number of at least 1, not {count!r}")
+            from vtkmodules.vtkCommonCore import vtkDoubleArray
+            spread = vtkDoubleArray()
+            if not algorithm.SpreadControlPoints(int(count), *line, spread):
+                raise ValueError(f"local variables {name!r}: {algorithm.GetControlPointError()}")
+            positions = self._numpy(spread).copy()
+        names = [f"{name}_{i}" for i in range(len(positions))]
+        taken = [n for n in names if n in self._variables]
+        if taken:
+            raise ValueError(f"local variables {name!r}: {', '.join(map(repr, taken))} are defined already")
+        rows = []
+        for n, q in zip(names, positions):
+            rows.append((n, list(q) + a + line))
+            if plane is not None:
+                origin, m = plane
+                image = q - 2 * np.dot(q - origin, m) * m
+                if np.linalg.norm(image - q) > 1e-9 * max(1.0, np.linalg.norm(q)):  # a point on the plane is its own image
+                    mirrored = a if normal else list(np.array(a) - 2 * np.dot(a, m) * m)
+                    rows.append((n, list(image) + list(mirrored) + line))
+        before = self._filter.controls(region)
+        self._filter.write_controls(region, before + rows)
+        for n in names:
+            self._variables[n] = {"kind": "local", "regions": [region], "axes": [[0.0, 0.0, 0.0]], "value": value,
+                                  "lower": lower, "upper": upper}
+        self._write([region])
+        error = self._region_error(region)
+        if error:
+            for n in names:
+                del self._variables[n]
+            self._filter.write_controls(region, before)
+            self._write([region])
+            raise ValueError(f"local variables {name!r}: {error}")
+        return names
+
+    def getControlPoints(self, name=None):
+        """{variable: (n, 3) array of the positions its control points hold (snapped; with a line
+        axis, every point of the line), and (n, 3) their directions} for the local variables
+        (or the one named), from the regions' last update on this process."""
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        out = {}
+        key = self._filter.key
+        regions = {key(v["regions"][0]): v["regions"][0] for n, v in self._variables.items() if v["kind"] == "local"}
+        for region in regions.values():
+            self._filter.region_algorithm(region)
+            data = self._filter.output(region)
+            directions = data.GetPointData().GetArray("ControlDirection")
+            derivatives = data.GetPointData().GetArray("PrescribedDisplacementDerivatives")
+            names = data.GetFieldData().GetAbstractArray("DesignVariableNames")
+            if directions is None or derivatives is None or names is None:
+                continue
+            x = np.array([data.GetPoint(i) for i in range(data.GetNumberOfPoints())]).reshape(-1, 3)
+            a = vtk_to_numpy(directions).reshape(-1, 3)
+            d = vtk_to_numpy(derivatives).reshape(len(x), -1, 3)
+            for j in range(names.GetNumberOfValues()):
+                n = names.GetValue(j)
+                held = np.any(d[:, j, :] != 0, axis=1)
+                if self._variables.get(n, {}).get("kind") == "local" and (name is None or n == name):
+                    out[n] = (x[held], a[held])
+        return out
 
     # -- values -----------------------------------------------------------------------------
     def getVarNames(self):
@@ -225,6 +322,40 @@ class DesignVariables:
         return worst
 
     # -- internals --------------------------------------------------------------------------
+    def _check_name(self, name):
+        if not isinstance(name, str) or not name or any(c in name for c in ",\n"):
+            raise ValueError(f"a design variable's name must be a non-empty string without commas, not {name!r}")
+        if name in self._variables:
+            raise ValueError(f"design variable {name!r} is defined already")
+
+    @staticmethod
+    def _bounds(name, lower, upper, value):
+        lower = -_UNBOUNDED if lower is None else float(lower)
+        upper = _UNBOUNDED if upper is None else float(upper)
+        value = float(value)
+        if not (math.isfinite(lower) and math.isfinite(upper)) or lower > upper:
+            raise ValueError(f"design variable {name!r}: lower ({lower}) must not exceed upper ({upper}), both finite")
+        if not (lower <= value <= upper):
+            raise ValueError(f"design variable {name!r}: the value {value} is outside its bounds [{lower}, {upper}]")
+        return lower, upper, value
+
+    def _check_handle(self, name, region):
+        if isinstance(region, str):
+            raise ValueError(f"design variable {name!r}: its regions are MLS Deform's Handle regions (e.g. deformed.Regions[0]), "
+                             f"not patch or set names ({region!r})")
+        if self._filter.key(region) not in {self._filter.key(c) for c in self._filter.regions()}:
+            raise ValueError(f"design variable {name!r}: a region is not among this MLS Deform's Regions inputs")
+        role = self._filter.role(region)
+        if role != _load_wrapping().vtkConstraintRegion.Handle:
+            raise ValueError(f"design variable {name!r}: it acts on a Handle region's motion, not on a region of role "
+                             f"{_load_wrapping().vtkConstraintRegion.GetRoleName(role)}")
+
+    def _region_error(self, region):
+        """The region's failure after an update ('' when it succeeded)."""
+        self._filter.region_algorithm(region)
+        error = self._filter.output(region).GetFieldData().GetAbstractArray("DeformationError")
+        return error.GetValue(0) if error is not None and error.GetNumberOfValues() > 0 else ""
+
     def _write(self, regions):
         # each touched region's design-variable rows rewritten from the table, in definition order
         key = self._filter.key

@@ -586,7 +586,14 @@ TEST(BadDesignVariablesAreReported)
      } },
     { "lower <= upper", [](BadInputScene& s) { s.handle->AddDesignVariable("a", 0, 1, 0, 0, 0, 1, -1); } },
     { "outside its bounds", [](BadInputScene& s) { s.handle->AddDesignVariable("a", 0, 1, 0, 0, 2, -1, 1); } },
-    { "unknown kind", [](BadInputScene& s) { s.handle->AddDesignVariable("a", 3, 1, 0, 0, 0, -1, 1); } },
+    { "unknown kind", [](BadInputScene& s) { s.handle->AddDesignVariable("a", 4, 1, 0, 0, 0, -1, 1); } },
+    { "its axis must be 0 0 0", [](BadInputScene& s) { s.handle->AddDesignVariable("a", 3, 1, 0, 0, 0, -1, 1); } },
+    { "has no control point", [](BadInputScene& s) { s.handle->AddDesignVariable("a", 3, 0, 0, 0, 0, -1, 1); } },
+    { "not a Local design variable", [](BadInputScene& s) { s.handle->AddControlPoint("b", 0, 0, 0, 0, 0, 0, 0, 0, 0); } },
+    { "not finite", [](BadInputScene& s) {
+       s.handle->AddDesignVariable("a", 3, 0, 0, 0, 0, -1, 1);
+       s.handle->AddControlPoint("a", std::nan(""), 0, 0, 0, 0, 0, 0, 0, 0);
+     } },
     { "one variable has one value", [](BadInputScene& s) {
        // the same name on a second handle with another value
        auto second = region(s.source->GetOutputPort(), vtkConstraintRegion::Handle, { 0.9, 1.1, -0.01, 1.01, -0.01, 1.01 });

@@ -1,5 +1,6 @@
 """The MPI tests' scene: a sphere's surface (polydata) inside a tetrahedralized box [-1, 1]^3
-(unstructured grid), one block each, and box-shaped Constraint Regions on it."""
+(unstructured grid), one block each (named 'sphere' and 'box'), and box-shaped Constraint
+Regions on it."""
 
 
 def write_scene(path, cells):
@@ -27,6 +28,8 @@ def write_scene(path, cells):
     scene = vtkMultiBlockDataSet()
     scene.SetBlock(0, triangles.GetOutput())
     scene.SetBlock(1, tets.GetOutput())
+    for block, name in enumerate(('sphere', 'box')):
+        scene.GetMetaData(block).Set(vtkMultiBlockDataSet.NAME(), name)
     writer = vtkXMLMultiBlockDataWriter()
     writer.SetFileName(path)
     writer.SetInputData(scene)
@@ -44,3 +47,33 @@ def box_region(ConstraintRegion, source, role, bounds, **properties):
     for name, value in properties.items():
         setattr(region, name, value)
     return region
+
+
+def rest_points(deform):
+    """The input points of an MLS Deform proxy, block after block (its output order), as (n, 3)."""
+    import numpy as np
+    from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet
+    data = deform.GetClientSideObject().GetInputDataObject(0, 0)
+    blocks = []
+    if isinstance(data, vtkCompositeDataSet):
+        it = data.NewIterator()
+        it.InitTraversal()
+        while not it.IsDoneWithTraversal():
+            block = it.GetCurrentDataObject()
+            if block.GetNumberOfPoints():
+                blocks.append(np.array([block.GetPoint(i) for i in range(block.GetNumberOfPoints())]))
+            it.GoToNextItem()
+    else:
+        blocks.append(np.array([data.GetPoint(i) for i in range(data.GetNumberOfPoints())]))
+    return np.concatenate(blocks) if blocks else np.zeros((0, 3))
+
+
+def reloaded(path, plugin, ns):
+    """Saves the ParaView state to path, resets the session, loads the plugin (into the names ns)
+    and the state again, and returns the loaded MLS Deform proxy."""
+    import paraview.simple as pvs
+    pvs.SaveState(path)
+    pvs.ResetSession()
+    pvs.LoadPlugin(plugin, remote=False, ns=ns)
+    pvs.LoadState(path)
+    return [p for p in pvs.GetSources().values() if p.GetXMLName() == 'MLSDeform'][0]

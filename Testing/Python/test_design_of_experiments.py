@@ -274,6 +274,26 @@ for settings, message in (({'Basis': 'Linear'}, 'neither a number nor a name'), 
     run = subprocess.run([python3] + command, capture_output=True, text=True)
     check(run.returncode == 2 and message in run.stderr, 'a bad setting %s exits with 2 (%s)' % (settings, run.stderr.strip()[-200:]))
 
+# issue 66 point 6: a Latin hypercube over local shape variables (four control points on the
+# sphere along its normals) from the design file; a local variable on two bodies is refused
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handle': handle, 'fixed': fixed, 'slip': slip, 'settings': {'NumberOfSamples': 500},
+               'variables': [{'name': 'bump', 'local': {'count': 4}, 'lower': -0.002, 'upper': 0.002}]}, f)
+command[2] = os.path.join(work, 'cli-local')
+run = subprocess.run([python3] + command, capture_output=True, text=True)
+with open(os.path.join(work, 'cli-local', 'report.csv')) as f:
+    local = list(csv.DictReader(f))
+check(run.returncode == 0 and '3 variants, 3 pass the thresholds' in run.stdout and
+      all(len({r['bump_%d' % i] for r in local}) == 3 for i in range(4)),
+      'a design of local variables (bump_0 .. bump_3) gives 3 variants, each variable at 3 levels (exit %d: %s)'
+      % (run.returncode, run.stdout[-200:] + run.stderr[-300:]))
+with open(design, 'w') as f:
+    json.dump({'case': 'case/case.foam', 'handles': {'a': handle, 'b': ['top']}, 'variables':
+               [{'name': 'bump', 'local': {'count': 4}, 'lower': -0.002, 'upper': 0.002}]}, f)
+command[2] = os.path.join(work, 'cli-bad')
+run = subprocess.run([python3] + command, capture_output=True, text=True)
+check(run.returncode == 2 and 'acts on one body' in run.stderr, 'local variables on two bodies exit with 2 (%s)' % run.stderr.strip()[-200:])
+
 
 # The README's design of experiments (its Tour 3) runs as written, but for its paths
 readme = open(os.path.join(examples, '..', '..', 'README.md')).read()

@@ -76,23 +76,6 @@ def gradient(rest):
     return g
 
 
-def rest_points(deform):
-    from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet
-    data = deform.GetClientSideObject().GetInputDataObject(0, 0)
-    blocks = []
-    if isinstance(data, vtkCompositeDataSet):
-        it = data.NewIterator()
-        it.InitTraversal()
-        while not it.IsDoneWithTraversal():
-            block = it.GetCurrentDataObject()
-            if block.GetNumberOfPoints():
-                blocks.append(np.array([block.GetPoint(i) for i in range(block.GetNumberOfPoints())]))
-            it.GoToNextItem()
-    else:
-        blocks.append(np.array([data.GetPoint(i) for i in range(data.GetNumberOfPoints())]))
-    return np.concatenate(blocks) if blocks else np.zeros((0, 3))
-
-
 if mode == 'serial':
     rank = 0
     os.makedirs(work, exist_ok=True)
@@ -104,7 +87,7 @@ if mode == 'serial':
     check(dvs.getValues() == values, 'getValues: the values set')
     check(dvs.getBounds()['spread'] == (0, 0.02), 'getBounds: (lower, upper)')
     X = dvs.update()
-    rest = rest_points(deform)
+    rest = sphere_in_box.rest_points(deform)
     check(X.dtype == np.float64 and X.shape == rest.shape, 'update() returns (n, 3) doubles in output order (%s)' % (X.shape,))
     algorithm = deform.GetClientSideObject()
     samplings = algorithm.GetNumberOfSamplings()
@@ -180,13 +163,7 @@ if mode == 'serial':
     check(np.all(extrusion['X'][:, 2] == rest[:, 2]), 'extruded along z: no point moves along z')
 
     # a state file keeps the variables: DesignVariables of the loaded filter finds them
-    state = os.path.join(work, 'state.pvsm')
-    pvs.SaveState(state)
-    pvs.ResetSession()
-    LoadPlugin(plugin, remote=False, ns=globals())
-    pvs.LoadState(state)
-    loaded = [p for p in pvs.GetSources().values() if p.GetXMLName() == 'MLSDeform'][0]
-    restored = mlsdeform.DesignVariables(loaded)
+    restored = mlsdeform.DesignVariables(sphere_in_box.reloaded(os.path.join(work, 'state.pvsm'), plugin, globals()))
     check(restored.getVarNames() == ['lift', 'twist', 'stretch', 'spread'] and restored.getValues() == values
           and restored.getBounds()['twist'] == (-5, 5), 'a loaded state restores the variables (%s)' % restored.getValues())
     check(np.array_equal(restored.update(), X), 'and the loaded state deforms the same, bitwise')
@@ -201,7 +178,7 @@ else:
     source = pvs.RedistributeDataSet(Input=pvs.OpenDataFile(os.path.join(work, 'scene.vtm')))
     deform, dvs, values, _ = scene(source)
     X = dvs.update()
-    rest = rest_points(deform)
+    rest = sphere_in_box.rest_points(deform)
     index = {tuple(x): i for i, x in enumerate(reference['rest'])}
     which = np.array([index.get(tuple(x), -1) for x in rest], dtype=int)
     check((which >= 0).all(), 'rank %d: each of its %d points is a point of the scene' % (rank, len(rest)))
