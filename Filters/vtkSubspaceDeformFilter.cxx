@@ -366,6 +366,34 @@ bool vtkSubspaceDeformFilter::ComputeObjectiveSensitivity(vtkDataArray* gradient
   });
 }
 
+bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkDoubleArray* gradient)
+{
+  return this->RunSensitivityRequest([&](const Collective& group) {
+    agree(group, [&] {
+      if (!value || (measure != 0 && measure != 1) || !std::isfinite(rho) || rho <= 0)
+      {
+        throw InvalidInputException("ComputeMeshQualityAggregate needs measure 0 (non-orthogonality) or 1 (skewness), a positive "
+                                    "finite rho and an output array");
+      }
+      if (!this->MeshQuality)
+      {
+        throw InvalidInputException("the mesh quality aggregate needs MeshQuality on (the faces it measures are found there)");
+      }
+    });
+    std::vector<double> g;
+    const auto result = this->Session->qualityAggregate(
+      measure == 0 ? mlsdeform::FaceMeasure::NonOrthogonality : mlsdeform::FaceMeasure::Skewness, rho, group, gradient ? &g : nullptr);
+    value->SetNumberOfComponents(1);
+    value->SetNumberOfTuples(2);
+    value->SetValue(0, result.value);
+    value->SetValue(1, static_cast<double>(result.count));
+    if (gradient)
+    {
+      std::copy(g.begin(), g.end(), resized(gradient, g.size() / 3));
+    }
+  });
+}
+
 int vtkSubspaceDeformFilter::GetNumberOfSamplings()
 {
   return this->Session->runs().subspace;

@@ -240,6 +240,13 @@ public:
   bool ComputeSensitivityProduct(vtkDoubleArray* seeds, vtkDoubleArray* out);
   /// Reverse mode: dJ/dp per design variable (out) from gradient = dJ/dX (n x 3).
   bool ComputeObjectiveSensitivity(vtkDataArray* gradient, vtkDoubleArray* out);
+  /// The mesh's quality as one smooth function and its gradient (an optimizer's constraint): the
+  /// KS aggregate (max-shifted, weight rho > 0) of checkMesh's non-orthogonality in degrees
+  /// (measure 0) or skewness (1) over the interior faces of the deformed volume meshes (needs
+  /// MeshQuality on; Filters/Core/Quality/FaceQualityAggregate.h). value gets the aggregate and
+  /// the number of faces N (max <= value <= max + ln(N) / rho), gradient (if not null) d/dX
+  /// (n x 3, this process's output points).
+  bool ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkDoubleArray* gradient);
   const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
 
   /// Whether the last output holds deformed points: a cancelled update leaves the previous

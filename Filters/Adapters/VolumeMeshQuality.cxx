@@ -221,6 +221,19 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
   return summarizeMeasures();
 }
 
+mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho)
+{
+  mlsdeform::faceMeasures(points, Cells, Faces, Orientation, Work, PerFace);
+  return mlsdeform::aggregatePart(measure == mlsdeform::FaceMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, rho);
+}
+
+void VolumeMeshQuality::addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho,
+  const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const
+{
+  mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, Work,
+    measure == mlsdeform::FaceMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, measure, rho, whole, gradient);
+}
+
 QualitySummary VolumeMeshQuality::summarizeMeasures()
 {
   const bool checkMesh = Verdict == QualityVerdict::CheckMesh;

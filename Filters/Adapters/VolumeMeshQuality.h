@@ -9,6 +9,7 @@
 
 #include "Quality/ElementJacobian.h"
 #include "Quality/FaceQuality.h"
+#include "Quality/FaceQualityAggregate.h"
 
 #include <limits>
 #include <optional>
@@ -110,6 +111,17 @@ public:
   /// next call: a new deformation allocates nothing.
   QualitySummary summary(vtkUnstructuredGrid* grid);
 
+  /// Whether the mesh gets checkMesh's face measures (not an FEM solver's verdict).
+  bool hasFaceMeasures() const { return Verdict == QualityVerdict::CheckMesh && Has3DCells; }
+
+  /// The KS aggregate's part of a face measure over the interior faces on these points (the
+  /// rest grid's cells, FaceQualityAggregate.h); its faces' measures are kept for the gradient.
+  mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho);
+  /// Adds the aggregate's gradient (the weights of whole, the parts of every mesh and process)
+  /// at the points of the last aggregatePart to gradient.
+  void addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho,
+    const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const;
+
   const mlsdeform::CellFaceList& cells() const { return Cells; }
   const mlsdeform::InteriorFaces& faces() const { return Faces; }
   const std::vector<int>& orientation() const { return Orientation; }
@@ -124,6 +136,7 @@ private:
   mlsdeform::PointList Points;
   mlsdeform::FaceWorkspace Work;
   mlsdeform::FaceMeasures Measures;
+  mlsdeform::FaceMeasures PerFace; // the aggregate's: every face's measures
   QualitySummary Original;
   Elements JacobianElements;
   QualityVerdict Verdict;

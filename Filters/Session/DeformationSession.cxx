@@ -644,6 +644,18 @@ void DeformationSession::deformedPoints(double* out) const
   }
 }
 
+MeshQualityReport::Aggregate DeformationSession::qualityAggregate(
+  FaceMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
+{
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
+  PointList deformed(Points.size());
+  if (!deformed.empty())
+  {
+    deformedPoints(deformed.front().data());
+  }
+  return Quality.aggregate(deformed, measure, rho, group, gradient);
+}
+
 bool DeformationSession::dragged() const
 {
   return std::any_of(Regions.begin(), Regions.end(), [](const RegionInput& r) { return r.dragging; });

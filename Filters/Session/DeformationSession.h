@@ -226,6 +226,10 @@ public:
   /// x + d(x) in double precision at this process's points (the output's points before they are
   /// stored in the input's precision).
   void deformedPoints(double* out) const;
+  /// The KS aggregate of a face measure of the deformed volume meshes and its gradient at the
+  /// output points (MeshQualityReport::aggregate; the last update's report).
+  MeshQualityReport::Aggregate qualityAggregate(
+    mlsdeform::FaceMeasure measure, double rho, const mlsdeform::Collective& group, std::vector<double>* gradient);
   /// This process's input points, concatenated over the point sets.
   const mlsdeform::PointList& inputPoints() const { return Points; }
 

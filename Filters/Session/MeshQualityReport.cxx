@@ -109,6 +109,11 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
     why->InsertNextValue(Problem);
     field->AddArray(why);
   }
+  Starts.assign(1, 0);
+  for (vtkPointSet* set : inSets)
+  {
+    Starts.push_back(Starts.back() + set->GetNumberOfPoints());
+  }
   QualitySummary deformed;
   bool measured = false;
   for (std::size_t s = 0; s < outSets.size(); ++s)
@@ -143,5 +148,62 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
       addField(field, (std::string(prefix) + "MinScaledJacobian").c_str(), -largest[2]);
     }
   }
+}
+
+MeshQualityReport::Aggregate MeshQualityReport::aggregate(
+  const PointList& points, FaceMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
+{
+  auto meshPoints = [&](std::size_t s) {
+    return PointList(points.begin() + Starts[s], points.begin() + Starts[s + 1]);
+  };
+  std::vector<PointList> measured(Quality.size());
+  AggregatePart local;
+  agree(group, [&] {
+    if (Starts.empty() || static_cast<long>(points.size()) != Starts.back())
+    {
+      throw InvalidInputException("the mesh quality was not measured on these points: update the filter with MeshQuality on");
+    }
+    for (std::size_t s = 0; s < Quality.size(); ++s)
+    {
+      if (Quality[s] && Quality[s]->hasFaceMeasures())
+      {
+        measured[s] = meshPoints(s);
+        local.add(Quality[s]->aggregatePart(measured[s], measure, rho), rho);
+      }
+    }
+  });
+  // every process's part, combined in process order: the same on every process
+  const std::vector<double> parts = group.gather(std::vector<double>{ local.largest, local.sum, static_cast<double>(local.count) });
+  AggregatePart whole;
+  for (std::size_t r = 0; r + 2 < parts.size(); r += 3)
+  {
+    whole.add(AggregatePart{ parts[r], parts[r + 1], static_cast<long>(parts[r + 2]) }, rho);
+  }
+  if (whole.count == 0)
+  {
+    throw InvalidInputException(!Problem.empty() ? "the mesh quality is not measured: " + Problem
+                                                 : std::string("no volume mesh has checkMesh's face measures (interior faces of 3D cells; "
+                                                               "an FEM solver's mesh gets the scaled Jacobian instead)"));
+  }
+  if (gradient)
+  {
+    gradient->assign(3 * points.size(), 0.0);
+    for (std::size_t s = 0; s < Quality.size(); ++s)
+    {
+      if (!measured[s].empty())
+      {
+        PointList g(measured[s].size(), Vec3::Zero());
+        Quality[s]->addAggregateGradient(measured[s], measure, rho, whole, g);
+        for (std::size_t i = 0; i < g.size(); ++i)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            (*gradient)[3 * (Starts[s] + i) + c] = g[i][c];
+          }
+        }
+      }
+    }
+  }
+  return { whole.value(rho), whole.count };
 }
 } // namespace mlsvtk

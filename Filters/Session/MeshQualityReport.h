@@ -40,6 +40,21 @@ public:
   /// thread while the deformation is set up.
   void readAhead(const std::vector<vtkPointSet*>& inSets, const std::string& casePath) const;
 
+  /// The KS aggregate of a face measure over the interior faces of every volume mesh on every
+  /// process (FaceQualityAggregate.h; the faces between pieces are not among them, as in the
+  /// report), on `points` (this process's output points, the sets in order, as the last report's
+  /// sets), and its gradient there (3 per point) when gradient is given: the aggregate's value
+  /// and its number of faces, the same on every process. Throws InvalidInputException when no
+  /// mesh of any process has checkMesh's face measures (none measured: MeshQuality off; an FEM
+  /// solver's mesh).
+  struct Aggregate
+  {
+    double value;
+    long count;
+  };
+  Aggregate aggregate(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho, const mlsdeform::Collective& group,
+    std::vector<double>* gradient);
+
 private:
   // The stamp of the cells and points of inSets, to compare with Measured.
   static Stamp stampOf(const std::vector<vtkPointSet*>& inSets);
@@ -47,6 +62,7 @@ private:
   Stamp Measured; // of the cells and points the faces and the original's measures come from
   std::string Problem; // why Measured's cells are not measured (field data MeshQualityProblem), or ""
   std::vector<std::unique_ptr<VolumeMeshQuality>> Quality;
+  std::vector<long> Starts; // the first point of each set in the last report's sets (and their end)
   QualitySummary Original;
 };
 } // namespace mlsvtk

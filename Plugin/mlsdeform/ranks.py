@@ -37,3 +37,18 @@ def all_reduce(values, operation):
     c.AllReduce(send, receive, op)
     result = vtk_to_numpy(receive).copy()
     return result if np.ndim(values) else result[0]
+
+
+def all_gather(values):
+    """The 1D float64 arrays of every process concatenated in process order (the same on every
+    process); values itself on one process."""
+    array = np.ascontiguousarray(np.asarray(values, dtype=np.float64).reshape(-1))
+    c = controller()
+    if c is None:
+        return array
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    send = numpy_to_vtk(array, deep=1) if len(array) else vtkDoubleArray()
+    receive = vtkDoubleArray()
+    c.AllGatherV(send, receive)
+    return vtk_to_numpy(receive).copy() if receive.GetNumberOfTuples() else np.zeros(0)

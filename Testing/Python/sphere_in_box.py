@@ -3,8 +3,13 @@
 Regions on it."""
 
 
-def write_scene(path, cells):
-    """The scene as a .vtm file at path; the box has `cells` cells per side (6 tetrahedra each)."""
+import math
+
+
+def write_scene(path, cells, jitter=0.0):
+    """The scene as a .vtm file at path; the box has `cells` cells per side (6 tetrahedra each),
+    its inner grid points moved by up to `jitter` spacings (a deterministic irregular field: no
+    face of the box then has a non-orthogonality or skewness of exactly 0)."""
     from vtkmodules.vtkCommonDataModel import vtkImageData, vtkMultiBlockDataSet
     from vtkmodules.vtkFiltersCore import vtkTriangleFilter
     from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
@@ -25,6 +30,12 @@ def write_scene(path, cells):
     tets = vtkDataSetTriangleFilter()
     tets.SetInputData(image)
     tets.Update()
+    grid = tets.GetOutput()
+    for i in range(grid.GetNumberOfPoints()):
+        x = grid.GetPoint(i)
+        if jitter and max(abs(c) for c in x) < 1 - 1e-9:
+            r = [math.sin(12.9898 * x[0] + 78.233 * x[1] + 37.719 * x[2] + 11 * k) for k in range(3)]
+            grid.GetPoints().SetPoint(i, *(c + jitter * (2 / cells) * rk for c, rk in zip(x, r)))
     scene = vtkMultiBlockDataSet()
     scene.SetBlock(0, triangles.GetOutput())
     scene.SetBlock(1, tets.GetOutput())
@@ -47,6 +58,25 @@ def box_region(ConstraintRegion, source, role, bounds, **properties):
     for name, value in properties.items():
         setattr(region, name, value)
     return region
+
+
+def local_scene(ns, source):
+    """The sphere is the Handle of 12 local variables along its normals (count=12) and of a pair
+    mirrored across x = 0 along +-y (points=) on a Handle in the box; the box's sides are Fixed,
+    its floor slips. ns: the script's names, with the plugin's proxy constructors. Returns the
+    MLS Deform, its DesignVariables, the two variables' names and the regions."""
+    import mlsdeform
+    ConstraintRegion, MLSDeform = ns['ConstraintRegion'], ns['MLSDeform']
+    body = ConstraintRegion(Input=source, Role='Handle', SelectionMode='Blocks', Blocks=['sphere'])
+    fixed = box_region(ConstraintRegion, source, 'Fixed', [-0.99, 0.99, -0.99, 0.99, -1.01, 1.01], InsideOut=1)
+    floor = box_region(ConstraintRegion, source, 'Slip', [-0.99, 0.99, -0.99, 0.99, -1.01, -0.99])
+    side = box_region(ConstraintRegion, source, 'Handle', [-0.99, 0.99, 0.5, 0.99, -0.99, 0.99])
+    deform = MLSDeform(Input=source, Regions=[body, fixed, floor, side], NumberOfSamples=300)
+    dvs = mlsdeform.DesignVariables(deform)
+    bumps = dvs.addLocalDV('bump', body, count=12, lower=-0.05, upper=0.05)
+    pair = dvs.addLocalDV('pair', side, points=[[0.2, 0.6, 0.2]], direction=[0, 1, 0], mirror=([0, 0, 0], [1, 0, 0]),
+                          lower=-0.1, upper=0.1)
+    return deform, dvs, bumps, pair, (body, fixed, floor, side)
 
 
 def rest_points(deform):

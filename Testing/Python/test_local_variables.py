@@ -28,18 +28,7 @@ LoadPlugin(plugin, remote=False, ns=globals())
 import mlsdeform  # noqa: E402  (importable once the plugin is loaded)
 
 def scene(source):
-    """The sphere is the Handle of 12 local variables along its normals (count=12) and of a pair
-    mirrored across y = 0 along +-y (points=); the box's sides are Fixed, its floor slips."""
-    body = ConstraintRegion(Input=source, Role='Handle', SelectionMode='Blocks', Blocks=['sphere'])  # noqa: F821
-    fixed = sphere_in_box.box_region(ConstraintRegion, source, 'Fixed', [-0.99, 0.99, -0.99, 0.99, -1.01, 1.01], InsideOut=1)  # noqa: F821
-    floor = sphere_in_box.box_region(ConstraintRegion, source, 'Slip', [-0.99, 0.99, -0.99, 0.99, -1.01, -0.99])  # noqa: F821
-    side = sphere_in_box.box_region(ConstraintRegion, source, 'Handle', [-0.99, 0.99, 0.5, 0.99, -0.99, 0.99])  # noqa: F821
-    deform = MLSDeform(Input=source, Regions=[body, fixed, floor, side], NumberOfSamples=300)  # noqa: F821
-    dvs = mlsdeform.DesignVariables(deform)
-    bumps = dvs.addLocalDV('bump', body, count=12, lower=-0.05, upper=0.05)
-    pair = dvs.addLocalDV('pair', side, points=[[0.2, 0.6, 0.2]], direction=[0, 1, 0], mirror=([0, 0, 0], [1, 0, 0]),
-                          lower=-0.1, upper=0.1)
-    return deform, dvs, bumps, pair, (body, fixed, floor, side)
+    return sphere_in_box.local_scene(globals(), source)
 
 
 def slab_scene(path):

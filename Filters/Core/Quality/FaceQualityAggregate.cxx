@@ -1,0 +1,321 @@
+#include "Quality/FaceQualityAggregate.h"
+
+#include <cmath>
+#include <utility>
+
+namespace mlsdeform
+{
+namespace
+{
+constexpr double RootVerySmall = 1e-150; // FaceQuality's (OpenFOAM's ROOTVSMALL)
+constexpr double LeastWeight = 1e-20;    // faces of a smaller weight are left out of the gradient
+
+// A gradient's entries of one face's term: (point, dq/dX) pairs, summed later in face order.
+using Terms = std::vector<std::pair<int, Vec3>>;
+
+void addFace(const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, Terms& terms)
+{
+  // the adjoint on a copy of the face's points, renumbered 0 .. n-1
+  PointList local(n);
+  std::vector<int> index(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    local[k] = points[face[k]];
+    index[k] = static_cast<int>(k);
+  }
+  PointList bar(n, Vec3::Zero());
+  addFaceGeometryAdjoint(local, index.data(), n, centreBar, areaBar, bar);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    terms.emplace_back(face[k], bar[k]);
+  }
+}
+
+// d(cell centre)/dX contracted with centreBar, through the cell's faces as listed.
+void addCell(const PointList& points, const CellFaceList& cells, int cell, const Vec3& centreBar, Terms& terms)
+{
+  std::vector<FaceGeometry> g;
+  for (long f = cells.firstFace(cell); f < cells.firstFace(cell + 1); ++f)
+  {
+    g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+  }
+  std::vector<Vec3> cBar(g.size(), Vec3::Zero()), sBar(g.size(), Vec3::Zero());
+  addCellGeometryAdjoint(g, centreBar, 0.0, cBar, sBar);
+  for (std::size_t k = 0; k < g.size(); ++k)
+  {
+    const long f = cells.firstFace(cell) + static_cast<long>(k);
+    addFace(points, cells.face(f), cells.faceSize(f), cBar[k], sBar[k], terms);
+  }
+}
+
+// The non-orthogonality's derivatives along the owner's and neighbour's centres and the
+// oriented area vector, times weight (acos' slope: none at 0 or 180 degrees).
+void nonOrthogonalityAdjoint(const Vec3& P, const Vec3& N, const Vec3& S, double weight, Vec3& Pbar, Vec3& Nbar, Vec3& Sbar)
+{
+  const Vec3 d = N - P;
+  const double ls = S.norm(), ld = d.norm();
+  const double cosine = S.dot(d) / (ls * ld + RootVerySmall);
+  if (!(std::abs(cosine) < 1) || ls == 0 || ld == 0)
+  {
+    return;
+  }
+  const double slope = -weight * 180.0 / M_PI / std::sqrt(1 - cosine * cosine); // dq/dcos
+  Sbar += slope * (d / (ls * ld) - cosine * S / (ls * ls));
+  const Vec3 dBar = slope * (S / (ls * ld) - cosine * d / (ld * ld));
+  Nbar += dBar;
+  Pbar -= dBar;
+}
+
+// The skewness's (FaceQuality's skewnessOf) derivatives, times weight: along the centres, the
+// oriented area vector, the face centre, and the face point that sets its extent.
+void skewnessAdjoint(const Vec3& P, const Vec3& N, const FaceGeometry& face, const PointList& points, const int* ids, std::size_t n,
+  double weight, Vec3& Pbar, Vec3& Nbar, Vec3& Sbar, Vec3& cBar, Terms& terms)
+{
+  const Vec3& S = face.area;
+  const Vec3 Cpf = face.centre - P, d = N - P;
+  const double den = S.dot(d) + RootVerySmall;
+  const double t = S.dot(Cpf) / den;
+  const Vec3 sv = Cpf - t * d;
+  const double length = sv.norm();
+  if (length == 0)
+  {
+    return; // no skewness: a cone's tip, no derivative
+  }
+  const Vec3 svHat = sv / (length + RootVerySmall);
+  double fd = 0.2 * d.norm() + RootVerySmall;
+  std::size_t k = n; // the point that sets the extent, or n for 0.2 |d|
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double v = std::abs(svHat.dot(points[ids[i]] - face.centre));
+    if (v > fd)
+    {
+      fd = v;
+      k = i;
+    }
+  }
+  // q = |sv| / fd
+  Vec3 svBar = weight / fd * svHat;
+  const double fdBar = -weight * length / (fd * fd);
+  Vec3 dBar = Vec3::Zero();
+  if (k == n)
+  {
+    dBar += fdBar * 0.2 * d / d.norm();
+  }
+  else
+  {
+    const Vec3 r = points[ids[k]] - face.centre;
+    const double sigma = svHat.dot(r) < 0 ? -1.0 : 1.0;
+    const Vec3 svHatBar = fdBar * sigma * r;
+    terms.emplace_back(ids[k], fdBar * sigma * svHat);
+    cBar -= fdBar * sigma * svHat;
+    svBar += (svHatBar - svHat.dot(svHatBar) * svHat) / length;
+  }
+  // sv = Cpf - t d, t = S . Cpf / (S . d)
+  const double tBar = -svBar.dot(d);
+  const Vec3 CpfBar = svBar + tBar * S / den;
+  dBar += -t * svBar - tBar * t * S / den;
+  Sbar += tBar * (Cpf - t * d) / den;
+  cBar += CpfBar;
+  Pbar -= CpfBar + dBar;
+  Nbar += dBar;
+}
+}
+
+void AggregatePart::add(const AggregatePart& other, double rho)
+{
+  if (other.count == 0)
+  {
+    return;
+  }
+  if (count == 0)
+  {
+    *this = other;
+    return;
+  }
+  const double m = std::max(largest, other.largest);
+  sum = sum * std::exp(rho * (largest - m)) + other.sum * std::exp(rho * (other.largest - m));
+  largest = m;
+  count += other.count;
+}
+
+double AggregatePart::value(double rho) const
+{
+  return count > 0 ? largest + std::log(sum) / rho : 0.0;
+}
+
+AggregatePart aggregatePart(const std::vector<double>& q, double rho)
+{
+  AggregatePart part;
+  part.count = static_cast<long>(q.size());
+  for (double v : q)
+  {
+    part.largest = std::max(part.largest, v);
+  }
+  for (double v : q) // in face order: the same sum for any thread count
+  {
+    part.sum += std::exp(rho * (v - part.largest));
+  }
+  return part;
+}
+
+void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
+  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, FaceMeasure measure, double rho,
+  const AggregatePart& whole, PointList& gradient)
+{
+  std::vector<long> heavy; // the faces of weight >= LeastWeight, in face order
+  for (long i = 0; i < static_cast<long>(q.size()); ++i)
+  {
+    if (std::exp(rho * (q[i] - whole.largest)) / whole.sum >= LeastWeight)
+    {
+      heavy.push_back(i);
+    }
+  }
+  std::vector<Terms> terms(heavy.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long h = 0; h < static_cast<long>(heavy.size()); ++h)
+  {
+    const long i = heavy[h];
+    const InteriorFace& f = faces[i];
+    const double weight = std::exp(rho * (q[i] - whole.largest)) / whole.sum;
+    const Vec3& P = work.centres[f.owner];
+    const Vec3& N = work.centres[f.neighbour];
+    FaceGeometry g = faceGeometry(points, cells.face(f.face), cells.faceSize(f.face));
+    g.area *= orientation[i];
+    Vec3 Pbar = Vec3::Zero(), Nbar = Vec3::Zero(), Sbar = Vec3::Zero(), cBar = Vec3::Zero();
+    if (measure == FaceMeasure::NonOrthogonality)
+    {
+      nonOrthogonalityAdjoint(P, N, g.area, weight, Pbar, Nbar, Sbar);
+    }
+    else
+    {
+      skewnessAdjoint(P, N, g, points, cells.face(f.face), cells.faceSize(f.face), weight, Pbar, Nbar, Sbar, cBar, terms[h]);
+    }
+    addFace(points, cells.face(f.face), cells.faceSize(f.face), cBar, orientation[i] * Sbar, terms[h]);
+    addCell(points, cells, f.owner, Pbar, terms[h]);
+    addCell(points, cells, f.neighbour, Nbar, terms[h]);
+  }
+  for (const Terms& t : terms)
+  {
+    for (const auto& [point, value] : t)
+    {
+      gradient[point] += value;
+    }
+  }
+}
+
+void addFaceGeometryAdjoint(
+  const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, PointList& gradient)
+{
+  if (n < 3)
+  {
+    return;
+  }
+  // faceGeometry again, then its steps backwards
+  Vec3 average = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    average += points[face[i]];
+  }
+  average /= static_cast<double>(n);
+  Vec3 sumAc = Vec3::Zero();
+  double sumA = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3& p = points[face[i]];
+    const Vec3& q = points[face[i + 1 < n ? i + 1 : 0]];
+    const double a = (q - p).cross(average - p).norm();
+    sumA += a;
+    sumAc += a * (p + q + average);
+  }
+  const Vec3 sumNBar = areaBar / 2;
+  Vec3 sumAcBar = Vec3::Zero(), averageBar = Vec3::Zero();
+  double sumABar = 0;
+  if (sumA > RootVerySmall)
+  {
+    // centre = sumAc / (3 sumA)
+    const Vec3 centre = sumAc / (3 * sumA);
+    sumAcBar = centreBar / (3 * sumA);
+    sumABar = -centreBar.dot(centre) / sumA;
+  }
+  else
+  {
+    averageBar += centreBar;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const int ip = face[i], iq = face[i + 1 < n ? i + 1 : 0];
+    const Vec3& p = points[ip];
+    const Vec3& q = points[iq];
+    const Vec3 e = q - p, f = average - p;
+    const Vec3 normal = e.cross(f);
+    const double a = normal.norm();
+    // sumA += a, sumAc += a (p + q + average), sumN += normal, normal = e x f
+    const double aBar = sumABar + sumAcBar.dot(p + q + average);
+    gradient[ip] += a * sumAcBar;
+    gradient[iq] += a * sumAcBar;
+    averageBar += a * sumAcBar;
+    const Vec3 normalBar = sumNBar + (a > 0 ? Vec3(aBar * normal / a) : Vec3::Zero());
+    const Vec3 eBar = f.cross(normalBar), fBar = normalBar.cross(e);
+    gradient[iq] += eBar;
+    gradient[ip] -= eBar + fBar;
+    averageBar += fBar;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    gradient[face[i]] += averageBar / static_cast<double>(n);
+  }
+}
+
+void addCellGeometryAdjoint(const std::vector<FaceGeometry>& faces, const Vec3& cellCentreBar, double volumeBar,
+  std::vector<Vec3>& centreBar, std::vector<Vec3>& areaBar)
+{
+  if (faces.empty())
+  {
+    return;
+  }
+  const double count = static_cast<double>(faces.size());
+  Vec3 estimate = Vec3::Zero();
+  for (const FaceGeometry& face : faces)
+  {
+    estimate += face.centre;
+  }
+  estimate /= count;
+  Vec3 centreSum = Vec3::Zero();
+  double sum = 0;
+  for (const FaceGeometry& face : faces)
+  {
+    const double pyramid3 = std::abs(face.area.dot(face.centre - estimate));
+    centreSum += pyramid3 * (0.75 * face.centre + 0.25 * estimate);
+    sum += pyramid3;
+  }
+  Vec3 estimateBar = Vec3::Zero(), centreSumBar = Vec3::Zero();
+  double sumBar = volumeBar / 3;
+  if (sum > RootVerySmall)
+  {
+    // centre = centreSum / sum
+    centreSumBar = cellCentreBar / sum;
+    sumBar -= cellCentreBar.dot(centreSum / sum) / sum;
+  }
+  else
+  {
+    estimateBar += cellCentreBar;
+  }
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    const FaceGeometry& face = faces[f];
+    const double signedPyramid3 = face.area.dot(face.centre - estimate);
+    const double sign = signedPyramid3 < 0 ? -1.0 : 1.0;
+    const double pyramid3 = sign * signedPyramid3;
+    const double pyramidBar = sumBar + centreSumBar.dot(0.75 * face.centre + 0.25 * estimate);
+    centreBar[f] += 0.75 * pyramid3 * centreSumBar;
+    estimateBar += 0.25 * pyramid3 * centreSumBar;
+    areaBar[f] += sign * pyramidBar * (face.centre - estimate);
+    centreBar[f] += sign * pyramidBar * face.area;
+    estimateBar -= sign * pyramidBar * face.area;
+  }
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    centreBar[f] += estimateBar / count;
+  }
+}
+} // namespace mlsdeform

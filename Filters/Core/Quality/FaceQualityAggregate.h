@@ -1,0 +1,56 @@
+// The mesh's quality as one smooth function of its points, for an optimizer's constraint (DAFoam's
+// KS-aggregated mesh quality): the Kreisselmeier-Steinhauser aggregate of checkMesh's
+// non-orthogonality (degrees) or skewness over the interior faces (FaceQuality.h), in its
+// max-shifted form
+//   KS = m + ln(sum_f exp(rho (q_f - m))) / rho,   m = max_f q_f,   m <= KS <= m + ln(N) / rho,
+// and its exact gradient at the points by reverse-mode differentiation of FaceQuality's
+// definitions (face centres and areas by triangle fans, cell centres by face pyramids):
+//   dKS/dX = sum_f w_f dq_f/dX,  w_f = exp(rho (q_f - m)) / sum.
+// Faces with w_f < 1e-20 are left out of the gradient (their weights sum to at most N 1e-20). A
+// perfectly orthogonal face's angle has no derivative (a cone at 0 degrees): it adds none.
+#pragma once
+
+#include "Quality/FaceQuality.h"
+
+#include <limits>
+
+namespace mlsdeform
+{
+enum class FaceMeasure
+{
+  NonOrthogonality,
+  Skewness,
+};
+
+/// The pieces of a KS aggregate over several meshes or processes: m, sum exp(rho (q - m)) and N.
+struct AggregatePart
+{
+  double largest = -std::numeric_limits<double>::infinity();
+  double sum = 0;
+  long count = 0;
+
+  /// The two parts' union (the same from either order up to round-off of the sum).
+  void add(const AggregatePart& other, double rho);
+  double value(double rho) const;
+};
+
+/// The part of values q (one per interior face, as FaceMeasures holds them with perFace).
+AggregatePart aggregatePart(const std::vector<double>& q, double rho);
+
+/// Adds sum_f w_f dq_f/dX to gradient (one entry per point), the weights of the aggregate `whole`
+/// (over every part); work and q as faceMeasures left them on these points. The faces' terms
+/// are summed in face order: the same bits for any thread count.
+void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
+  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, FaceMeasure measure, double rho,
+  const AggregatePart& whole, PointList& gradient);
+
+/// The reverse-mode derivatives of FaceQuality's geometry: given dF/d(centre) and dF/d(area) of a
+/// face, adds dF/d(point) to gradient[its points].
+void addFaceGeometryAdjoint(
+  const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, PointList& gradient);
+
+/// Given dF/d(centre) and dF/d(volume) of a cell with these faces' geometries, adds dF/d(face
+/// centre) and dF/d(face area) of each face to centreBar[f] and areaBar[f].
+void addCellGeometryAdjoint(const std::vector<FaceGeometry>& faces, const Vec3& cellCentreBar, double volumeBar,
+  std::vector<Vec3>& centreBar, std::vector<Vec3>& areaBar);
+} // namespace mlsdeform

@@ -1,0 +1,585 @@
+"""Geometric constraint functions of a design with exact gradients, in the form of pyGeo's
+DVConstraints: thickness "toothpicks", the volume a closed surface encloses, a surface's area,
+linear relations between variables and the mesh's quality (KS-aggregated), each chained to the
+design variables through the deformation's reverse mode (``DesignVariables.totalSensitivity``).
+
+    cons = mlsdeform.DesignConstraints(dvs)
+    cons.addThicknessConstraints2D('thick', le, te, nSpan=1, nChord=10, surface='aerofoil', lower=1.0)
+    cons.addTriangulatedVolumeConstraint('volume', surface='aerofoil', axis=[0, 0, 1], lower=1.0)
+    cons.addLeTeConstraints('le', ['upper_0'], ['lower_0'])
+    cons.addMeshQualityConstraint('nonOrtho', 'nonOrthogonality', upper=70)
+    funcs, sens = {}, {}
+    cons.evalFunctions(funcs); cons.evalFunctionsSens(sens)
+    scipy.optimize.minimize(..., constraints=cons.getScipyConstraints(), method='SLSQP')
+
+Surfaces are the output's polygons (the 2D cells of its blocks: an OpenFOAM case's patches) of
+the blocks named (a name, a pattern or a list, as a Constraint Region's Blocks match
+them; None: every block with polygons), each polygon a fan of triangles from its first point: the
+triangles' corners are output points, so a point of the surface (a toothpick's end) is carried by
+the deformation with its barycentric coordinates. Under MPI (pvbatch --symmetric) each process
+measures its piece, the values are summed (every process gets the same) and a gradient at a
+position several processes hold is summed over them before it is chained.
+"""
+import math
+
+import numpy as np
+
+from .deformer import _load_wrapping
+from .ranks import all_gather, all_reduce, controller, rank
+
+_UNBOUNDED = 1e300
+
+
+def _finite_bound(value, what):
+    if value is None:
+        return None
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{what} must be a finite number or None, not {value!r}")
+    return value
+
+
+def _points(value, what, count=None):
+    a = np.asarray(value, dtype=float)
+    if a.ndim != 2 or a.shape[1] != 3 or (count is not None and len(a) != count) or len(a) == 0:
+        raise ValueError(f"{what} must be an (n, 3) array of points{'' if count is None else f' with n = {count}'}, "
+                         f"not shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{what} has values that are not finite")
+    return a
+
+
+class _Surface:
+    """The triangles of the output's polygons on the named blocks: corner indices into this
+    process's output points (T x 3) and the blocks' names."""
+
+    def __init__(self, output, names, what):
+        from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet
+        Region = _load_wrapping().vtkConstraintRegion
+        wanted = None if names is None else ([names] if isinstance(names, str) else list(names))
+        leaves = []
+        if isinstance(output, vtkCompositeDataSet):
+            it = output.NewIterator()
+            it.InitTraversal()
+            while not it.IsDoneWithTraversal():
+                meta = it.GetCurrentMetaData() if it.HasCurrentMetaData() else None
+                name = meta.Get(vtkCompositeDataSet.NAME()) if meta is not None and meta.Has(vtkCompositeDataSet.NAME()) else ''
+                leaves.append((name or '', it.GetCurrentDataObject()))
+                it.GoToNextItem()
+        else:
+            leaves.append(('', output))
+        triangles, offset, found, named = [], 0, [], set()
+        for name, block in leaves:
+            hits = [] if wanted is None else [n for n in wanted if Region.NamesBlock(n, name)]
+            polygons = _polygons(block) if wanted is None or hits else None
+            if polygons is not None:
+                offsets, connectivity = polygons
+                sizes = np.diff(offsets)
+                for n in np.unique(sizes):
+                    starts = offsets[:-1][sizes == n]
+                    for k in range(1, n - 1):  # the fan (p0, pk, pk+1)
+                        triangles.append(np.stack([connectivity[starts], connectivity[starts + k], connectivity[starts + k + 1]],
+                                                  axis=1) + offset)
+                found.append(name)
+                named.update(hits)
+            offset += block.GetNumberOfPoints() if block is not None else 0
+        self.triangles = np.concatenate(triangles) if triangles else np.zeros((0, 3), dtype=np.int64)
+        self.blocks = found
+        missing = [] if wanted is None else [n for n in wanted if not all_reduce(int(n in named), 'max')]
+        if missing or all_reduce(len(self.triangles), 'sum') == 0:
+            which = 'the output' if wanted is None else ', '.join(map(repr, missing or wanted))
+            raise ValueError(f"{what}: {which} names no block with surface polygons (2D cells, such as an "
+                             f"OpenFOAM case's patches); blocks with polygons here: {', '.join(found) or 'none'}")
+
+    def corners(self, X):
+        return X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]]
+
+
+def _polygons(block):
+    """The polygons of a block (a polydata's polys; an unstructured grid's triangles, quads and
+    polygons, as a redistributed polydata becomes): (offsets, connectivity), or None."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid, VTK_POLYGON, VTK_QUAD, VTK_TRIANGLE
+    if isinstance(block, vtkPolyData):
+        cells, keep = block.GetPolys(), None
+    elif isinstance(block, vtkUnstructuredGrid) and block.GetNumberOfCells() > 0:
+        cells = block.GetCells()
+        keep = np.isin(vtk_to_numpy(block.GetCellTypesArray()), [VTK_TRIANGLE, VTK_QUAD, VTK_POLYGON])
+    else:
+        return None
+    if cells.GetNumberOfCells() == 0:
+        return None
+    offsets = vtk_to_numpy(cells.GetOffsetsArray()).astype(np.int64)
+    connectivity = vtk_to_numpy(cells.GetConnectivityArray()).astype(np.int64)
+    if keep is not None:
+        if not keep.any():
+            return None
+        starts, sizes = offsets[:-1][keep], np.diff(offsets)[keep]
+        connectivity = np.concatenate([connectivity[a:a + n] for a, n in zip(starts, sizes)])
+        offsets = np.concatenate([[0], np.cumsum(sizes)])
+    sizes = np.diff(offsets)
+    if not np.any(sizes >= 3):
+        return None
+    return offsets, connectivity
+
+
+def _scatter(n, triangles, g0, g1, g2):
+    """The gradient rows of triangle corners summed into an (n, 3) array."""
+    g = np.zeros((n, 3))
+    for k, gk in enumerate((g0, g1, g2)):
+        for c in range(3):
+            g[:, c] += np.bincount(triangles[:, k], weights=gk[:, c], minlength=n)
+    return g
+
+
+class _Constraint:
+    """One constraint function (an array of m values): bounds, scaling, how to evaluate it."""
+
+    def __init__(self, name, kind, lower, upper, scaled, evaluate, linear=None):
+        self.name, self.kind, self.scaled = name, kind, scaled
+        self.lower, self.upper = lower, upper
+        self.evaluate = evaluate   # X -> (values (m,), [dC_i/dX as (n, 3)] or None for values alone)
+        self.linear = linear       # for a linear constraint: its matrix over the variables (m x ndv)
+        self.baseline = None
+
+
+class DesignConstraints:
+    """Constraint functions of the design variables ``dvs`` (a DesignVariables), pyGeo's
+    DVConstraints' methods where the meaning is the same. Each function's values are arrays
+    (one entry per thickness, one for a volume); ``scaled=True`` (the default, as pyGeo) divides
+    them by their baseline values (those when the constraint is added) so that the bounds are
+    relative (lower=1.0: at least the baseline), ``scaled=False`` keeps absolute values.
+    Raises ValueError and adds nothing for bad input."""
+
+    def __init__(self, dvs):
+        self.dvs = dvs
+        self._constraints = {}
+        self._cache = None   # (values of the variables, X)
+
+    # -- the functions ------------------------------------------------------------------------
+    def addThicknessConstraints1D(self, name, ptList, nCon, axis, surface=None, lower=1.0, upper=3.0, scaled=True):
+        """nCon thicknesses along the polyline ptList (points evenly spaced along it, ends
+        included): at each point the line along ``axis`` is cast both ways to the nearest surface
+        polygon, and the distance between the two hits (carried by the deformation) is the
+        thickness. Raises ValueError for a line that misses the surface on a side."""
+        pts = _points(ptList, f"thickness constraints {name!r}: ptList")
+        if len(pts) < 2 or isinstance(nCon, bool) or not isinstance(nCon, (int, np.integer)) or nCon < 1:
+            raise ValueError(f"thickness constraints {name!r}: ptList needs 2 or more points and nCon a whole number >= 1")
+        lengths = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+        s = np.linspace(0, lengths[-1], nCon)
+        at = np.stack([np.interp(s, lengths, pts[:, c]) for c in range(3)], axis=1)
+        self._thickness(name, at, np.tile(self._direction(axis, name), (nCon, 1)), surface, lower, upper, scaled)
+
+    def addThicknessConstraints2D(self, name, leList, teList, nSpan, nChord, surface=None, lower=1.0, upper=3.0, scaled=True):
+        """nSpan x nChord thicknesses on the grid between the leading-edge line leList and the
+        trailing-edge line teList (each 2 or more points; nSpan stations along them, nChord
+        between them, ends included; nSpan = 1: the lines' middle, as a 2D case's mid-depth),
+        each cast along the normal of the grid's plane (the span's direction times the chord's)
+        to the surface both ways. Values in span-major order (pyGeo's)."""
+        le = _points(leList, f"thickness constraints {name!r}: leList")
+        te = _points(teList, f"thickness constraints {name!r}: teList", len(le))
+        for n, what in ((nSpan, 'nSpan'), (nChord, 'nChord')):
+            if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+                raise ValueError(f"thickness constraints {name!r}: {what} must be a whole number >= 1, not {n!r}")
+        if len(le) < 2:
+            raise ValueError(f"thickness constraints {name!r}: leList and teList need 2 or more points each")
+        span = np.linspace(0, 1, nSpan) if nSpan > 1 else np.array([0.5])
+        u = np.linspace(0, 1, len(le))
+        at, directions = [], []
+        for t in span:
+            a = np.array([np.interp(t, u, le[:, c]) for c in range(3)])
+            b = np.array([np.interp(t, u, te[:, c]) for c in range(3)])
+            spanwise = le[-1] - le[0]
+            normal = np.cross(spanwise, b - a)
+            if np.linalg.norm(normal) <= 1e-12 * np.linalg.norm(spanwise) * np.linalg.norm(b - a):
+                raise ValueError(f"thickness constraints {name!r}: the leading and trailing edges span no plane "
+                                 "(the chord is along the span, or a line has no length)")
+            for c in np.linspace(0, 1, nChord):
+                at.append(a + c * (b - a))
+                directions.append(normal / np.linalg.norm(normal))
+        self._thickness(name, np.array(at), np.array(directions), surface, lower, upper, scaled)
+
+    def addTriangulatedVolumeConstraint(self, name, surface=None, axis=None, lower=1.0, upper=3.0, scaled=True):
+        """The volume the closed surface of the named blocks encloses, by the divergence theorem
+        over its triangles: V = 1/3 sum c_t . S_t (c_t, S_t a triangle's centroid and area
+        vector), exact for the triangulated surface. With ``axis`` (an extruded shape: a one-cell
+        thick 2D case, whose surface is open at its front and back) the in-plane field x - (x.a)a,
+        whose flux through the front and back is zero: V = 1/2 sum P c_t . S_t (P = I - a a^T),
+        the cross-section's area times the depth. Raises ValueError for an open surface (an edge
+        of one triangle only, other than on the front and back with an axis)."""
+        what = f"volume constraint {name!r}"
+        self._check_name(name)
+        surf = _Surface(self._output(), surface, what)
+        a = None if axis is None else self._direction(axis, name)
+        X = self._points()
+        self._check_closed(surf, X, a, what)
+        P = np.eye(3) if a is None else np.eye(3) - np.outer(a, a)
+        alpha = 1 / 3 if a is None else 1 / 2
+        sign = None
+
+        def evaluate(X, gradient=True):
+            nonlocal sign
+            x0, x1, x2 = surf.corners(X)
+            S = np.cross(x1 - x0, x2 - x0) / 2
+            Pc = ((x0 + x1 + x2) / 3) @ P
+            V = alpha * np.einsum('ij,ij->', Pc, S)
+            V = all_reduce(V, 'sum')
+            if sign is None:
+                sign = 1.0 if V >= 0 else -1.0   # the surface's orientation (a case's patches point into the body)
+            if not gradient:
+                return np.array([sign * V]), None
+            PS = S @ P / 3
+            g = _scatter(len(X), surf.triangles, PS + np.cross(x1 - x2, Pc) / 2, PS + np.cross(x2 - x0, Pc) / 2,
+                         PS + np.cross(x0 - x1, Pc) / 2)
+            return np.array([sign * V]), [sign * alpha * g]
+
+        self._add(_Constraint(name, 'volume', lower, upper, scaled, evaluate))
+
+    def addSurfaceAreaConstraint(self, name, surface=None, lower=1.0, upper=3.0, scaled=True):
+        """The area of the named blocks' polygons (their triangles' sum)."""
+        self._check_name(name)
+        surf = _Surface(self._output(), surface, f"area constraint {name!r}")
+
+        def evaluate(X, gradient=True):
+            x0, x1, x2 = surf.corners(X)
+            n = np.cross(x1 - x0, x2 - x0)
+            length = np.linalg.norm(n, axis=1)
+            A = all_reduce(length.sum() / 2, 'sum')
+            if not gradient:
+                return np.array([A]), None
+            u = n / np.where(length > 0, length, 1)[:, None]   # a degenerate triangle: no direction, no gradient
+            g = _scatter(len(X), surf.triangles, np.cross(x1 - x2, u) / 2, np.cross(x2 - x0, u) / 2, np.cross(x0 - x1, u) / 2)
+            return np.array([A]), [g]
+
+        self._add(_Constraint(name, 'area', lower, upper, scaled, evaluate))
+
+    def addLinearConstraintsShape(self, name, indSetA, indSetB, factorA, factorB, lower=0.0, upper=0.0):
+        """factorA p[indSetA[i]] + factorB p[indSetB[i]] between lower and upper, for each i (the
+        variables by name, or by their index in getVarNames())."""
+        self._check_name(name)
+        names = self.dvs.getVarNames()
+
+        def column(v):
+            if isinstance(v, str):
+                if v not in names:
+                    raise ValueError(f"linear constraints {name!r}: unknown design variable {v!r}")
+                return names.index(v)
+            if isinstance(v, (int, np.integer)) and not isinstance(v, bool) and 0 <= v < len(names):
+                return int(v)
+            raise ValueError(f"linear constraints {name!r}: {v!r} is neither a design variable's name nor its index")
+
+        A = [column(v) for v in (indSetA if isinstance(indSetA, (list, tuple, np.ndarray)) else [indSetA])]
+        B = [column(v) for v in (indSetB if isinstance(indSetB, (list, tuple, np.ndarray)) else [indSetB])]
+        fa, fb = np.broadcast_to(np.asarray(factorA, dtype=float), (len(A),)), np.broadcast_to(np.asarray(factorB, dtype=float), (len(B),))
+        if len(A) != len(B) or not A:
+            raise ValueError(f"linear constraints {name!r}: indSetA and indSetB must pair up ({len(A)} and {len(B)} variables)")
+        if not (np.all(np.isfinite(fa)) and np.all(np.isfinite(fb))):
+            raise ValueError(f"linear constraints {name!r}: the factors must be finite")
+        if any(a == b for a, b in zip(A, B)):
+            raise ValueError(f"linear constraints {name!r}: a variable is paired with itself")
+        M = np.zeros((len(A), len(names)))
+        for i, (a, b) in enumerate(zip(A, B)):
+            M[i, a] += fa[i]
+            M[i, b] += fb[i]
+        if np.any(np.all(M == 0, axis=1)):
+            raise ValueError(f"linear constraints {name!r}: a row has zero factors: no design variable influences it")
+
+        def evaluate(X, gradient=True):
+            p = np.array([self.dvs.getValues()[n] for n in names])
+            return M @ p, None
+
+        self._add(_Constraint(name, 'linear', _finite_bound(lower, 'lower'), _finite_bound(upper, 'upper'), False, evaluate, M))
+
+    def addLeTeConstraints(self, name, indSetA, indSetB):
+        """The leading or trailing edge held (pyGeo's addLeTeConstraints): for each pair of local
+        variables the midpoint of their control points does not move, p_A a_A + p_B a_B = 0,
+        a linear constraint p_A + s p_B = 0 with s = sign(a_A . a_B) (their directions must be
+        parallel: opposite normals on an upper and a lower surface give p_A = p_B, pyGeo's equal
+        directions p_A + p_B = 0)."""
+        controls = self.dvs.getControlPoints()
+        A = indSetA if isinstance(indSetA, (list, tuple)) else [indSetA]
+        B = indSetB if isinstance(indSetB, (list, tuple)) else [indSetB]
+        factors = []
+        for a, b in zip(A, B):
+            if a not in controls or b not in controls:
+                raise ValueError(f"leading/trailing-edge constraints {name!r}: {a!r} and {b!r} must be local variables")
+            da, db = controls[a][1][0], controls[b][1][0]
+            cosine = np.dot(da, db) / (np.linalg.norm(da) * np.linalg.norm(db))
+            if abs(cosine) < 0.9:
+                raise ValueError(f"leading/trailing-edge constraints {name!r}: the directions of {a!r} and {b!r} are not "
+                                 f"parallel (cosine {cosine:.2f}): one linear relation cannot hold their midpoint")
+            factors.append(float(np.sign(cosine) * np.linalg.norm(db) / np.linalg.norm(da)))
+        self.addLinearConstraintsShape(name, A, B, 1.0, factors, 0.0, 0.0)
+
+    def addMeshQualityConstraint(self, name, measure='nonOrthogonality', upper=None, lower=None, rho=None, scaled=False):
+        """The mesh's quality as one smooth function (DAFoam's KS-aggregated mesh quality): the
+        KS aggregate of a measure over every interior face of the volume meshes (checkMesh's
+        definitions: 'nonOrthogonality' in degrees, 'skewness'), in the max-shifted form
+        KS = m + ln(sum_f exp(rho (q_f - m))) / rho, m the largest q_f, so that
+        m <= KS <= m + ln(N) / rho (N faces): ``getBiasBound(name)``. rho defaults to 10 per
+        degree (non-orthogonality) or 100 (skewness). Absolute values by default (an upper bound
+        of 70 degrees as checkMesh's). Needs the filter's MeshQuality on. Under MPI the faces
+        between the processes' pieces are not among them (as in the verdict)."""
+        self._check_name(name)
+        measures = ('nonOrthogonality', 'skewness')
+        if measure not in measures:
+            raise ValueError(f"mesh quality constraint {name!r}: measure is one of {', '.join(measures)}, not {measure!r}")
+        rho = (10.0 if measure == 'nonOrthogonality' else 100.0) if rho is None else float(rho)
+        if not (math.isfinite(rho) and rho > 0):
+            raise ValueError(f"mesh quality constraint {name!r}: rho must be a positive finite number, not {rho!r}")
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        algorithm = self.dvs._algorithm
+        index = measures.index(measure)
+        constraint = None
+
+        def evaluate(X, gradient=True):
+            value, g = vtkDoubleArray(), vtkDoubleArray()
+            if not algorithm.ComputeMeshQualityAggregate(index, rho, value, g if gradient else None):
+                raise RuntimeError(algorithm.GetSensitivityError())
+            constraint.count = int(value.GetValue(1))
+            return np.array([value.GetValue(0)]), ([self.dvs._numpy(g)] if gradient else None)
+
+        constraint = _Constraint(name, 'meshQuality', lower, upper, scaled, evaluate)
+        constraint.rho = rho
+        self._add(constraint)
+
+    def getBiasBound(self, name):
+        """A mesh-quality constraint's bound on KS - max: ln(N) / rho (N faces)."""
+        c = self._constraints[name]
+        return math.log(max(1, c.count)) / c.rho
+
+    # -- evaluation (pyGeo's) -----------------------------------------------------------------
+    def getConstraintNames(self):
+        return list(self._constraints)
+
+    def getBounds(self):
+        """{name: (lower, upper)} in the units evalFunctions gives (None: unbounded)."""
+        return {n: (c.lower, c.upper) for n, c in self._constraints.items()}
+
+    def evalFunctions(self, funcs):
+        """funcs[name] = the constraint's values (an array) at the current design variables."""
+        X = self._points()
+        for name, c in self._constraints.items():
+            values, _ = c.evaluate(X, gradient=False)
+            funcs[name] = values / c.baseline if c.scaled else values
+
+    def evalFunctionsSens(self, funcsSens):
+        """funcsSens[name] = {design variable: d(values)/dp (an array)}: every gradient chained
+        through the reverse mode (one back-substitution per value, whatever the number of
+        variables)."""
+        X = self._points()
+        names = self.dvs.getVarNames()
+        for name, c in self._constraints.items():
+            funcsSens[name] = {v: column for v, column in zip(names, self._jacobian(c, X).T)}
+
+    def getScipyConstraints(self):
+        """Constraint dicts for scipy.optimize.minimize (SLSQP, trust-constr's old form) over the
+        vector x of the design variables in getVarNames() order: 'eq' for lower == upper, else
+        'ineq' (value - lower >= 0, upper - value >= 0), each with its 'jac'. fun(x) and jac(x)
+        set the variables to x (setDesignVars) when they differ."""
+        out = []
+        for name, c in self._constraints.items():
+            sides = [(1.0, c.lower)] if c.lower is not None and c.lower == c.upper else \
+                [(s, b) for s, b in ((1.0, c.lower), (-1.0, c.upper)) if b is not None]
+            kind = 'eq' if c.lower is not None and c.lower == c.upper else 'ineq'
+            for s, bound in sides:
+                out.append({'type': kind, 'fun': self._scipy_value(c, s, bound), 'jac': self._scipy_jacobian(c, s)})
+        return out
+
+    # -- internals ----------------------------------------------------------------------------
+    def _set(self, x):
+        names = self.dvs.getVarNames()
+        x = np.asarray(x, dtype=float).reshape(-1)
+        if len(x) != len(names):
+            raise ValueError(f"x has {len(x)} entries; the design has {len(names)} variables")
+        current = self.dvs.getValues()
+        changed = {n: v for n, v in zip(names, x) if current[n] != v}
+        if changed:
+            self.dvs.setDesignVars(changed)
+
+    def _scipy_value(self, c, sign, bound):
+        def fun(x):
+            self._set(x)
+            values, _ = c.evaluate(self._points(), gradient=False)
+            return sign * ((values / c.baseline if c.scaled else values) - bound)
+        return fun
+
+    def _scipy_jacobian(self, c, sign):
+        def jac(x):
+            self._set(x)
+            return sign * self._jacobian(c, self._points())
+        return jac
+
+    def _jacobian(self, c, X):
+        """d(values)/dp as an (m, ndv) array (scaled as the values)."""
+        if c.linear is not None:
+            return c.linear.copy()
+        _, gradients = c.evaluate(X)
+        names = self.dvs.getVarNames()
+        rows = []
+        for g in gradients:
+            dJdp = self.dvs.totalSensitivity(self._consolidated(X, g))
+            rows.append([dJdp[n] for n in names])
+        J = np.array(rows)
+        return J / c.baseline[:, None] if c.scaled else J
+
+    @staticmethod
+    def _consolidated(X, g):
+        """Under MPI: g with each position's rows summed over the processes, on one copy of it
+        per process (the reverse mode counts a position once over the processes, summed over its
+        copies on one process); g itself on one process."""
+        if controller() is None:
+            return g
+        rows = np.flatnonzero(np.any(g != 0, axis=1))
+        positions = all_gather(X[rows].reshape(-1)).reshape(-1, 3)
+        values = all_gather(g[rows].reshape(-1)).reshape(-1, 3)
+        keys = np.ascontiguousarray(positions).view([('', positions.dtype)] * 3).reshape(-1)
+        unique, inverse = np.unique(keys, return_inverse=True)
+        total = np.zeros((len(unique), 3))
+        np.add.at(total, inverse, values)
+        mine = np.ascontiguousarray(X).view([('', X.dtype)] * 3).reshape(-1)
+        at = np.searchsorted(unique, mine)
+        at[at >= len(unique)] = 0
+        hit = unique[at] == mine
+        out = np.zeros_like(g)
+        first = {}
+        for i in np.flatnonzero(hit):
+            first.setdefault(at[i], i)   # one copy of a position on this process carries its total
+        for u, i in first.items():
+            out[i] = total[u]
+        return out
+
+    def _thickness(self, name, at, directions, surface, lower, upper, scaled):
+        what = f"thickness constraints {name!r}"
+        self._check_name(name)
+        surf = _Surface(self._output(), surface, what)
+        X = self._points()
+        ends = []   # per line, per side: (process holding the hit, triangle, barycentric weights)
+        for p, u in zip(at, directions):
+            sides = []
+            for side in (1.0, -1.0):
+                t, tri, w = self._cast(surf, X, p, side * u)
+                best = all_reduce(t, 'min')
+                owner = all_reduce(rank() if t == best else 1 << 30, 'min') if math.isfinite(best) else None
+                sides.append((owner, tri, w))
+            hits = sum(owner is not None for owner, _, _ in sides)
+            if hits < 2:
+                raise ValueError(f"{what}: the line through {list(p)} along {list(u)} "
+                                 f"{'hits the surface on one side only' if hits else 'misses the surface'}: put the point "
+                                 "inside the body, between its surfaces")
+            ends.append(sides)
+        me = rank()
+
+        def end(X, owner, tri, w):
+            x = np.zeros(3) if owner != me else w @ X[surf.triangles[tri]]
+            return all_reduce(x, 'sum')
+
+        def evaluate(X, gradient=True):
+            values, grads = [], []
+            for (top, bottom) in ends:
+                a, b = end(X, *top), end(X, *bottom)
+                d = a - b
+                values.append(np.linalg.norm(d))
+                if gradient:
+                    g = np.zeros((len(X), 3))
+                    unit = d / values[-1]
+                    for (owner, tri, w), s in ((top, 1.0), (bottom, -1.0)):
+                        if owner == me:
+                            for k in range(3):
+                                g[surf.triangles[tri, k]] += s * w[k] * unit
+                    grads.append(g)
+            return np.array(values), (grads if gradient else None)
+
+        self._add(_Constraint(name, 'thickness', lower, upper, scaled, evaluate))
+
+    @staticmethod
+    def _cast(surf, X, p, u):
+        """The nearest hit of the ray p + t u (t > 0) with the surface's triangles on this process:
+        (t, triangle, barycentric weights), t = inf when it misses (Moeller-Trumbore)."""
+        x0, x1, x2 = surf.corners(X)
+        e1, e2 = x1 - x0, x2 - x0
+        h = np.cross(u, e2)
+        det = np.einsum('ij,ij->i', e1, h)
+        scale = np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1)
+        ok = np.abs(det) > 1e-12 * scale
+        det = np.where(ok, det, 1)
+        s = p - x0
+        b1 = np.einsum('ij,ij->i', s, h) / det
+        q = np.cross(s, e1)
+        b2 = (q @ u) / det
+        t = np.einsum('ij,ij->i', e2, q) / det
+        tolerance = 1e-10
+        hit = ok & (b1 >= -tolerance) & (b2 >= -tolerance) & (b1 + b2 <= 1 + tolerance) & (t > 0)
+        if not hit.any():
+            return math.inf, -1, None
+        i = int(np.flatnonzero(hit)[np.argmin(t[hit])])
+        return float(t[i]), i, np.array([1 - b1[i] - b2[i], b1[i], b2[i]])
+
+    @staticmethod
+    def _check_closed(surf, X, axis, what):
+        """Raises ValueError when a triangle edge (by its end positions, over all processes) is
+        not shared by exactly one other triangle run the other way; with an axis, edges on the
+        surface's front and back (the extremes along the axis) may be open."""
+        tri = surf.triangles
+        directed = np.concatenate([np.stack([tri[:, k], tri[:, (k + 1) % 3]], axis=1) for k in range(3)])
+        ends = np.concatenate([X[directed[:, 0]], X[directed[:, 1]]], axis=1)
+        ends = all_gather(ends.reshape(-1)).reshape(-1, 6)
+        if axis is not None:
+            along = np.concatenate([ends[:, :3] @ axis, ends[:, 3:] @ axis])
+            low, high = along.min(), along.max()
+            tol = 1e-9 * max(1.0, np.abs(along).max())
+            a, b = ends[:, :3] @ axis, ends[:, 3:] @ axis
+            cap = ((np.abs(a - low) <= tol) & (np.abs(b - low) <= tol)) | ((np.abs(a - high) <= tol) & (np.abs(b - high) <= tol))
+            ends = ends[~cap]
+        forward = {tuple(e) for e in ends}
+        backward = [tuple(e[3:]) + tuple(e[:3]) for e in ends]
+        unmatched = sum(1 for e in backward if e not in forward)
+        if unmatched or len(forward) != len(ends):
+            raise ValueError(f"{what}: the surface is not closed ({unmatched} of its {len(ends)} triangle edges have no "
+                             "partner run the other way" + (", or an edge is shared by more than two" if len(forward) != len(ends) else "")
+                             + "): an enclosed volume needs a closed surface" + ("" if axis is not None else
+                                                                                 " (an extruded 2D shape: give axis=)"))
+
+    def _direction(self, axis, name):
+        a = np.asarray(axis, dtype=float).reshape(-1)
+        if a.shape != (3,) or not np.all(np.isfinite(a)) or not np.any(a):
+            raise ValueError(f"constraint {name!r}: the direction must be 3 finite numbers, not zero, not {axis!r}")
+        return a / np.linalg.norm(a)
+
+    def _check_name(self, name):
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"a constraint's name must be a non-empty string, not {name!r}")
+        if name in self._constraints:
+            raise ValueError(f"constraint {name!r} is defined already")
+
+    def _output(self):
+        self.dvs._updated()
+        return self.dvs._algorithm.GetOutputDataObject(0)
+
+    def _points(self):
+        return self.dvs.update()
+
+    def _add(self, c):
+        """Checks the bounds, takes the baseline and checks that some variable influences every
+        value; adds the constraint only then."""
+        c.lower = _finite_bound(c.lower, f"constraint {c.name!r}: lower")
+        c.upper = _finite_bound(c.upper, f"constraint {c.name!r}: upper")
+        if c.lower is not None and c.upper is not None and c.lower > c.upper:
+            raise ValueError(f"constraint {c.name!r}: lower ({c.lower}) exceeds upper ({c.upper})")
+        X = self._points()
+        try:
+            values, _ = c.evaluate(X, gradient=False)
+        except RuntimeError as e:
+            raise ValueError(f"constraint {c.name!r}: {e}") from None
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f"constraint {c.name!r}: its baseline values are not finite")
+        if c.scaled and np.any(values == 0):
+            raise ValueError(f"constraint {c.name!r}: a baseline value is 0, so it cannot be scaled: give scaled=False")
+        c.baseline = values.copy()
+        J = self._jacobian(c, X)
+        dead = np.flatnonzero(np.all(J == 0, axis=1))
+        if len(dead):
+            raise ValueError(f"constraint {c.name!r}: no design variable influences its value{'s' if len(dead) > 1 else ''} "
+                             f"{', '.join(map(str, dead[:10]))} (the gradient is zero): the points it measures do not move "
+                             "with the design")
+        self._constraints[c.name] = c
