@@ -11,6 +11,7 @@
 
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -363,6 +364,50 @@ bool vtkSubspaceDeformFilter::ComputeObjectiveSensitivity(vtkDataArray* gradient
     out->SetNumberOfComponents(1);
     out->SetNumberOfTuples(static_cast<vtkIdType>(dJdp.size()));
     std::copy(dJdp.begin(), dJdp.end(), out->GetPointer(0));
+  });
+}
+
+bool vtkSubspaceDeformFilter::ComputeObjectiveSensitivities(vtkIdTypeArray* rows, vtkDoubleArray* values, vtkIdTypeArray* starts, vtkDoubleArray* out)
+{
+  return this->RunSensitivityRequest([&](const Collective& group) {
+    DeformationSession& session = *this->Session;
+    mlsvtk::SparseGradients g;
+    agree(group, [&] {
+      const vtkIdType n = static_cast<vtkIdType>(session.inputPoints().size());
+      if (!rows || !values || !starts || !out || rows->GetNumberOfComponents() != 1 || values->GetNumberOfComponents() != 3 ||
+        values->GetNumberOfTuples() != rows->GetNumberOfTuples() || starts->GetNumberOfTuples() < 2 || starts->GetValue(0) != 0 ||
+        starts->GetValue(starts->GetNumberOfTuples() - 1) != rows->GetNumberOfTuples())
+      {
+        throw InvalidInputException("ComputeObjectiveSensitivities needs rows (point indices), values (3 components, one tuple a row), "
+                                    "starts (0, ..., the number of rows) and an output array");
+      }
+      for (vtkIdType f = 1; f < starts->GetNumberOfTuples(); ++f)
+      {
+        if (starts->GetValue(f) < starts->GetValue(f - 1))
+        {
+          throw InvalidInputException("ComputeObjectiveSensitivities: starts must not decrease");
+        }
+        g.starts.push_back(starts->GetValue(f));
+      }
+      for (vtkIdType e = 0; e < rows->GetNumberOfTuples(); ++e)
+      {
+        if (rows->GetValue(e) < 0 || rows->GetValue(e) >= n)
+        {
+          throw InvalidInputException("ComputeObjectiveSensitivities: a row is not a point of the output (0 .. " + std::to_string(n - 1) + ")");
+        }
+        g.rows.push_back(rows->GetValue(e));
+      }
+      g.values.assign(values->GetPointer(0), values->GetPointer(0) + 3 * values->GetNumberOfTuples());
+      requireFiniteValues(g.values, "the gradients");
+    });
+    std::string method;
+    const std::vector<std::vector<double>> dJdp = session.objectiveSensitivities(std::move(g), group, method);
+    out->SetNumberOfComponents(static_cast<int>(std::max<std::size_t>(1, session.design().size())));
+    out->SetNumberOfTuples(static_cast<vtkIdType>(dJdp.size()));
+    for (std::size_t f = 0; f < dJdp.size(); ++f)
+    {
+      std::copy(dJdp[f].begin(), dJdp[f].end(), out->GetPointer(0) + f * out->GetNumberOfComponents());
+    }
   });
 }
 

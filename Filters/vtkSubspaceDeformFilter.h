@@ -70,6 +70,7 @@
 
 class vtkDataArray;
 class vtkDoubleArray;
+class vtkIdTypeArray;
 class vtkPointSet;
 class vtkFieldData;
 namespace mlsdeform
@@ -240,6 +241,11 @@ public:
   bool ComputeSensitivityProduct(vtkDoubleArray* seeds, vtkDoubleArray* out);
   /// Reverse mode: dJ/dp per design variable (out) from gradient = dJ/dX (n x 3).
   bool ComputeObjectiveSensitivity(vtkDataArray* gradient, vtkDoubleArray* out);
+  /// Reverse mode for m functions at once, their gradients at some points each: function f's
+  /// are the entries starts[f] .. starts[f + 1] - 1 (m + 1 values), each a point index (rows,
+  /// this process's output points) and its dJ_f/dX (values, 3 components); out gets m tuples of
+  /// dJ_f/dp (one component per design variable). One gathering of the points for all.
+  bool ComputeObjectiveSensitivities(vtkIdTypeArray* rows, vtkDoubleArray* values, vtkIdTypeArray* starts, vtkDoubleArray* out);
   /// The mesh's quality as one smooth function and its gradient (an optimizer's constraint): the
   /// KS aggregate (max-shifted, weight rho > 0) of checkMesh's non-orthogonality in degrees
   /// (measure 0) or skewness (1) over the interior faces of the deformed volume meshes (needs

@@ -223,14 +223,18 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
 
 mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho)
 {
-  mlsdeform::faceMeasures(points, Cells, Faces, Orientation, Work, PerFace);
+  if (PerFacePoints.empty() || points != PerFacePoints)
+  {
+    mlsdeform::faceMeasures(points, Cells, Faces, Orientation, PerFaceWork, PerFace);
+    PerFacePoints = points;
+  }
   return mlsdeform::aggregatePart(measure == mlsdeform::FaceMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, rho);
 }
 
 void VolumeMeshQuality::addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho,
   const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const
 {
-  mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, Work,
+  mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, PerFaceWork,
     measure == mlsdeform::FaceMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, measure, rho, whole, gradient);
 }
 

@@ -115,7 +115,9 @@ public:
   bool hasFaceMeasures() const { return Verdict == QualityVerdict::CheckMesh && Has3DCells; }
 
   /// The KS aggregate's part of a face measure over the interior faces on these points (the
-  /// rest grid's cells, FaceQualityAggregate.h); its faces' measures are kept for the gradient.
+  /// rest grid's cells, FaceQualityAggregate.h); its faces' measures are kept for the gradient
+  /// and for the next call on the same points (a value, then its gradient, then another measure:
+  /// one pass over the cells).
   mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho);
   /// Adds the aggregate's gradient (the weights of whole, the parts of every mesh and process)
   /// at the points of the last aggregatePart to gradient.
@@ -137,6 +139,8 @@ private:
   mlsdeform::FaceWorkspace Work;
   mlsdeform::FaceMeasures Measures;
   mlsdeform::FaceMeasures PerFace; // the aggregate's: every face's measures
+  mlsdeform::PointList PerFacePoints; // the points they were measured on
+  mlsdeform::FaceWorkspace PerFaceWork; // their faces' and cells' geometry (the summary's may be of other points)
   QualitySummary Original;
   Elements JacobianElements;
   QualityVerdict Verdict;

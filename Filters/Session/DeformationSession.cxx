@@ -584,51 +584,86 @@ void DeformationSession::writeSensitivities(const std::vector<vtkPointSet*>& out
   }
 }
 
-std::vector<double> DeformationSession::objectiveSensitivity(std::vector<double> gradient, const Collective& group, std::string& method)
+std::vector<double> DeformationSession::objectiveSensitivity(const std::vector<double>& gradient, const Collective& group, std::string& method)
+{
+  return objectiveSensitivities(sparseGradient(gradient), group, method).front();
+}
+
+std::vector<std::vector<double>> DeformationSession::objectiveSensitivities(
+  SparseGradients gradients, const Collective& group, std::string& method)
 {
   // g -> S^T g (the slide's transpose), then H = Phi^T S^T g over the canonical positions
-  slideOnPlanes(Slips, Points, 0, static_cast<long>(Points.size()), gradient.data(), true);
-  const GatheredGradient g = gatherGradient(Points, gradient, group);
-  if (Gradient.subspace != Counts.subspace || Gradient.points != PointsVersion || Gradient.exactBuild != ExactBuilds ||
-    Gradient.positions != g.positions)
+  slideRowsOnPlanes(Slips, Points, gradients.rows, gradients.values.data(), true);
+  const GatheredGradients g = gatherGradients(Points, gradients, group);
+  const GradientRows& at = gradientRows(g.positions);
+  std::vector<PointField> tangents; // the nonlinear solution's: one per variable, shared by the functions
+  if (!Model->isLinear())
+  {
+    method = "implicit differentiation of the constraint iteration's fixed point (GMRES, the projections' derivatives by central "
+             "differences): one tangent per variable";
+    for (std::size_t v = 0; v < Design.size(); ++v)
+    {
+      std::vector<double> seeds(Design.size(), 0.0);
+      seeds[v] = 1;
+      tangents.push_back(tangent(seeds));
+    }
+  }
+  else
+  {
+    method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";
+  }
+  std::vector<std::vector<double>> out;
+  for (const PointDisplacements& values : g.values)
+  {
+    // dJ = (Phi^T g) . dw + h . dr (ExactTargets.h; h = 0 for the penalty solution)
+    const Displacements H = multiplyTransposed(at.rows, 0, at.rows.rows(), values, true);
+    const PointDisplacements h = Exact.active() ? Exact.pull(at.blend, values) : PointDisplacements();
+    if (Model->isLinear())
+    {
+      // = (Phi^T g - Phi_T^T e) . dw + e . d(dbar): one back-substitution
+      const PointDisplacements e = h.rows() > 0 ? Exact.targetShare(h) : PointDisplacements();
+      PointDisplacements dJdTargets = Model->prescribedGradient(e.rows() > 0 ? Displacements(H - Model->regionTransposed(e)) : H);
+      if (e.rows() > 0)
+      {
+        dJdTargets += e;
+      }
+      out.push_back(Derivatives.contract(dJdTargets));
+      continue;
+    }
+    std::vector<double> dJdp(Design.size(), 0.0);
+    for (std::size_t v = 0; v < Design.size(); ++v)
+    {
+      dJdp[v] = (H.array() * tangents[v].w.array()).sum() + (h.rows() > 0 ? (h.array() * tangents[v].r.array()).sum() : 0.0);
+    }
+    out.push_back(dJdp);
+  }
+  return out;
+}
+
+const DeformationSession::GradientRows& DeformationSession::gradientRows(const PointList& positions)
+{
+  const auto current = [&](const GradientRows& r) {
+    return r.subspace == Counts.subspace && r.points == PointsVersion && r.exactBuild == ExactBuilds && r.positions == positions;
+  };
+  if (!current(Gradients[0]))
+  {
+    std::swap(Gradients[0], Gradients[1]);
+  }
+  GradientRows& r = Gradients[0];
+  if (!current(r))
   {
     // rows at input points are stage 2's (3b's), viewed (the same bits as evaluating them)
     PointList projected;
-    const PointList& evaluated = Extruded.evaluated(g.positions, projected);
-    const std::vector<long> among = positionsAmong(Points, g.positions);
-    Gradient.rows = gatherRows(Model->basis(), evaluated, { &PointRows, among });
-    Gradient.blend = Exact.active() ? Exact.rowsAt(evaluated, among) : GatheredRows();
-    Gradient.positions = g.positions;
-    Gradient.subspace = Counts.subspace;
-    Gradient.points = PointsVersion;
-    Gradient.exactBuild = ExactBuilds;
+    const PointList& evaluated = Extruded.evaluated(positions, projected);
+    const std::vector<long> among = positionsAmong(Points, positions);
+    r.rows = gatherRows(Model->basis(), evaluated, { &PointRows, among });
+    r.blend = Exact.active() ? Exact.rowsAt(evaluated, among) : GatheredRows();
+    r.positions = positions;
+    r.subspace = Counts.subspace;
+    r.points = PointsVersion;
+    r.exactBuild = ExactBuilds;
   }
-  // dJ = (Phi^T g) . dw + h . dr (ExactTargets.h; h = 0 for the penalty solution)
-  const Displacements H = multiplyTransposed(Gradient.rows, 0, Gradient.rows.rows(), g.values);
-  const PointDisplacements h = Exact.active() ? Exact.pull(Gradient.blend, g.values) : PointDisplacements();
-  if (Model->isLinear())
-  {
-    // = (Phi^T g - Phi_T^T e) . dw + e . d(dbar): one back-substitution
-    const PointDisplacements e = h.rows() > 0 ? Exact.targetShare(h) : PointDisplacements();
-    method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";
-    PointDisplacements dJdTargets = Model->prescribedGradient(e.rows() > 0 ? Displacements(H - Model->regionTransposed(e)) : H);
-    if (e.rows() > 0)
-    {
-      dJdTargets += e;
-    }
-    return Derivatives.contract(dJdTargets);
-  }
-  method = "implicit differentiation of the constraint iteration's fixed point (GMRES, the projections' derivatives by central "
-           "differences): one tangent per variable";
-  std::vector<double> dJdp(Design.size(), 0.0);
-  for (std::size_t v = 0; v < Design.size(); ++v)
-  {
-    std::vector<double> seeds(Design.size(), 0.0);
-    seeds[v] = 1;
-    const PointField t = tangent(seeds);
-    dJdp[v] = (H.array() * t.w.array()).sum() + (h.rows() > 0 ? (h.array() * t.r.array()).sum() : 0.0);
-  }
-  return dJdp;
+  return r;
 }
 
 void DeformationSession::deformedPoints(double* out) const

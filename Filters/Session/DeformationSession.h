@@ -41,6 +41,7 @@
 #include "Solver/SpaceDeformation.h"
 
 #include <functional>
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -222,7 +223,12 @@ public:
   void writeSensitivities(const std::vector<vtkPointSet*>& outSets, const std::vector<char>& moving);
   /// Reverse mode: dJ/dp per design variable from g = dJ/dX at this process's points (3 values
   /// per point, in order; a collective operation under MPI); method says how it was computed.
-  std::vector<double> objectiveSensitivity(std::vector<double> gradient, const mlsdeform::Collective& group, std::string& method);
+  std::vector<double> objectiveSensitivity(const std::vector<double>& gradient, const mlsdeform::Collective& group, std::string& method);
+  /// The same for several functions at once, their gradients given at some points each: one
+  /// gathering of their points and of Phi's rows there, then per function one back-substitution;
+  /// dJ_f/dp per function.
+  std::vector<std::vector<double>> objectiveSensitivities(
+    SparseGradients gradients, const mlsdeform::Collective& group, std::string& method);
   /// x + d(x) in double precision at this process's points (the output's points before they are
   /// stored in the input's precision).
   void deformedPoints(double* out) const;
@@ -309,8 +315,9 @@ private:
   std::string TargetConflicts;
   std::string ConstraintConflicts;
   bool Intersected = false; // the constraint sites' residuals are an intersection's (exact constraints met)
-  // Phi at the gathered positions of the last gradient (an optimizer's dJ/dX keeps its support
-  // from call to call), for the subspace and points it was evaluated with
+  // Phi at the gathered positions of the last two gradients' supports (an optimizer's dJ/dX and
+  // its constraints' each keep theirs from call to call), for the subspace and points they were
+  // evaluated with; the one used last first
   struct GradientRows
   {
     mlsdeform::PointList positions;
@@ -319,7 +326,10 @@ private:
     mlsdeform::GatheredRows rows; // views of PointRows' rows where the positions are input points
     int exactBuild = -1;
     mlsdeform::GatheredRows blend; // B there (exact targets)
-  } Gradient;
+  };
+  std::array<GradientRows, 2> Gradients;
+  /// Gradients' entry for these positions, made first (evaluated if neither is).
+  const GradientRows& gradientRows(const mlsdeform::PointList& positions);
   DeformedOutput Output;
   MeshQualityReport Quality;
 };

@@ -152,41 +152,76 @@ std::vector<double> PrescribedDerivatives::contract(const PointDisplacements& gr
   return dJdp;
 }
 
-GatheredGradient gatherGradient(const PointList& points, const std::vector<double>& gradient, const Collective& group)
+SparseGradients sparseGradient(const std::vector<double>& gradient)
 {
-  // this process's points with a non-zero g, equal positions together (in their order)
-  std::vector<long> carrying;
-  for (long i = 0; i < static_cast<long>(points.size()); ++i)
+  SparseGradients g;
+  for (long i = 0; 3 * i + 2 < static_cast<long>(gradient.size()); ++i)
   {
     if (gradient[3 * i] != 0 || gradient[3 * i + 1] != 0 || gradient[3 * i + 2] != 0)
     {
-      carrying.push_back(i);
+      g.rows.push_back(i);
+      g.values.insert(g.values.end(), gradient.begin() + 3 * i, gradient.begin() + 3 * i + 3);
     }
   }
-  const auto less = [&](long a, long b) {
-    return std::lexicographical_compare(points[a].data(), points[a].data() + 3, points[b].data(), points[b].data() + 3);
-  };
-  std::stable_sort(carrying.begin(), carrying.end(), less);
-  PointList local;
-  std::vector<double> sums;
-  for (std::size_t j = 0; j < carrying.size(); ++j)
+  g.starts.push_back(static_cast<long>(g.rows.size()));
+  return g;
+}
+
+GatheredGradients gatherGradients(const PointList& points, const SparseGradients& gradients, const Collective& group)
+{
+  // this process's entries with a non-zero value, equal positions together (in their order)
+  const std::size_t m = gradients.functions();
+  std::vector<long> entries;
+  for (long e = 0; e < static_cast<long>(gradients.rows.size()); ++e)
   {
-    const long i = carrying[j];
-    if (j == 0 || points[i] != points[carrying[j - 1]])
+    const double* g = gradients.values.data() + 3 * e;
+    if (g[0] != 0 || g[1] != 0 || g[2] != 0)
     {
-      local.push_back(points[i]);
-      sums.insert(sums.end(), { 0.0, 0.0, 0.0 });
+      entries.push_back(e);
+    }
+  }
+  const auto at = [&](long e) -> const Vec3& { return points[gradients.rows[e]]; };
+  const auto less = [&](long a, long b) {
+    return std::lexicographical_compare(at(a).data(), at(a).data() + 3, at(b).data(), at(b).data() + 3);
+  };
+  std::stable_sort(entries.begin(), entries.end(), less);
+  std::vector<std::size_t> functionOf(gradients.rows.size());
+  for (std::size_t f = 0; f < m; ++f)
+  {
+    std::fill(functionOf.begin() + gradients.starts[f], functionOf.begin() + gradients.starts[f + 1], f);
+  }
+  PointList local;
+  std::vector<double> sums; // 3 m per position: function after function
+  for (std::size_t j = 0; j < entries.size(); ++j)
+  {
+    const long e = entries[j];
+    if (j == 0 || at(e) != at(entries[j - 1]))
+    {
+      local.push_back(at(e));
+      sums.resize(sums.size() + 3 * m, 0.0);
     }
     for (int c = 0; c < 3; ++c)
     {
-      sums[sums.size() - 3 + c] += gradient[3 * i + c];
+      sums[sums.size() - 3 * m + 3 * functionOf[e] + c] += gradients.values[3 * e + c];
     }
   }
   const GatheredPositions order = gatherPositions(local, {}, group);
-  const std::vector<double> values = gatherValues(sums.data(), static_cast<long>(local.size()), 3, order, group);
-  GatheredGradient out;
+  const std::vector<double> values = gatherValues(sums.data(), static_cast<long>(local.size()), static_cast<int>(3 * m), order, group);
+  GatheredGradients out;
   out.positions = order.positions;
-  out.values = Eigen::Map<const PointDisplacements>(values.data(), static_cast<long>(order.positions.size()), 3);
+  const long count = static_cast<long>(order.positions.size());
+  for (std::size_t f = 0; f < m; ++f)
+  {
+    PointDisplacements g(count, 3);
+    for (long i = 0; i < count; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        g(i, c) = values[3 * m * i + 3 * f + c];
+      }
+    }
+    out.values.push_back(std::move(g));
+  }
   return out;
 }
 } // namespace mlsvtk

@@ -63,13 +63,27 @@ private:
   std::vector<std::vector<double>> Values; // per target region: n_r x 3 m_r, gathered
 };
 
-/// The points carrying a non-zero gradient (g, 3 per point, this process's points in order),
-/// each position once with the sum of its copies, gathered from all processes in canonical
-/// order (see above): the positions and their g.
-struct GatheredGradient
+/// The gradients of several functions, each at some of this process's points: function f's
+/// entries are starts[f] .. starts[f + 1] - 1, each a point (rows) and its 3 values (values).
+struct SparseGradients
+{
+  std::vector<long> rows;
+  std::vector<double> values;
+  std::vector<long> starts{ 0 };
+  std::size_t functions() const { return starts.size() - 1; }
+};
+
+/// One function's gradient g (3 values per point, this process's points in order) as its
+/// points with a non-zero value.
+SparseGradients sparseGradient(const std::vector<double>& gradient);
+
+/// The points carrying the functions' gradients, each position once with the sum of its copies
+/// (per function), gathered from all processes in canonical order (see above): the positions
+/// and, per function, its values there (zero where it has none).
+struct GatheredGradients
 {
   mlsdeform::PointList positions;
-  mlsdeform::PointDisplacements values;
+  std::vector<mlsdeform::PointDisplacements> values;
 };
-GatheredGradient gatherGradient(const mlsdeform::PointList& points, const std::vector<double>& gradient, const mlsdeform::Collective& group);
+GatheredGradients gatherGradients(const mlsdeform::PointList& points, const SparseGradients& gradients, const mlsdeform::Collective& group);
 } // namespace mlsvtk

@@ -72,7 +72,7 @@ GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> 
 
 PointDisplacements ExactTargets::pull(const GatheredRows& rows, const PointDisplacements& g) const
 {
-  return multiplyTransposed(rows, 0, rows.rows(), g);
+  return multiplyTransposed(rows, 0, rows.rows(), g, true); // a constraint's gradient: on a few of the rows
 }
 
 PointDisplacements ExactTargets::targetShare(const PointDisplacements& h) const

@@ -48,6 +48,24 @@ std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions)
   return planes;
 }
 
+namespace
+{
+// The slides of one point's displacement d (each the projection I - n n^T, symmetric: the
+// transposed map is their product reversed).
+void slidePoint(const std::vector<SlipPlane>& planes, const Vec3& x, double* d, bool transposed)
+{
+  for (std::size_t k = 0; k < planes.size(); ++k)
+  {
+    const SlipPlane& slip = planes[transposed ? planes.size() - 1 - k : k];
+    if (slip.holds(x))
+    {
+      Eigen::Map<Vec3> displacement(d);
+      displacement -= slip.plane.normal.dot(displacement) * slip.plane.normal;
+    }
+  }
+}
+}
+
 void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points, long offset, long n, double* d, bool transposed)
 {
   if (planes.empty())
@@ -57,16 +75,20 @@ void slideOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i)
   {
-    for (std::size_t k = 0; k < planes.size(); ++k)
-    {
-      // each slide is the projection I - n n^T (symmetric): the transposed map is their product reversed
-      const SlipPlane& slip = planes[transposed ? planes.size() - 1 - k : k];
-      if (slip.holds(points[offset + i]))
-      {
-        Eigen::Map<Vec3> displacement(d + 3 * i);
-        displacement -= slip.plane.normal.dot(displacement) * slip.plane.normal;
-      }
-    }
+    slidePoint(planes, points[offset + i], d + 3 * i, transposed);
+  }
+}
+
+void slideRowsOnPlanes(const std::vector<SlipPlane>& planes, const PointList& points, const std::vector<long>& rows, double* d, bool transposed)
+{
+  if (planes.empty())
+  {
+    return;
+  }
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < static_cast<long>(rows.size()); ++i)
+  {
+    slidePoint(planes, points[rows[i]], d + 3 * i, transposed);
   }
 }
 } // namespace mlsvtk

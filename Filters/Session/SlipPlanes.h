@@ -36,4 +36,7 @@ std::vector<SlipPlane> slipPlanes(const std::vector<RegionInput>& regions);
 /// order), for the reverse mode of design sensitivities.
 void slideOnPlanes(const std::vector<SlipPlane>& planes, const mlsdeform::PointList& points, long offset, long n, double* d,
   bool transposed = false);
+/// The same for the listed points (d: 3 values per entry of rows).
+void slideRowsOnPlanes(const std::vector<SlipPlane>& planes, const mlsdeform::PointList& points, const std::vector<long>& rows,
+  double* d, bool transposed);
 } // namespace mlsvtk

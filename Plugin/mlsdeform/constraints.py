@@ -91,6 +91,13 @@ class _Surface:
             raise ValueError(f"{what}: {which} names no block with surface polygons (2D cells, such as an "
                              f"OpenFOAM case's patches); blocks with polygons here: {', '.join(found) or 'none'}")
 
+    def corner_points(self):
+        """The points that are triangle corners, and each corner's index among them (T x 3)."""
+        if not hasattr(self, '_corners'):
+            points, inverse = np.unique(self.triangles, return_inverse=True)
+            self._corners = (points, inverse.reshape(self.triangles.shape))
+        return self._corners
+
     def corners(self, X):
         return X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]]
 
@@ -123,13 +130,14 @@ def _polygons(block):
     return offsets, connectivity
 
 
-def _scatter(n, triangles, g0, g1, g2):
-    """The gradient rows of triangle corners summed into an (n, 3) array."""
-    g = np.zeros((n, 3))
+def _corner_sums(surf, g0, g1, g2):
+    """The gradient rows of the surface's triangle corners summed per point: (points, (len(points), 3) values)."""
+    points, inverse = surf.corner_points()
+    g = np.zeros((len(points), 3))
     for k, gk in enumerate((g0, g1, g2)):
         for c in range(3):
-            g[:, c] += np.bincount(triangles[:, k], weights=gk[:, c], minlength=n)
-    return g
+            g[:, c] += np.bincount(inverse[:, k], weights=gk[:, c], minlength=len(points))
+    return points, g
 
 
 class _Constraint:
@@ -138,7 +146,7 @@ class _Constraint:
     def __init__(self, name, kind, lower, upper, scaled, evaluate, linear=None):
         self.name, self.kind, self.scaled = name, kind, scaled
         self.lower, self.upper = lower, upper
-        self.evaluate = evaluate   # X -> (values (m,), [dC_i/dX as (n, 3)] or None for values alone)
+        self.evaluate = evaluate   # X -> (values (m,), [dC_i/dX as (points, values)] or None for values alone)
         self.linear = linear       # for a linear constraint: its matrix over the variables (m x ndv)
         self.baseline = None
 
@@ -229,9 +237,9 @@ class DesignConstraints:
             if not gradient:
                 return np.array([sign * V]), None
             PS = S @ P / 3
-            g = _scatter(len(X), surf.triangles, PS + np.cross(x1 - x2, Pc) / 2, PS + np.cross(x2 - x0, Pc) / 2,
-                         PS + np.cross(x0 - x1, Pc) / 2)
-            return np.array([sign * V]), [sign * alpha * g]
+            rows, g = _corner_sums(surf, PS + np.cross(x1 - x2, Pc) / 2, PS + np.cross(x2 - x0, Pc) / 2,
+                                   PS + np.cross(x0 - x1, Pc) / 2)
+            return np.array([sign * V]), [(rows, sign * alpha * g)]
 
         self._add(_Constraint(name, 'volume', lower, upper, scaled, evaluate))
 
@@ -248,8 +256,8 @@ class DesignConstraints:
             if not gradient:
                 return np.array([A]), None
             u = n / np.where(length > 0, length, 1)[:, None]   # a degenerate triangle: no direction, no gradient
-            g = _scatter(len(X), surf.triangles, np.cross(x1 - x2, u) / 2, np.cross(x2 - x0, u) / 2, np.cross(x0 - x1, u) / 2)
-            return np.array([A]), [g]
+            return np.array([A]), [_corner_sums(surf, np.cross(x1 - x2, u) / 2, np.cross(x2 - x0, u) / 2,
+                                                np.cross(x0 - x1, u) / 2)]
 
         self._add(_Constraint(name, 'area', lower, upper, scaled, evaluate))
 
@@ -337,7 +345,11 @@ class DesignConstraints:
             if not algorithm.ComputeMeshQualityAggregate(index, rho, value, g if gradient else None):
                 raise RuntimeError(algorithm.GetSensitivityError())
             constraint.count = int(value.GetValue(1))
-            return np.array([value.GetValue(0)]), ([self.dvs._numpy(g)] if gradient else None)
+            if not gradient:
+                return np.array([value.GetValue(0)]), None
+            dense = self.dvs._numpy(g)
+            rows = np.flatnonzero(np.any(dense != 0, axis=1))
+            return np.array([value.GetValue(0)]), [(rows, dense[rows])]
 
         constraint = _Constraint(name, 'meshQuality', lower, upper, scaled, evaluate)
         constraint.rho = rho
@@ -358,19 +370,16 @@ class DesignConstraints:
 
     def evalFunctions(self, funcs):
         """funcs[name] = the constraint's values (an array) at the current design variables."""
-        X = self._points()
-        for name, c in self._constraints.items():
-            values, _ = c.evaluate(X, gradient=False)
-            funcs[name] = values / c.baseline if c.scaled else values
+        for name, values in self._state(gradients=False)['values'].items():
+            funcs[name] = values
 
     def evalFunctionsSens(self, funcsSens):
         """funcsSens[name] = {design variable: d(values)/dp (an array)}: every gradient chained
-        through the reverse mode (one back-substitution per value, whatever the number of
-        variables)."""
-        X = self._points()
+        through the reverse mode at once (one gathering of their points, one back-substitution
+        per value, whatever the number of variables)."""
         names = self.dvs.getVarNames()
-        for name, c in self._constraints.items():
-            funcsSens[name] = {v: column for v, column in zip(names, self._jacobian(c, X).T)}
+        for name, J in self._state(gradients=True)['jacobians'].items():
+            funcsSens[name] = {v: column for v, column in zip(names, J.T)}
 
     def getScipyConstraints(self):
         """Constraint dicts for scipy.optimize.minimize (SLSQP, trust-constr's old form) over the
@@ -400,54 +409,69 @@ class DesignConstraints:
     def _scipy_value(self, c, sign, bound):
         def fun(x):
             self._set(x)
-            values, _ = c.evaluate(self._points(), gradient=False)
-            return sign * ((values / c.baseline if c.scaled else values) - bound)
+            return sign * (self._state(gradients=False)['values'][c.name] - bound)
         return fun
 
     def _scipy_jacobian(self, c, sign):
         def jac(x):
             self._set(x)
-            return sign * self._jacobian(c, self._points())
+            return sign * self._state(gradients=True)['jacobians'][c.name]
         return jac
 
-    def _jacobian(self, c, X):
-        """d(values)/dp as an (m, ndv) array (scaled as the values)."""
-        if c.linear is not None:
-            return c.linear.copy()
-        _, gradients = c.evaluate(X)
-        names = self.dvs.getVarNames()
-        rows = []
-        for g in gradients:
-            dJdp = self.dvs.totalSensitivity(self._consolidated(X, g))
-            rows.append([dJdp[n] for n in names])
-        J = np.array(rows)
-        return J / c.baseline[:, None] if c.scaled else J
+    def _state(self, gradients):
+        """The constraints' values (scaled as asked) and, when asked, their jacobians (m x ndv) at
+        the current design, computed once per design (and per update of the filter's output)."""
+        self.dvs._updated()
+        key = (tuple(self.dvs.getValues().items()), self.dvs._algorithm.GetOutputDataObject(0).GetMTime(), tuple(self._constraints))
+        if self._cache is None or self._cache['key'] != key:
+            self._cache = {'key': key, 'X': self.dvs.update(), 'values': None, 'jacobians': None}
+        state = self._cache
+        if state['values'] is None or (gradients and state['jacobians'] is None):
+            state['values'], state['jacobians'] = self._evaluate(list(self._constraints.values()), state['X'], gradients)
+        return state
+
+    def _evaluate(self, constraints, X, gradients):
+        """{name: values} and (gradients) {name: jacobian}, the geometric ones chained at once."""
+        values, pending, jacobians = {}, [], {}
+        for c in constraints:
+            v, g = c.evaluate(X, gradient=gradients and c.linear is None)
+            values[c.name] = v / c.baseline if c.scaled and c.baseline is not None else v
+            if gradients:
+                if c.linear is not None:
+                    jacobians[c.name] = c.linear.copy()
+                else:
+                    pending.append((c, g))
+        if pending:
+            names = self.dvs.getVarNames()
+            chained = iter(self.dvs.totalSensitivities([self._consolidated(X, g) for _, gs in pending for g in gs]))
+            for c, gs in pending:
+                J = np.array([[d[n] for n in names] for d in (next(chained) for _ in gs)]).reshape(len(gs), len(names))
+                jacobians[c.name] = J / c.baseline[:, None] if c.scaled and c.baseline is not None else J
+        return values, (jacobians if gradients else None)
 
     @staticmethod
     def _consolidated(X, g):
-        """Under MPI: g with each position's rows summed over the processes, on one copy of it
-        per process (the reverse mode counts a position once over the processes, summed over its
-        copies on one process); g itself on one process."""
+        """Under MPI: a gradient (points, values) with each position's values summed over the
+        processes, on one copy of it per process (the reverse mode counts a position once over
+        the processes, summed over its copies on one process); g itself on one process."""
         if controller() is None:
             return g
-        rows = np.flatnonzero(np.any(g != 0, axis=1))
+        rows, values = g
         positions = all_gather(X[rows].reshape(-1)).reshape(-1, 3)
-        values = all_gather(g[rows].reshape(-1)).reshape(-1, 3)
+        values = all_gather(np.asarray(values).reshape(-1)).reshape(-1, 3)
         keys = np.ascontiguousarray(positions).view([('', positions.dtype)] * 3).reshape(-1)
         unique, inverse = np.unique(keys, return_inverse=True)
         total = np.zeros((len(unique), 3))
-        np.add.at(total, inverse, values)
+        np.add.at(total, inverse.reshape(-1), values)
+        if not len(unique):
+            return np.zeros(0, dtype=np.int64), np.zeros((0, 3))
         mine = np.ascontiguousarray(X).view([('', X.dtype)] * 3).reshape(-1)
-        at = np.searchsorted(unique, mine)
-        at[at >= len(unique)] = 0
-        hit = unique[at] == mine
-        out = np.zeros_like(g)
+        at = np.minimum(np.searchsorted(unique, mine), len(unique) - 1)
         first = {}
-        for i in np.flatnonzero(hit):
+        for i in np.flatnonzero(unique[at] == mine):
             first.setdefault(at[i], i)   # one copy of a position on this process carries its total
-        for u, i in first.items():
-            out[i] = total[u]
-        return out
+        out_rows = np.array(sorted(first.values()), dtype=np.int64)
+        return out_rows, total[at[out_rows]] if len(out_rows) else np.zeros((0, 3))
 
     def _thickness(self, name, at, directions, surface, lower, upper, scaled):
         what = f"thickness constraints {name!r}"
@@ -481,13 +505,13 @@ class DesignConstraints:
                 d = a - b
                 values.append(np.linalg.norm(d))
                 if gradient:
-                    g = np.zeros((len(X), 3))
+                    rows, g = [], []
                     unit = d / values[-1]
                     for (owner, tri, w), s in ((top, 1.0), (bottom, -1.0)):
                         if owner == me:
-                            for k in range(3):
-                                g[surf.triangles[tri, k]] += s * w[k] * unit
-                    grads.append(g)
+                            rows += list(surf.triangles[tri])
+                            g += [s * w[k] * unit for k in range(3)]
+                    grads.append((np.array(rows, dtype=np.int64), np.array(g).reshape(-1, 3)))
             return np.array(values), (grads if gradient else None)
 
         self._add(_Constraint(name, 'thickness', lower, upper, scaled, evaluate))
@@ -517,9 +541,9 @@ class DesignConstraints:
 
     @staticmethod
     def _check_closed(surf, X, axis, what):
-        """Raises ValueError when a triangle edge (by its end positions, over all processes) is
-        not shared by exactly one other triangle run the other way; with an axis, edges on the
-        surface's front and back (the extremes along the axis) may be open."""
+        """Raises ValueError unless every triangle edge (by its end positions, over all processes)
+        is run as often one way as the other (the divergence theorem's closed surface); with an
+        axis, edges on the surface's front and back (the extremes along the axis) may be open."""
         tri = surf.triangles
         directed = np.concatenate([np.stack([tri[:, k], tri[:, (k + 1) % 3]], axis=1) for k in range(3)])
         ends = np.concatenate([X[directed[:, 0]], X[directed[:, 1]]], axis=1)
@@ -531,14 +555,15 @@ class DesignConstraints:
             a, b = ends[:, :3] @ axis, ends[:, 3:] @ axis
             cap = ((np.abs(a - low) <= tol) & (np.abs(b - low) <= tol)) | ((np.abs(a - high) <= tol) & (np.abs(b - high) <= tol))
             ends = ends[~cap]
-        forward = {tuple(e) for e in ends}
-        backward = [tuple(e[3:]) + tuple(e[:3]) for e in ends]
-        unmatched = sum(1 for e in backward if e not in forward)
-        if unmatched or len(forward) != len(ends):
+        # closed as a chain: each edge run as often one way as the other (a pinched, non-manifold
+        # spot of a snapped surface, where four triangles meet at an edge, is closed too)
+        from collections import Counter
+        runs = Counter(map(tuple, ends.tolist()))
+        unmatched = sum(abs(n - runs.get(e[3:] + e[:3], 0)) for e, n in runs.items())
+        if unmatched:
             raise ValueError(f"{what}: the surface is not closed ({unmatched} of its {len(ends)} triangle edges have no "
-                             "partner run the other way" + (", or an edge is shared by more than two" if len(forward) != len(ends) else "")
-                             + "): an enclosed volume needs a closed surface" + ("" if axis is not None else
-                                                                                 " (an extruded 2D shape: give axis=)"))
+                             "partner run the other way): an enclosed volume needs a closed surface"
+                             + ("" if axis is not None else " (an extruded 2D shape: give axis=)"))
 
     def _direction(self, axis, name):
         a = np.asarray(axis, dtype=float).reshape(-1)
@@ -576,10 +601,11 @@ class DesignConstraints:
         if c.scaled and np.any(values == 0):
             raise ValueError(f"constraint {c.name!r}: a baseline value is 0, so it cannot be scaled: give scaled=False")
         c.baseline = values.copy()
-        J = self._jacobian(c, X)
+        J = self._evaluate([c], X, True)[1][c.name]
         dead = np.flatnonzero(np.all(J == 0, axis=1))
         if len(dead):
             raise ValueError(f"constraint {c.name!r}: no design variable influences its value{'s' if len(dead) > 1 else ''} "
                              f"{', '.join(map(str, dead[:10]))} (the gradient is zero): the points it measures do not move "
                              "with the design")
         self._constraints[c.name] = c
+        self._cache = None

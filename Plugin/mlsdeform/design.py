@@ -287,6 +287,43 @@ class DesignVariables:
         self._call(self._algorithm.ComputeObjectiveSensitivity(numpy_to_vtk(g, deep=1), out))
         return {name: out.GetValue(i) for i, name in enumerate(names)}
 
+    def totalSensitivities(self, gradients):
+        """Reverse mode for several functions at once: [dJ_f/dp as a dict] from a list of their
+        dJ_f/dX, each an (n, 3) array in output order or a pair (rows, values) of point indices
+        and their (len(rows), 3) values (the points where J_f depends on X). One gathering of their
+        points and of the deformation's rows there, then one back-substitution per function."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        names = self._updated()
+        n = self._algorithm.GetOutputDataObject(0).GetNumberOfPoints()
+        rows, values, starts = [], [], [0]
+        for f, g in enumerate(gradients):
+            if isinstance(g, tuple):
+                r, v = np.asarray(g[0], dtype=np.int64).reshape(-1), np.asarray(g[1], dtype=float).reshape(-1, 3)
+                if len(r) != len(v) or (len(r) and (r.min() < 0 or r.max() >= n)):
+                    raise ValueError(f"gradient {f}: rows must be point indices 0 .. {n - 1}, one per row of values")
+            else:
+                g = np.asarray(g, dtype=float)
+                if g.shape != (n, 3):
+                    raise ValueError(f"gradient {f} must be an (n, 3) array with n = {n}, not shape {g.shape}")
+                r = np.flatnonzero(np.any(g != 0, axis=1))
+                v = g[r]
+            if not np.all(np.isfinite(v)):
+                raise ValueError(f"gradient {f} has values that are not finite (NaN or infinity)")
+            rows.append(r)
+            values.append(v)
+            starts.append(starts[-1] + len(r))
+        rows = np.concatenate(rows) if rows else np.zeros(0, dtype=np.int64)
+        values = np.ascontiguousarray(np.concatenate(values) if values else np.zeros((0, 3)))
+        from vtkmodules.util.vtkConstants import VTK_ID_TYPE
+        r_vtk, s_vtk = [numpy_to_vtk(np.asarray(a, dtype=np.int64), deep=1, array_type=VTK_ID_TYPE) if len(a) else vtkIdTypeArray()
+                        for a in (rows, starts)]
+        v_vtk = numpy_to_vtk(values, deep=1) if len(values) else vtkDoubleArray()
+        v_vtk.SetNumberOfComponents(3)
+        out = vtkDoubleArray()
+        self._call(self._algorithm.ComputeObjectiveSensitivities(r_vtk, v_vtk, s_vtk, out))
+        return [{name: out.GetComponent(f, i) for i, name in enumerate(names)} for f in range(len(starts) - 1)]
+
     def checkDerivatives(self, step=1e-6, verbose=True):
         """Compares each variable's exact dX/dp with the central difference (X(p + h) - X(p - h)) / 2h
         (one-sided next to a bound), prints a table and returns the largest relative difference

@@ -118,6 +118,17 @@ if mode == 'serial':
               '%s: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (h and h/2 extrapolated)'
               % (n, scale, coarse, extrapolated))
     check(dvs.getValues() == start, 'the design is back where it was')
+    # the batched reverse mode: dense and (rows, values) gradients give totalSensitivity's dJ/dp
+    rest = sphere_in_box.rest_points(deform)
+    g = np.where(np.abs(rest[:, :1]) < 0.5, np.stack([np.sin(3 * rest[:, 0]), rest[:, 1], rest[:, 2] + 0.5], axis=1), 0.0)
+    rows = np.flatnonzero(np.any(g != 0, axis=1))
+    single = dvs.totalSensitivity(g)
+    batch = dvs.totalSensitivities([g, (rows, g[rows]), (rows[:5], g[rows[:5]])])
+    scale = max(abs(v) for v in single.values())
+    check(all(abs(batch[k][n] - single[n]) <= 1e-14 * scale for k in (0, 1) for n in names) and
+          abs(batch[2]['bump_0'] - dvs.totalSensitivity(np.where(np.isin(np.arange(len(g)), rows[:5])[:, None], g, 0.0))['bump_0']) <= 1e-14 * scale,
+          'totalSensitivities: three functions at once (dense, as rows, a part) give totalSensitivity\'s dJ/dp')
+    raises(lambda: dvs.totalSensitivities([(np.array([len(g)]), np.zeros((1, 3)))]), 'point indices', 'a row beyond the points')
 
     # scipy's list: fun and jac of each side at x
     x = np.array([start[n] for n in names])

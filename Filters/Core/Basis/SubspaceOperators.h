@@ -324,8 +324,11 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Den
 /// order, so that the result does not depend on the number of threads. The rows are summed in
 /// their own order, not in GatheredRows' storage order: that depends on where the rows lie in
 /// memory, which differs between processes and runs.
+///
+/// skipZeroRows: X's zero rows are passed over without reading A's rows (a constraint's gradient
+/// on a few of many rows); the sums are the same.
 template <typename Rows, typename Dense>
-Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X)
+Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X, bool skipZeroRows = false)
 {
   constexpr long Block = 8192;
   const long blocks = (end - begin + Block - 1) / Block;
@@ -337,6 +340,10 @@ Displacements multiplyTransposed(const Rows& A, long begin, long end, const Eige
     sum.setZero(A.cols(), 3);
     for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
     {
+      if (skipZeroRows && (X.row(i - begin).array() == 0).all())
+      {
+        continue;
+      }
       const auto& row = rowOf(A, i);
       for (long a = 0; a < row.size; ++a)
       {
