@@ -415,10 +415,10 @@ bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rh
 {
   return this->RunSensitivityRequest([&](const Collective& group) {
     agree(group, [&] {
-      if (!value || (measure != 0 && measure != 1) || !std::isfinite(rho) || rho <= 0)
+      if (!value || measure < 0 || measure > 2 || !std::isfinite(rho) || rho <= 0)
       {
-        throw InvalidInputException("ComputeMeshQualityAggregate needs measure 0 (non-orthogonality) or 1 (skewness), a positive "
-                                    "finite rho and an output array");
+        throw InvalidInputException("ComputeMeshQualityAggregate needs measure 0 (non-orthogonality), 1 (skewness) or 2 (the scaled "
+                                    "Jacobian), a positive finite rho and an output array");
       }
       if (!this->MeshQuality)
       {
@@ -426,8 +426,7 @@ bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rh
       }
     });
     std::vector<double> g;
-    const auto result = this->Session->qualityAggregate(
-      measure == 0 ? mlsdeform::FaceMeasure::NonOrthogonality : mlsdeform::FaceMeasure::Skewness, rho, group, gradient ? &g : nullptr);
+    const auto result = this->Session->qualityAggregate(static_cast<mlsdeform::QualityMeasure>(measure), rho, group, gradient ? &g : nullptr);
     value->SetNumberOfComponents(1);
     value->SetNumberOfTuples(2);
     value->SetValue(0, result.value);

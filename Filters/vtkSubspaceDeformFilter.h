@@ -248,10 +248,12 @@ public:
   bool ComputeObjectiveSensitivities(vtkIdTypeArray* rows, vtkDoubleArray* values, vtkIdTypeArray* starts, vtkDoubleArray* out);
   /// The mesh's quality as one smooth function and its gradient (an optimizer's constraint): the
   /// KS aggregate (max-shifted, weight rho > 0) of checkMesh's non-orthogonality in degrees
-  /// (measure 0) or skewness (1) over the interior faces of the deformed volume meshes (needs
-  /// MeshQuality on; Filters/Core/Quality/FaceQualityAggregate.h). value gets the aggregate and
-  /// the number of faces N (max <= value <= max + ln(N) / rho), gradient (if not null) d/dX
-  /// (n x 3, this process's output points).
+  /// (measure 0) or skewness (1) over the interior faces of the deformed volume meshes, or of
+  /// the least scaled Jacobian (2: -KS of -sj over an FEM mesh's elements' points, least -
+  /// ln(N) / rho <= value <= least) (needs MeshQuality on;
+  /// Filters/Core/Quality/FaceQualityAggregate.h). value gets the aggregate and the number of
+  /// faces or points N (max <= value <= max + ln(N) / rho), gradient (if not null) d/dX (n x 3,
+  /// this process's output points).
   bool ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkDoubleArray* gradient);
   const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
 

@@ -146,6 +146,81 @@ double Elements::measure(const mlsdeform::PointList& points, std::vector<unsigne
   return least;
 }
 
+mlsdeform::AggregatePart Elements::aggregatePart(const mlsdeform::PointList& points, double rho)
+{
+  // each element's values into its own buffer in parallel, then in element order
+  const long count = static_cast<long>(Shapes.size());
+  std::vector<std::vector<double>> values(Shapes.size());
+#pragma omp parallel
+  {
+    mlsdeform::PointList nodes;
+#pragma omp for schedule(dynamic, 1024)
+    for (long e = 0; e < count; ++e)
+    {
+      nodes.resize(Start[e + 1] - Start[e]);
+      for (std::size_t n = 0; n < nodes.size(); ++n)
+      {
+        nodes[n] = points[Points[Start[e] + n]];
+      }
+      mlsdeform::scaledJacobians(Shapes[e], nodes.data(), values[e]);
+    }
+  }
+  Negated.clear();
+  FrameStart.assign(1, 0);
+  for (const std::vector<double>& v : values)
+  {
+    for (double sj : v)
+    {
+      Negated.push_back(-sj);
+    }
+    FrameStart.push_back(Negated.size());
+  }
+  return mlsdeform::aggregatePart(Negated, rho);
+}
+
+void Elements::addAggregateGradient(
+  const mlsdeform::PointList& points, double rho, const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const
+{
+  // KS(-sj): dKS/dX = -sum_j w_j d(sj_j)/dX over the elements with a point of weight >= 1e-20
+  std::vector<long> heavy;
+  for (long e = 0; e + 1 < static_cast<long>(FrameStart.size()); ++e)
+  {
+    for (std::size_t j = FrameStart[e]; j < FrameStart[e + 1]; ++j)
+    {
+      if (std::exp(rho * (Negated[j] - whole.largest)) / whole.sum >= 1e-20)
+      {
+        heavy.push_back(e);
+        break;
+      }
+    }
+  }
+  std::vector<mlsdeform::PointList> terms(heavy.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long h = 0; h < static_cast<long>(heavy.size()); ++h)
+  {
+    const long e = heavy[h];
+    mlsdeform::PointList nodes(Start[e + 1] - Start[e]);
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+    {
+      nodes[n] = points[Points[Start[e] + n]];
+    }
+    std::vector<double> weights;
+    for (std::size_t j = FrameStart[e]; j < FrameStart[e + 1]; ++j)
+    {
+      weights.push_back(-std::exp(rho * (Negated[j] - whole.largest)) / whole.sum);
+    }
+    terms[h].assign(nodes.size(), mlsdeform::Vec3::Zero());
+    mlsdeform::addScaledJacobianGradient(Shapes[e], nodes.data(), weights.data(), terms[h].data());
+  }
+  for (std::size_t h = 0; h < heavy.size(); ++h) // in element order: the same bits for any thread count
+  {
+    for (std::size_t n = 0; n < terms[h].size(); ++n)
+    {
+      gradient[Points[Start[heavy[h]] + n]] += terms[h][n];
+    }
+  }
+}
+
 void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out)
 {
   out.resize(grid->GetNumberOfPoints());
@@ -221,21 +296,21 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
   return summarizeMeasures();
 }
 
-mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho)
+mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho)
 {
   if (PerFacePoints.empty() || points != PerFacePoints)
   {
     mlsdeform::faceMeasures(points, Cells, Faces, Orientation, PerFaceWork, PerFace);
     PerFacePoints = points;
   }
-  return mlsdeform::aggregatePart(measure == mlsdeform::FaceMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, rho);
+  return mlsdeform::aggregatePart(measure == mlsdeform::QualityMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, rho);
 }
 
-void VolumeMeshQuality::addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho,
+void VolumeMeshQuality::addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho,
   const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const
 {
   mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, PerFaceWork,
-    measure == mlsdeform::FaceMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, measure, rho, whole, gradient);
+    measure == mlsdeform::QualityMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, measure, rho, whole, gradient);
 }
 
 QualitySummary VolumeMeshQuality::summarizeMeasures()

@@ -47,8 +47,16 @@ public:
   /// The least scaled Jacobian over the elements (infinity when there are none), and for each
   /// element with det J <= 0 at one of its points inverted[its cell] set to 1.
   double measure(const mlsdeform::PointList& points, std::vector<unsigned char>& inverted) const;
+  /// The KS aggregate's part of -sj over every element's points (ElementJacobian's
+  /// scaledJacobians: -KS is a smooth lower bound of the least), kept for the gradient.
+  mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, double rho);
+  /// Adds d(KS)/dX of the last aggregatePart (the weights of whole) to gradient.
+  void addAggregateGradient(const mlsdeform::PointList& points, double rho, const mlsdeform::AggregatePart& whole,
+    mlsdeform::PointList& gradient) const;
 
 private:
+  std::vector<double> Negated;          // -sj of every element's points, element after element
+  std::vector<std::size_t> FrameStart;  // per element, its first entry of Negated (and the end)
   std::size_t CellCount;
   std::vector<int> Cells;
   std::vector<mlsdeform::ElementShape> Shapes;
@@ -113,15 +121,18 @@ public:
 
   /// Whether the mesh gets checkMesh's face measures (not an FEM solver's verdict).
   bool hasFaceMeasures() const { return Verdict == QualityVerdict::CheckMesh && Has3DCells; }
+  /// Whether it gets an FEM solver's verdict (its elements' scaled Jacobian), and those elements.
+  bool hasElementMeasures() const { return Verdict == QualityVerdict::FemSolver && Has3DCells; }
+  Elements& elements() { return JacobianElements; }
 
   /// The KS aggregate's part of a face measure over the interior faces on these points (the
   /// rest grid's cells, FaceQualityAggregate.h); its faces' measures are kept for the gradient
   /// and for the next call on the same points (a value, then its gradient, then another measure:
   /// one pass over the cells).
-  mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho);
+  mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho);
   /// Adds the aggregate's gradient (the weights of whole, the parts of every mesh and process)
   /// at the points of the last aggregatePart to gradient.
-  void addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho,
+  void addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho,
     const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const;
 
   const mlsdeform::CellFaceList& cells() const { return Cells; }

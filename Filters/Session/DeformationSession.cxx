@@ -680,7 +680,7 @@ void DeformationSession::deformedPoints(double* out) const
 }
 
 MeshQualityReport::Aggregate DeformationSession::qualityAggregate(
-  FaceMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
+  QualityMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
 {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
   PointList deformed(Points.size());

@@ -235,7 +235,7 @@ public:
   /// The KS aggregate of a face measure of the deformed volume meshes and its gradient at the
   /// output points (MeshQualityReport::aggregate; the last update's report).
   MeshQualityReport::Aggregate qualityAggregate(
-    mlsdeform::FaceMeasure measure, double rho, const mlsdeform::Collective& group, std::vector<double>* gradient);
+    mlsdeform::QualityMeasure measure, double rho, const mlsdeform::Collective& group, std::vector<double>* gradient);
   /// This process's input points, concatenated over the point sets.
   const mlsdeform::PointList& inputPoints() const { return Points; }
 

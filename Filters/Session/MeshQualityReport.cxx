@@ -151,11 +151,13 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
 }
 
 MeshQualityReport::Aggregate MeshQualityReport::aggregate(
-  const PointList& points, FaceMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
+  const PointList& points, QualityMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
 {
   auto meshPoints = [&](std::size_t s) {
     return PointList(points.begin() + Starts[s], points.begin() + Starts[s + 1]);
   };
+  // the scaled Jacobian: KS of -sj over the FEM meshes' elements, returned negated (a lower bound of the least)
+  const bool elements = measure == QualityMeasure::ScaledJacobian;
   std::vector<PointList> measured(Quality.size());
   AggregatePart local;
   agree(group, [&] {
@@ -165,10 +167,10 @@ MeshQualityReport::Aggregate MeshQualityReport::aggregate(
     }
     for (std::size_t s = 0; s < Quality.size(); ++s)
     {
-      if (Quality[s] && Quality[s]->hasFaceMeasures())
+      if (Quality[s] && (elements ? Quality[s]->hasElementMeasures() : Quality[s]->hasFaceMeasures()))
       {
         measured[s] = meshPoints(s);
-        local.add(Quality[s]->aggregatePart(measured[s], measure, rho), rho);
+        local.add(elements ? Quality[s]->elements().aggregatePart(measured[s], rho) : Quality[s]->aggregatePart(measured[s], measure, rho), rho);
       }
     }
   });
@@ -182,8 +184,10 @@ MeshQualityReport::Aggregate MeshQualityReport::aggregate(
   if (whole.count == 0)
   {
     throw InvalidInputException(!Problem.empty() ? "the mesh quality is not measured: " + Problem
-                                                 : std::string("no volume mesh has checkMesh's face measures (interior faces of 3D cells; "
-                                                               "an FEM solver's mesh gets the scaled Jacobian instead)"));
+        : elements ? std::string("no volume mesh gets an FEM solver's verdict (the scaled Jacobian of its elements: a structural "
+                                 "solver's mesh file); a CFD mesh has the non-orthogonality and skewness")
+                   : std::string("no volume mesh has checkMesh's face measures (interior faces of 3D cells; "
+                                 "an FEM solver's mesh gets the scaled Jacobian instead)"));
   }
   if (gradient)
   {
@@ -193,17 +197,24 @@ MeshQualityReport::Aggregate MeshQualityReport::aggregate(
       if (!measured[s].empty())
       {
         PointList g(measured[s].size(), Vec3::Zero());
-        Quality[s]->addAggregateGradient(measured[s], measure, rho, whole, g);
+        if (elements)
+        {
+          Quality[s]->elements().addAggregateGradient(measured[s], rho, whole, g);
+        }
+        else
+        {
+          Quality[s]->addAggregateGradient(measured[s], measure, rho, whole, g);
+        }
         for (std::size_t i = 0; i < g.size(); ++i)
         {
           for (int c = 0; c < 3; ++c)
           {
-            (*gradient)[3 * (Starts[s] + i) + c] = g[i][c];
+            (*gradient)[3 * (Starts[s] + i) + c] = elements ? -g[i][c] : g[i][c];
           }
         }
       }
     }
   }
-  return { whole.value(rho), whole.count };
+  return { elements ? -whole.value(rho) : whole.value(rho), whole.count };
 }
 } // namespace mlsvtk

@@ -52,7 +52,7 @@ public:
     double value;
     long count;
   };
-  Aggregate aggregate(const mlsdeform::PointList& points, mlsdeform::FaceMeasure measure, double rho, const mlsdeform::Collective& group,
+  Aggregate aggregate(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho, const mlsdeform::Collective& group,
     std::vector<double>* gradient);
 
 private:

@@ -321,15 +321,18 @@ class DesignConstraints:
 
     def addMeshQualityConstraint(self, name, measure='nonOrthogonality', upper=None, lower=None, rho=None, scaled=False):
         """The mesh's quality as one smooth function (DAFoam's KS-aggregated mesh quality): the
-        KS aggregate of a measure over every interior face of the volume meshes (checkMesh's
+        KS aggregate of a measure over every interior face of the CFD volume meshes (checkMesh's
         definitions: 'nonOrthogonality' in degrees, 'skewness'), in the max-shifted form
         KS = m + ln(sum_f exp(rho (q_f - m))) / rho, m the largest q_f, so that
-        m <= KS <= m + ln(N) / rho (N faces): ``getBiasBound(name)``. rho defaults to 10 per
-        degree (non-orthogonality) or 100 (skewness). Absolute values by default (an upper bound
-        of 70 degrees as checkMesh's). Needs the filter's MeshQuality on. Under MPI the faces
-        between the processes' pieces are not among them (as in the verdict)."""
+        m <= KS <= m + ln(N) / rho (N faces); or of the least scaled Jacobian of an FEM mesh's
+        elements at their corners and integration points ('scaledJacobian', the FEM verdict's:
+        -KS of -sj, so that least - ln(N) / rho <= value <= least). ``getBiasBound(name)`` gives
+        ln(N) / rho. rho defaults to 10 per degree (non-orthogonality) or 100. Absolute values by
+        default (upper=70 degrees as checkMesh's; lower=0.2 for the scaled Jacobian). Needs the
+        filter's MeshQuality on. Under MPI the faces between the processes' pieces are not among
+        them (as in the verdict)."""
         self._check_name(name)
-        measures = ('nonOrthogonality', 'skewness')
+        measures = ('nonOrthogonality', 'skewness', 'scaledJacobian')
         if measure not in measures:
             raise ValueError(f"mesh quality constraint {name!r}: measure is one of {', '.join(measures)}, not {measure!r}")
         rho = (10.0 if measure == 'nonOrthogonality' else 100.0) if rho is None else float(rho)
@@ -356,7 +359,7 @@ class DesignConstraints:
         self._add(constraint)
 
     def getBiasBound(self, name):
-        """A mesh-quality constraint's bound on KS - max: ln(N) / rho (N faces)."""
+        """A mesh-quality constraint's bound on |KS - the extreme|: ln(N) / rho (N faces or element points)."""
         c = self._constraints[name]
         return math.log(max(1, c.count)) / c.rho
 

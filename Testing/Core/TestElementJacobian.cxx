@@ -6,6 +6,8 @@
 #include "../TestHarness.h"
 #include "Quality/ElementJacobian.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <tuple>
 #include <vector>
@@ -148,6 +150,59 @@ TEST(MidsideNodeInvertsAQuadraticHexahedronAndWedge)
     const ElementJacobian folded = elementJacobian(std::get<0>(c), nodes.data());
     CHECK(folded.inverted);
     CHECK(folded.minScaled < 0);
+  }
+}
+
+TEST(ScaledJacobiansAndTheirGradient)
+{
+  // every shape, distorted (sheared, every node moved by a fixed irregular offset): the frames'
+  // least is elementJacobian's, and sum_j w_j d(sj_j)/dX against central differences (h = 1e-6:
+  // error h^2 times the third derivative, ~1e-11; round-off 1e-16 / h = 1e-10)
+  const std::vector<std::pair<ElementShape, ElementShape>> pairs = { { ElementShape::Tetra4, ElementShape::Tetra10 },
+    { ElementShape::Hexa8, ElementShape::Hexa20 }, { ElementShape::Wedge6, ElementShape::Wedge15 } };
+  const std::vector<std::vector<Vec3>> shapes = { regularTetrahedron(), unitCube(), rightPrism() };
+  const std::vector<std::vector<std::pair<int, int>>> edges = { TetEdges, HexEdges, WedgeEdges };
+  for (std::size_t t = 0; t < pairs.size(); ++t)
+  {
+    for (ElementShape shape : { pairs[t].first, pairs[t].second })
+    {
+      std::vector<Vec3> nodes = shape == pairs[t].first ? sheared(shapes[t]) : withMidsides(sheared(shapes[t]), edges[t]);
+      for (std::size_t n = 0; n < nodes.size(); ++n)
+      {
+        nodes[n] += 0.08 * Vec3(std::sin(3.1 * n + 1), std::cos(1.7 * n), std::sin(2.3 * n + 0.5));
+      }
+      std::vector<double> values;
+      scaledJacobians(shape, nodes.data(), values);
+      CHECK(!values.empty());
+      CHECK_NEAR(*std::min_element(values.begin(), values.end()), elementJacobian(shape, nodes.data()).minScaled, 0.0);
+      std::vector<double> weights(values.size());
+      for (std::size_t j = 0; j < weights.size(); ++j)
+      {
+        weights[j] = 0.3 + std::sin(1.3 * j);
+      }
+      auto F = [&](const std::vector<Vec3>& x) {
+        std::vector<double> v;
+        scaledJacobians(shape, x.data(), v);
+        double sum = 0;
+        for (std::size_t j = 0; j < v.size(); ++j)
+          sum += weights[j] * v[j];
+        return sum;
+      };
+      std::vector<Vec3> exact(nodes.size(), Vec3::Zero());
+      addScaledJacobianGradient(shape, nodes.data(), weights.data(), exact.data());
+      double worst = 0, scale = 0;
+      for (std::size_t n = 0; n < nodes.size(); ++n)
+        for (int c = 0; c < 3; ++c)
+        {
+          std::vector<Vec3> plus = nodes, minus = nodes;
+          plus[n][c] += 1e-6;
+          minus[n][c] -= 1e-6;
+          worst = std::max(worst, std::abs((F(plus) - F(minus)) / 2e-6 - exact[n][c]));
+          scale = std::max(scale, std::abs(exact[n][c]));
+        }
+      std::printf("shape %d: largest |gradient| %.3g, central differences off by %.2g\n", static_cast<int>(shape), scale, worst);
+      CHECK(scale > 0.01 && worst <= 1e-8);
+    }
   }
 }
 

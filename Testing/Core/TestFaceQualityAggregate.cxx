@@ -48,12 +48,12 @@ Block distortedBlock(int nx, int ny, int nz)
 }
 
 // The aggregate on these points, and its gradient when asked.
-double aggregate(const Block& b, const PointList& points, FaceMeasure measure, double rho, PointList* gradient, AggregatePart* part = nullptr)
+double aggregate(const Block& b, const PointList& points, QualityMeasure measure, double rho, PointList* gradient, AggregatePart* part = nullptr)
 {
   FaceWorkspace work;
   FaceMeasures m;
   faceMeasures(points, b.cells, b.faces, b.orientation, work, m);
-  const std::vector<double>& q = measure == FaceMeasure::NonOrthogonality ? m.nonOrthogonality : m.skewness;
+  const std::vector<double>& q = measure == QualityMeasure::NonOrthogonality ? m.nonOrthogonality : m.skewness;
   const AggregatePart whole = aggregatePart(q, rho);
   if (part)
   {
@@ -71,10 +71,10 @@ double aggregate(const Block& b, const PointList& points, FaceMeasure measure, d
 TEST(AggregateBounds)
 {
   const Block b = distortedBlock(3, 3, 2);
-  for (FaceMeasure measure : { FaceMeasure::NonOrthogonality, FaceMeasure::Skewness })
+  for (QualityMeasure measure : { QualityMeasure::NonOrthogonality, QualityMeasure::Skewness })
   {
     FaceMeasures m = faceMeasures(b.points, b.cells, b.faces, b.orientation);
-    const double largest = measure == FaceMeasure::NonOrthogonality ? m.maxNonOrthogonality : m.maxSkewness;
+    const double largest = measure == QualityMeasure::NonOrthogonality ? m.maxNonOrthogonality : m.maxSkewness;
     for (double rho : { 0.1, 1.0, 10.0, 1000.0 })
     {
       AggregatePart part;
@@ -86,7 +86,7 @@ TEST(AggregateBounds)
       CHECK(ks >= part.largest && ks <= part.largest + std::log(static_cast<double>(part.count)) / rho + 1e-14 * largest);
     }
     // parts combine into the whole: two halves of the faces give the whole's value
-    const std::vector<double>& q = measure == FaceMeasure::NonOrthogonality ? m.nonOrthogonality : m.skewness;
+    const std::vector<double>& q = measure == QualityMeasure::NonOrthogonality ? m.nonOrthogonality : m.skewness;
     const std::size_t half = q.size() / 2;
     AggregatePart a = aggregatePart(std::vector<double>(q.begin(), q.begin() + half), 3.0);
     a.add(aggregatePart(std::vector<double>(q.begin() + half, q.end()), 3.0), 3.0);
@@ -101,9 +101,9 @@ TEST(AggregateGradientAgainstCentralDifferences)
   // round-off eps |KS| / h (2e-10); both steps must agree with the exact gradient to 1e-6 of its
   // largest entry, and the smaller step no worse than the larger (up to round-off).
   const Block b = distortedBlock(3, 3, 2);
-  for (FaceMeasure measure : { FaceMeasure::NonOrthogonality, FaceMeasure::Skewness })
+  for (QualityMeasure measure : { QualityMeasure::NonOrthogonality, QualityMeasure::Skewness })
   {
-    const double rho = measure == FaceMeasure::NonOrthogonality ? 0.5 : 20.0; // several faces weigh in
+    const double rho = measure == QualityMeasure::NonOrthogonality ? 0.5 : 20.0; // several faces weigh in
     PointList exact;
     aggregate(b, b.points, measure, rho, &exact);
     double scale = 0;
@@ -125,7 +125,7 @@ TEST(AggregateGradientAgainstCentralDifferences)
         }
     }
     std::printf("%s: largest |dKS/dX| %.3g, central differences off by %.2g (h = 1e-5) and %.2g (h = 5e-6)\n",
-      measure == FaceMeasure::NonOrthogonality ? "non-orthogonality" : "skewness", scale, worst[0], worst[1]);
+      measure == QualityMeasure::NonOrthogonality ? "non-orthogonality" : "skewness", scale, worst[0], worst[1]);
     CHECK(worst[0] <= 1e-6 * scale && worst[1] <= 1e-6 * scale);
     CHECK(worst[1] <= worst[0] + 1e-9 * scale);
   }

@@ -158,6 +158,7 @@ if mode == 'serial':
     raises(lambda: cons.addLinearConstraintsShape('none', ['bump_0'], ['bump_1'], 0, 0), 'no design variable influences', 'zero factors')
     raises(lambda: cons.addLinearConstraintsShape('unknown', ['wing_0'], ['bump_1'], 1, 1), 'unknown design variable', 'an unknown variable')
     raises(lambda: cons.addMeshQualityConstraint('q', 'aspectRatio'), 'measure is one of', 'an unknown measure')
+    raises(lambda: cons.addMeshQualityConstraint('q', 'scaledJacobian'), 'no volume mesh gets an FEM solver', 'the scaled Jacobian of a CFD mesh')
     raises(lambda: cons.addMeshQualityConstraint('q', rho=-1), 'positive', 'a negative rho')
     raises(lambda: cons.addSurfaceAreaConstraint('volume', surface='sphere'), 'defined already', 'a name taken')
     check(cons.getConstraintNames() == before, 'the failed calls added nothing')
@@ -191,6 +192,11 @@ if mode == 'serial':
         if max(z) - min(z) > 1e-9:   # not on the front or back
             polys.InsertNextCell(ids)
     sides.SetPolys(polys)
+    from vtkmodules.vtkCommonCore import vtkStringArray
+    verdict = vtkStringArray()
+    verdict.SetName('QualityVerdict')
+    verdict.InsertNextValue('FemSolver')   # as the Mesh File reader marks a structural deck: the FEM verdict
+    tets.GetOutput().GetFieldData().AddArray(verdict)
     slab = vtkMultiBlockDataSet()
     slab.SetBlock(0, tets.GetOutput())
     slab.SetBlock(1, sides)
@@ -231,6 +237,34 @@ if mode == 'serial':
     section = np.trapz(ys, xs)   # the top is a polyline over the floor y = 0: the section's area
     check(abs(f['v2'][0] - depth * section) < 1e-15, 'deformed: the 2D volume %.15f = the section\'s area x depth %.15f'
           % (f['v2'][0], depth * section))
+    # the FEM verdict's least scaled Jacobian as a smooth lower bound, and its gradient
+    scons.addMeshQualityConstraint('sj', 'scaledJacobian', lower=0.2, rho=30.0)
+    raises(lambda: scons.addMeshQualityConstraint('no', 'skewness'), "no volume mesh has checkMesh's face measures",
+           'a CFD measure on an FEM mesh')
+    f = {}
+    scons.evalFunctions(f)
+    least = slabDeform.GetClientSideObject().GetOutputDataObject(0).GetFieldData().GetArray('MinScaledJacobian').GetValue(0)
+    check(least - scons.getBiasBound('sj') <= f['sj'][0] <= least,
+          'KS scaled Jacobian %.4f between the verdict\'s least %.4f less ln(N)/rho and the least' % (f['sj'][0], least))
+    sstart, snames = sdvs.getValues(), sdvs.getVarNames()
+    sens = {}
+    scons.evalFunctionsSens(sens)
+    J = np.array([sens['sj'][v] for v in snames]).reshape(-1)
+    fd = {}
+    for h in (1e-4, 5e-5):
+        fd[h] = np.zeros(len(snames))
+        for j, v in enumerate(snames):
+            for sign in (1, -1):
+                sdvs.setDesignVars({v: sstart[v] + sign * h})
+                g = {}
+                scons.evalFunctions(g)
+                fd[h][j] += sign * g['sj'][0] / (2 * h)
+            sdvs.setDesignVars({v: sstart[v]})
+    scale = np.abs(J).max()
+    coarse, extrapolated = np.abs(fd[1e-4] - J).max() / scale, np.abs((4 * fd[5e-5] - fd[1e-4]) / 3 - J).max() / scale
+    check(scale > 0 and coarse <= 1e-4 and extrapolated <= 1e-7,
+          'scaled Jacobian: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
+          % (scale, coarse, extrapolated))
     np.savez(os.path.join(work, 'constraints.npz'), **{'f_' + n: np.atleast_1d(v) for n, v in funcs.items()},
              **{'J_' + n: v for n, v in jacobian.items()})
 else:

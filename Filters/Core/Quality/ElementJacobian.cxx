@@ -22,21 +22,6 @@ double scaledDeterminant(const Vec3& a, const Vec3& b, const Vec3& c, double& de
   return lengths > 0 ? std::clamp(det / lengths, -1.0, 1.0) : 0.0;
 }
 
-/// The least scaled Jacobian and whether some det J <= 0, gathered point by point.
-struct Least
-{
-  double scale, sign; // the ideal element's 1, VTK's orientation's positive
-  ElementJacobian result{ std::numeric_limits<double>::infinity(), false };
-
-  void add(const Vec3& a, const Vec3& b, const Vec3& c)
-  {
-    double det;
-    const double scaled = sign * scale * scaledDeterminant(a, b, c, det);
-    result.minScaled = std::min(result.minScaled, std::clamp(scaled, -1.0, 1.0));
-    result.inverted = result.inverted || sign * det <= 0;
-  }
-};
-
 // ---- Tetrahedra: barycentric coordinates l0..l3, G_k = dx/dl_k as if they were independent, the
 // edges from corner k: G_j - G_k. The corners' edges in an order of positive volume for VTK's
 // tetrahedron (points 0, 1, 2 seen from 3 counter-clockwise): even permutations of 0 1 2 3.
@@ -63,18 +48,20 @@ std::array<Vec3, 4> tetGradients(const Vec3* x, bool quadratic, const std::array
   return g;
 }
 
-ElementJacobian tetrahedron(const Vec3* x, bool quadratic)
+// The frames of a tetrahedron: frame(a, b, c) for the edges from each corner at each point
+// (scale sqrt(2): a regular tetrahedron's corner has det / lengths = 1 / sqrt(2); sign +1).
+template <typename Frame>
+void tetrahedronFrames(const Vec3* x, bool quadratic, Frame frame)
 {
-  Least least{ std::sqrt(2.0), 1.0 }; // a regular tetrahedron's corner: det / lengths = 1 / sqrt(2)
-  auto frame = [&](const std::array<Vec3, 4>& g, int k) {
+  auto corner = [&](const std::array<Vec3, 4>& g, int k) {
     const int* f = TetFrames[k];
-    least.add(g[f[0]] - g[k], g[f[1]] - g[k], g[f[2]] - g[k]);
+    frame(g[f[0]] - g[k], g[f[1]] - g[k], g[f[2]] - g[k]);
   };
   for (int k = 0; k < 4; ++k)
   {
     std::array<double, 4> l{ 0, 0, 0, 0 };
     l[k] = 1;
-    frame(tetGradients(x, quadratic, l), k);
+    corner(tetGradients(x, quadratic, l), k);
   }
   if (quadratic)
   {
@@ -87,11 +74,10 @@ ElementJacobian tetrahedron(const Vec3* x, bool quadratic)
       const std::array<Vec3, 4> g = tetGradients(x, quadratic, l);
       for (int k = 0; k < 4; ++k)
       {
-        frame(g, k);
+        corner(g, k);
       }
     }
   }
-  return least.result;
 }
 
 // ---- Hexahedra: natural coordinates in [-1, 1]^3 (the solver's shape functions, SolidElements.h),
@@ -99,11 +85,13 @@ ElementJacobian tetrahedron(const Vec3* x, bool quadratic)
 constexpr int HexCorners[8][3] = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1 },
   { 1, -1, 1 }, { 1, 1, 1 }, { -1, 1, 1 } };
 
-ElementJacobian hexahedron(const Vec3* x, bool quadratic)
+// The frames of a hexahedron: the Jacobian's columns at its corners, centre and (quadratic)
+// integration points (scale 1, sign +1).
+template <typename Frame>
+void hexahedronFrames(const Vec3* x, bool quadratic, Frame frame)
 {
   const SolidElement element = quadratic ? SolidElement::C3D20 : SolidElement::C3D8;
   const int count = nodeCount(element);
-  Least least{ 1.0, 1.0 };
   auto at = [&](const Vec3& xi) {
     std::array<double, 20> N;
     std::array<Vec3, 20> dN;
@@ -113,7 +101,7 @@ ElementJacobian hexahedron(const Vec3* x, bool quadratic)
     {
       jacobian += x[n] * dN[n].transpose();
     }
-    least.add(jacobian.col(0), jacobian.col(1), jacobian.col(2));
+    frame(jacobian.col(0), jacobian.col(1), jacobian.col(2));
   };
   for (const auto& corner : HexCorners)
   {
@@ -132,7 +120,6 @@ ElementJacobian hexahedron(const Vec3* x, bool quadratic)
             at(Vec3(u, v, w));
     }
   }
-  return least.result;
 }
 
 // ---- Wedges: the triangle's barycentric l0..l2 (G_k = dx/dl_k) times zeta in [-1, 1] (Z =
@@ -186,20 +173,23 @@ void wedgeGradients(const Vec3* x, bool quadratic, const std::array<double, 3>& 
   }
 }
 
-ElementJacobian wedge(const Vec3* x, bool quadratic)
+// The frames of a wedge: the triangle's edges from each corner and Z at the corners and
+// (quadratic) integration points (scale 2 / sqrt(3): an equilateral triangle's corner, sin 60
+// degrees; sign -1).
+template <typename Frame>
+void wedgeFrames(const Vec3* x, bool quadratic, Frame frame)
 {
-  Least least{ 2 / std::sqrt(3.0), -1.0 }; // an equilateral triangle's corner: sin 60 degrees
   std::array<Vec3, 3> g;
   Vec3 z;
-  auto frame = [&](int k) {
-    least.add(g[TriangleFrames[k][0]] - g[k], g[TriangleFrames[k][1]] - g[k], z);
+  auto corner = [&](int k) {
+    frame(g[TriangleFrames[k][0]] - g[k], g[TriangleFrames[k][1]] - g[k], z);
   };
-  for (int corner = 0; corner < 6; ++corner)
+  for (int c = 0; c < 6; ++c)
   {
     std::array<double, 3> l{ 0, 0, 0 };
-    l[corner % 3] = 1;
-    wedgeGradients(x, quadratic, l, corner < 3 ? -1 : 1, g, z);
-    frame(corner % 3);
+    l[c % 3] = 1;
+    wedgeGradients(x, quadratic, l, c < 3 ? -1 : 1, g, z);
+    corner(c % 3);
   }
   if (quadratic)
   {
@@ -213,32 +203,104 @@ ElementJacobian wedge(const Vec3* x, bool quadratic)
         wedgeGradients(x, quadratic, { l[0], l[1], l[2] }, zeta, g, z);
         for (int k = 0; k < 3; ++k)
         {
-          frame(k);
+          corner(k);
         }
       }
     }
   }
-  return least.result;
+}
+
+// Every frame of the element (frame(a, b, c)), and the shape's scale and sign.
+template <typename Frame>
+void elementFrames(ElementShape shape, const Vec3* x, Frame frame, double& scale, double& sign)
+{
+  const bool quadratic = shape == ElementShape::Tetra10 || shape == ElementShape::Hexa20 || shape == ElementShape::Wedge15;
+  switch (shape)
+  {
+    case ElementShape::Tetra4:
+    case ElementShape::Tetra10:
+      scale = std::sqrt(2.0), sign = 1;
+      tetrahedronFrames(x, quadratic, frame);
+      return;
+    case ElementShape::Hexa8:
+    case ElementShape::Hexa20:
+      scale = 1, sign = 1;
+      hexahedronFrames(x, quadratic, frame);
+      return;
+    case ElementShape::Wedge6:
+    case ElementShape::Wedge15:
+      scale = 2 / std::sqrt(3.0), sign = -1;
+      wedgeFrames(x, quadratic, frame);
+      return;
+  }
+}
+
+int nodeCountOf(ElementShape shape)
+{
+  constexpr int counts[] = { 4, 10, 8, 20, 6, 15 };
+  return counts[static_cast<int>(shape)];
 }
 } // namespace
 
 ElementJacobian elementJacobian(ElementShape shape, const Vec3* nodes)
 {
-  switch (shape)
+  // the least scaled Jacobian and whether some det J <= 0, gathered frame by frame (scale and
+  // sign are the shape's, set before its first frame)
+  double scale = 1, sign = 1;
+  ElementJacobian result{ std::numeric_limits<double>::infinity(), false };
+  elementFrames(shape, nodes, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    double det;
+    const double scaled = sign * scale * scaledDeterminant(a, b, c, det);
+    result.minScaled = std::min(result.minScaled, std::clamp(scaled, -1.0, 1.0));
+    result.inverted = result.inverted || sign * det <= 0;
+  }, scale, sign);
+  return result;
+}
+
+void scaledJacobians(ElementShape shape, const Vec3* nodes, std::vector<double>& out)
+{
+  double scale = 1, sign = 1;
+  elementFrames(shape, nodes, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    double det;
+    out.push_back(std::clamp(sign * scale * scaledDeterminant(a, b, c, det), -1.0, 1.0));
+  }, scale, sign);
+}
+
+void addScaledJacobianGradient(ElementShape shape, const Vec3* nodes, const double* weights, Vec3* gradient)
+{
+  // d(sj)/d(a, b, c) per frame (zero where sj is clamped at -1 or 1, or a column is zero)
+  double scale = 1, sign = 1;
+  std::vector<std::array<Vec3, 3>> slopes;
+  elementFrames(shape, nodes, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    std::array<Vec3, 3> d{ Vec3::Zero(), Vec3::Zero(), Vec3::Zero() };
+    const double la = a.norm(), lb = b.norm(), lc = c.norm(), L = la * lb * lc;
+    if (L > 0)
+    {
+      const double r = a.dot(b.cross(c)) / L; // det / (|a| |b| |c|)
+      d = { Vec3(b.cross(c) / L - r * a / (la * la)), Vec3(c.cross(a) / L - r * b / (lb * lb)), Vec3(a.cross(b) / L - r * c / (lc * lc)) };
+    }
+    slopes.push_back(d);
+  }, scale, sign);
+  std::vector<double> values;
+  scaledJacobians(shape, nodes, values);
+  // the frames' columns are linear in the nodes, a = sum_n alpha_n x_n: alpha_n is a's first
+  // component with node n at (1, 0, 0) and the others at 0
+  const int n = nodeCountOf(shape);
+  std::vector<Vec3> unit;
+  for (int node = 0; node < n; ++node)
   {
-    case ElementShape::Tetra4:
-      return tetrahedron(nodes, false);
-    case ElementShape::Tetra10:
-      return tetrahedron(nodes, true);
-    case ElementShape::Hexa8:
-      return hexahedron(nodes, false);
-    case ElementShape::Hexa20:
-      return hexahedron(nodes, true);
-    case ElementShape::Wedge6:
-      return wedge(nodes, false);
-    case ElementShape::Wedge15:
-      return wedge(nodes, true);
+    unit.assign(static_cast<std::size_t>(n), Vec3::Zero());
+    unit[node] = Vec3(1, 0, 0);
+    std::size_t f = 0;
+    Vec3 sum = Vec3::Zero();
+    elementFrames(shape, unit.data(), [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+      if (weights[f] != 0 && std::abs(values[f]) < 1)
+      {
+        sum += weights[f] * sign * scale * (a.x() * slopes[f][0] + b.x() * slopes[f][1] + c.x() * slopes[f][2]);
+      }
+      ++f;
+    }, scale, sign);
+    gradient[node] += sum;
   }
-  return { 0, true };
 }
 } // namespace mlsdeform

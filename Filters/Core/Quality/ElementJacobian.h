@@ -14,6 +14,8 @@
 
 #include "Common/CoreTypes.h"
 
+#include <vector>
+
 namespace mlsdeform
 {
 /// The elements measured, each with VTK's node order (vtkQuadraticTetra, vtkQuadraticHexahedron,
@@ -36,4 +38,13 @@ struct ElementJacobian
 
 /// The element whose nodes are nodes[0 .. n-1] (n of its shape), measured at its points.
 ElementJacobian elementJacobian(ElementShape shape, const Vec3* nodes);
+
+/// The scaled Jacobian at each of the element's points, frame by frame (a corner's edges on
+/// simplices), appended to out: elementJacobian's least is their minimum.
+void scaledJacobians(ElementShape shape, const Vec3* nodes, std::vector<double>& out);
+
+/// Adds sum_j weights[j] d(sj_j)/d(node) to gradient[node] for the values of scaledJacobians
+/// (in their order): sj = det J / (|J1| |J2| |J3|) times the shape's scale, J linear in the nodes
+/// (none where sj is at -1 or 1, where the clamp holds it).
+void addScaledJacobianGradient(ElementShape shape, const Vec3* nodes, const double* weights, Vec3* gradient);
 } // namespace mlsdeform

@@ -159,7 +159,7 @@ AggregatePart aggregatePart(const std::vector<double>& q, double rho)
 }
 
 void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, FaceMeasure measure, double rho,
+  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, QualityMeasure measure, double rho,
   const AggregatePart& whole, PointList& gradient)
 {
   std::vector<long> heavy; // the faces of weight >= LeastWeight, in face order
@@ -182,7 +182,7 @@ void addAggregateGradient(const PointList& points, const CellFaceList& cells, co
     FaceGeometry g = faceGeometry(points, cells.face(f.face), cells.faceSize(f.face));
     g.area *= orientation[i];
     Vec3 Pbar = Vec3::Zero(), Nbar = Vec3::Zero(), Sbar = Vec3::Zero(), cBar = Vec3::Zero();
-    if (measure == FaceMeasure::NonOrthogonality)
+    if (measure == QualityMeasure::NonOrthogonality)
     {
       nonOrthogonalityAdjoint(P, N, g.area, weight, Pbar, Nbar, Sbar);
     }

@@ -16,10 +16,13 @@
 
 namespace mlsdeform
 {
-enum class FaceMeasure
+/// The measures aggregated: checkMesh's face measures here, the elements' scaled Jacobian by
+/// ElementJacobian's scaledJacobians (the same AggregatePart over -sj).
+enum class QualityMeasure
 {
   NonOrthogonality,
   Skewness,
+  ScaledJacobian,
 };
 
 /// The pieces of a KS aggregate over several meshes or processes: m, sum exp(rho (q - m)) and N.
@@ -41,7 +44,7 @@ AggregatePart aggregatePart(const std::vector<double>& q, double rho);
 /// (over every part); work and q as faceMeasures left them on these points. The faces' terms
 /// are summed in face order: the same bits for any thread count.
 void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, FaceMeasure measure, double rho,
+  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, QualityMeasure measure, double rho,
   const AggregatePart& whole, PointList& gradient);
 
 /// The reverse-mode derivatives of FaceQuality's geometry: given dF/d(centre) and dF/d(area) of a
