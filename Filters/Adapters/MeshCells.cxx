@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <tuple>
 
 namespace mlsvtk
 {
@@ -226,6 +227,93 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
     std::vector<std::array<int, N>>().swap(parts[part]);
   }
 }
+
+// The boundary of a grid with nonlinear cells (a deck's C3D10, C3D20), over the grid's own points:
+// each face that one cell alone has (found by its sorted corners), as the polygon around its
+// corners and edge nodes (VTK lists a quadratic face's edge nodes after its corners, edge k from
+// corner k to k + 1), in the cells' order and oriented out of them as VTK's cell faces are.
+// (vtkGeometryFilter of VTK 9.2 gives such faces float points and original point ids that do not
+// name the grid's points.)
+vtkSmartPointer<vtkPolyData> nonlinearBoundary(vtkUnstructuredGrid* grid)
+{
+  struct Face
+  {
+    std::array<vtkIdType, 4> corners; // sorted; -1 after a triangle's three
+    vtkIdType cell;
+    int face;
+    bool operator<(const Face& other) const { return std::tie(corners, cell, face) < std::tie(other.corners, other.cell, other.face); }
+  };
+  std::vector<Face> faces;
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCell(c, cell);
+    for (int f = 0; cell->GetCellDimension() == 3 && f < cell->GetNumberOfFaces(); ++f)
+    {
+      vtkCell* face = cell->GetFace(f);
+      const int corners = std::min(face->GetNumberOfEdges(), 4); // nonlinear cells' faces are triangles or quadrilaterals
+      Face entry{ { -1, -1, -1, -1 }, c, f };
+      for (int k = 0; k < corners; ++k)
+      {
+        entry.corners[k] = face->GetPointId(k);
+      }
+      std::sort(entry.corners.begin(), entry.corners.begin() + corners);
+      faces.push_back(entry);
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::pair<vtkIdType, int>> boundary;
+  for (std::size_t i = 0; i < faces.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].corners == faces[i].corners)
+    {
+      ++j;
+    }
+    if (j == i + 1)
+    {
+      boundary.emplace_back(faces[i].cell, faces[i].face);
+    }
+    i = j;
+  }
+  std::sort(boundary.begin(), boundary.end());
+  vtkNew<vtkCellArray> polygons;
+  std::vector<vtkIdType> polygon;
+  for (const auto& [c, f] : boundary)
+  {
+    grid->GetCell(c, cell);
+    vtkCell* face = cell->GetFace(f);
+    const int corners = face->GetNumberOfEdges();
+    const bool edgeNodes = face->GetNumberOfPoints() >= 2 * corners;
+    polygon.clear();
+    for (int k = 0; k < corners; ++k)
+    {
+      polygon.push_back(face->GetPointId(k));
+      if (edgeNodes)
+      {
+        polygon.push_back(face->GetPointId(corners + k));
+      }
+    }
+    polygons->InsertNextCell(static_cast<vtkIdType>(polygon.size()), polygon.data());
+  }
+  vtkNew<vtkPolyData> out;
+  out->SetPoints(grid->GetPoints());
+  out->SetPolys(polygons);
+  return out;
+}
+
+bool hasNonlinearCells(vtkUnstructuredGrid* grid)
+{
+  vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+  for (vtkIdType t = 0; types && t < types->GetNumberOfValues(); ++t)
+  {
+    if (!vtkCellTypes::IsLinear(types->GetValue(t)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
 }
 
 int cellDimension(int type)
@@ -257,13 +345,20 @@ std::vector<BoundaryFaces> boundaryFaces(const std::vector<vtkPointSet*>& sets, 
     {
       continue;
     }
-    vtkNew<vtkGeometryFilter> boundary;
-    boundary->SetInputData(grid);
-    boundary->SetPassThroughPointIds(true);
-    boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
-    boundary->MergingOff();
-    boundary->Update();
-    boundaries[s].faces = boundary->GetOutput();
+    if (hasNonlinearCells(grid))
+    {
+      boundaries[s].faces = nonlinearBoundary(grid);
+    }
+    else
+    {
+      vtkNew<vtkGeometryFilter> boundary;
+      boundary->SetInputData(grid);
+      boundary->SetPassThroughPointIds(true);
+      boundary->SetOriginalPointIdsName("MLSOriginalPointIds");
+      boundary->MergingOff();
+      boundary->Update();
+      boundaries[s].faces = boundary->GetOutput();
+    }
     vtkPolyData* faces = boundaries[s].faces;
     vtkNew<vtkIdList> ids;
     for (vtkIdType f = 0; group.size() > 1 && f < faces->GetNumberOfCells(); ++f)

@@ -31,21 +31,27 @@ def scene(source):
     return sphere_in_box.local_scene(globals(), source)
 
 
-def slab_scene(path):
-    """A one-cell-thick slab [0, 1] x [0, 0.5] x [0, 0.1] of tetrahedra deformed as a 2D case
-    (ExtrusionAxis Z): its top face (y = 0.5) the Handle of 4 control lines along z, its floor
-    Fixed, its front and back slipping."""
+def slab_scene(path, quadratic=False):
+    """A one-cell-thick slab [0, 1] x [0, 0.5] x [0, 0.1] of tetrahedra (quadratic ones: a deck's
+    C3D10) deformed as a 2D case (ExtrusionAxis Z): its top face (y = 0.5) the Handle of 4 control
+    lines along z, its floor Fixed, its front and back slipping."""
     from vtkmodules.vtkCommonDataModel import vtkImageData
     from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
+    from vtkmodules.vtkFiltersGeometry import vtkLinearToQuadraticCellsFilter
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
     image = vtkImageData()
     image.SetDimensions(11, 6, 2)
     image.SetSpacing(0.1, 0.1, 0.1)
     tets = vtkDataSetTriangleFilter()
     tets.SetInputData(image)
+    cells = tets
+    if quadratic:
+        cells = vtkLinearToQuadraticCellsFilter()
+        cells.SetInputConnection(tets.GetOutputPort())
+        cells.SetOutputPointsPrecision(1)  # doubles, as a deck's nodes
     writer = vtkXMLUnstructuredGridWriter()
     writer.SetFileName(path)
-    writer.SetInputConnection(tets.GetOutputPort())
+    writer.SetInputConnection(cells.GetOutputPort())
     writer.Write()
     source = pvs.OpenDataFile(path)
     box = lambda role, bounds: sphere_in_box.box_region(ConstraintRegion, source, role, bounds)  # noqa: E731,F821
@@ -175,6 +181,17 @@ if mode == 'serial':
     check(np.abs(d[front] - d[back][pairs]).max() <= 1e-9, 'the slab stays extruded: front and back move alike (largest difference %.2g)'
           % np.abs(d[front] - d[back][pairs]).max())
     check(np.abs(S[:, 2] - srest[:, 2]).max() <= 1e-12, 'and stays in its planes (the Slip faces; round-off apart)')
+    # quadratic elements (a CalculiX deck's): the normals from their boundary faces, which VTK's
+    # geometry filter gives float points; the faces must still meet the grid's own (double) points
+    qslab, qdvs, qlines, qtop = slab_scene(os.path.join(work, 'slab-quadratic.vtu'), quadratic=True)
+    qrest = sphere_in_box.rest_points(qslab)
+    qdvs.setDesignVars({'top_1': 0.03})
+    Q = qdvs.update()
+    held = qdvs.getControlPoints('top_1')['top_1']
+    lifted = [at(qrest, x) for x in held[0]]
+    check(len(held[0]) == 3 and np.allclose(held[1], [0, 1, 0]) and np.abs(Q[lifted] - qrest[lifted] - [0, 0.03, 0]).max() <= 1e-9,
+          'quadratic tetrahedra: a control line holds its 3 nodes through the thickness, moved by p along the face normal +y '
+          '(%d nodes, direction %s)' % (len(held[0]), held[1]))
     np.savez(os.path.join(work, 'local.npz'), rest=rest, X=X, g=g, dJdp=np.array([dJdp[n] for n in names]),
              **{'dX_' + n: forward[n] for n in names})
 else:
