@@ -1,6 +1,7 @@
 #include "pqOutputColoring.h"
 
 #include "Common/CoreTypes.h"
+#include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 
 #include <pqApplicationCore.h>
@@ -19,6 +20,10 @@
 #include <vtkSMPropertyHelper.h>
 #include <vtkSMSessionProxyManager.h>
 #include <vtkSMSourceProxy.h>
+#include <vtkSmartPointer.h>
+
+#include <QPointer>
+#include <QTimer>
 
 #include <algorithm>
 #include <cmath>
@@ -154,6 +159,45 @@ void pqOutputColoring::representationAdded(pqRepresentation* representation)
   vtkSMPropertyHelper(proxy, "SpecularPower").Set(5.0); // a highlight a third of a bead across
   vtkSMRepresentationProxy::SetRepresentationType(proxy, "Points");
   proxy->UpdateVTKObjects();
+  if (auto* data = qobject_cast<pqDataRepresentation*>(representation))
+  {
+    QObject::connect(data, &pqDataRepresentation::dataUpdated, this, &pqOutputColoring::controlPointsDrawn, Qt::UniqueConnection);
+  }
+}
+
+void pqOutputColoring::controlPointsDrawn()
+{
+  auto* representation = qobject_cast<pqDataRepresentation*>(sender());
+  vtkSMProxy* proxy = representation ? representation->getProxy() : nullptr;
+  vtkPVDataInformation* information = representation ? representation->getInputDataInformation() : nullptr;
+  if (!proxy || this->Arrows.contains(proxy) || !information ||
+    !information->GetArrayInformation(mlsvtk::fields::ControlDirection, vtkDataObject::POINT) ||
+    std::strcmp(vtkSMPropertyHelper(proxy, "Representation").GetAsString(), "Points") != 0)
+  {
+    return; // no control points, drawn already, or the user's own representation
+  }
+  this->Arrows.insert(proxy);
+  QObject::connect(representation, &QObject::destroyed, this, [this, proxy]() { this->Arrows.remove(proxy); });
+  // the arrows' length: a twentieth of the model the region selects from
+  auto* region = vtkSMSourceProxy::SafeDownCast(vtkSMPropertyHelper(proxy, "Input").GetAsProxy());
+  auto* model = region ? vtkSMSourceProxy::SafeDownCast(vtkSMPropertyHelper(region, "Input").GetAsProxy()) : nullptr;
+  const double* b = (model ? model->GetDataInformation() : information)->GetBounds();
+  const double diagonal = b[0] <= b[1] ? std::sqrt(std::pow(b[1] - b[0], 2) + std::pow(b[3] - b[2], 2) + std::pow(b[5] - b[4], 2)) : 0.0;
+  // after the render that updated the data (a representation changed during it has no glyphs yet)
+  QTimer::singleShot(0, this, [shown = QPointer<pqDataRepresentation>(representation), proxy = vtkSmartPointer<vtkSMProxy>(proxy), diagonal]() {
+    vtkSMRepresentationProxy::SetRepresentationType(proxy, "3D Glyphs"); // arrows by default
+    vtkSMPropertyHelper(proxy, "Orient").Set(1);
+    vtkSMPropertyHelper(proxy, "OrientationMode").Set(0); // along the vectors
+    vtkSMPropertyHelper(proxy, "SelectOrientationVectors").Set(mlsvtk::fields::ControlDirection);
+    vtkSMPropertyHelper(proxy, "ScaleByArray").Set(0);
+    vtkSMPropertyHelper(proxy, "Scaling").Set(1); // by ScaleFactor alone
+    vtkSMPropertyHelper(proxy, "ScaleFactor").Set(diagonal > 0 && std::isfinite(diagonal) ? diagonal / 20 : 1.0);
+    proxy->UpdateVTKObjects();
+    if (shown)
+    {
+      shown->renderViewEventually();
+    }
+  });
 }
 
 void pqOutputColoring::legendFollows()

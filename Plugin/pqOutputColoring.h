@@ -2,7 +2,10 @@
 // coloured by its displacement's magnitude, and Constraint Regions' positions drawn as points in
 // one colour per role (Handle red, Fixed blue, geometric constraints green, Slip orange), so that
 // the regions of a deformation can be told apart at a glance. Applied once, when an output is
-// first shown; a state file's or the designer's own colours are kept. After each update of a
+// first shown; a state file's or the designer's own colours are kept. A Handle with control
+// points (local shape variables: its output carries ControlDirection) draws them as arrows along
+// their directions (3D Glyphs, a twentieth of its model's size), once they appear, unless the
+// user chose another representation. After each update of a
 // deformed model, or of anything downstream of it (an Extract Block of a deformed case), the
 // colour legend of what it is coloured by (Displacement, dX/d<variable>, ...) shows the range of
 // the data shown now (unless the user locked it), and a zero field shows as zero, also when
@@ -43,6 +46,8 @@ private Q_SLOTS:
   /// reads as zero.
   void legendRescaled(vtkObject* legend, unsigned long, void*, void* property);
   void legendDeleted(vtkObject* legend);
+  /// A region's data changed: its control points, if it has them now, drawn as arrows.
+  void controlPointsDrawn();
 
 private:
   /// Rescales a legend to the range of the data it colours (zero: 0 to 1% of the model's size).
@@ -50,5 +55,6 @@ private:
 
   vtkNew<vtkEventQtSlotConnect> Connections;
   QSet<vtkSMProxy*> Followed; // the legends of deformations' data
+  QSet<vtkSMProxy*> Arrows;   // the region representations whose control points are drawn as arrows
   bool Rescaling = false;     // set while rescale() changes a legend
 };
