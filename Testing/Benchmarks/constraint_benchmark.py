@@ -32,6 +32,7 @@ LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402
 import openfoam_variant  # noqa: E402
+import hull_variables  # noqa: E402  (beside this script)
 
 
 def timed(function):
@@ -47,12 +48,7 @@ setup_s = time.perf_counter() - t
 hull = deformer.Regions[0]
 dvs = mlsdeform.DesignVariables(deformer)
 if variables == 6:
-    dvs.addHandleDV('tx', hull, translate=[1, 0, 0], lower=-0.5, upper=0.5)
-    dvs.addHandleDV('ty', hull, translate=[0, 1, 0], lower=-0.5, upper=0.5)
-    dvs.addHandleDV('tz', hull, translate=[0, 0, 1], lower=-0.5, upper=0.5)
-    dvs.addHandleDV('ry', hull, rotate=[0, 1, 0], lower=-5, upper=5)
-    dvs.addHandleDV('rz', hull, rotate=[0, 0, 1], lower=-5, upper=5)
-    dvs.addHandleDV('sx', hull, scale=[1, 0, 0], lower=-0.1, upper=0.1)
+    hull_variables.add_body_variables(dvs, hull)
 else:
     dvs.addLocalDV('hull', hull, count=variables, lower=-0.02, upper=0.02)  # metres along the normal
 names = dvs.getVarNames()

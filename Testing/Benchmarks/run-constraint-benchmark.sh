@@ -32,22 +32,8 @@ while (($#)); do
   esac
 done
 case "$size" in small|400k|1M) ;; *) echo "--cells small, 400k or 1M" >&2; exit 2 ;; esac
-build=${MLSDEFORM_BUILD:-$root/build}
-plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
-work=${MLSDEFORM_BENCHMARK_DIR:-$build/openfoam-benchmark}
-[ -f "$plugin" ] || bash "$root/Testing/setup.sh"
-command -v snappyHexMesh > /dev/null || [ -x /usr/bin/snappyHexMesh ] || bash "$root/Testing/setup.sh"
-mkdir -p "$work"
-work=$(cd "$work" && pwd)
-case=$(bash "$here/cached-hull-case.sh" "$size" "$work")
-
-run=$work/constraints-$size
-rm -rf "$run"
-mkdir -p "$run"
-# a copy of the plugin's folder, so that a rebuild during the runs does not mix builds
-built=$(date -r "$plugin" '+%F %T')
-cp -r "$(dirname "$plugin")" "$run/plugin"
-plugin_path=$run/plugin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+name=constraints
+source "$root/Testing/Benchmarks/hull-run.sh"
 bench() { # threads variables
   OMP_NUM_THREADS=$1 LD_LIBRARY_PATH=$plugin_path pvpython --no-mpi "$root/Testing/Benchmarks/constraint_benchmark.py" \
     "$run/plugin/$(basename "$plugin")" "$root/Examples/OpenFOAM" "$case/case.foam" "$runs" "$2" > "$run/threads-$1-$2.log" 2>&1 ||

@@ -36,25 +36,8 @@ while (($#)); do
   esac
 done
 case "$size" in small|400k|1M) ;; *) echo "--cells small, 400k or 1M" >&2; exit 2 ;; esac
-build=${MLSDEFORM_BUILD:-$root/build}
-plugin=${MLSDEFORM_PLUGIN:-$build/lib/paraview-5.11/plugins/MLSDeform/MLSDeform.so}
-work=${MLSDEFORM_BENCHMARK_DIR:-$build/openfoam-benchmark}
-[ -f "$plugin" ] || bash "$root/Testing/setup.sh"
-command -v snappyHexMesh > /dev/null || [ -x /usr/bin/snappyHexMesh ] || bash "$root/Testing/setup.sh"
-mkdir -p "$work"
-work=$(cd "$work" && pwd)
-
-# The case, built once (cached in the work folder, shared by the benchmarks).
-case=$(bash "$here/cached-hull-case.sh" "$size" "$work")
-
-run=$work/sensitivity-$size
-rm -rf "$run"
-mkdir -p "$run"
-# A copy of the plugin's folder (with the mlsdeform package's wrapping beside it), so that a
-# rebuild during the runs does not mix builds; its libraries are found first through LD_LIBRARY_PATH.
-built=$(date -r "$plugin" '+%F %T')
-cp -r "$(dirname "$plugin")" "$run/plugin"
-plugin_path=$run/plugin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+name=sensitivity
+source "$root/Testing/Benchmarks/hull-run.sh"
 for t in $threads; do
   echo "OMP_NUM_THREADS=$t (load $(cut -d' ' -f1-3 /proc/loadavg))"
   OMP_NUM_THREADS=$t LD_LIBRARY_PATH=$plugin_path pvpython --no-mpi "$root/Testing/Benchmarks/sensitivity_benchmark.py" \

@@ -42,6 +42,7 @@ LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402  (the plugin's package: importable once the plugin is loaded)
 import openfoam_variant  # noqa: E402
+import hull_variables  # noqa: E402  (beside this script)
 
 
 def patch_range(algorithm, patch):
@@ -85,12 +86,7 @@ deformer = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip, **sett
 setup_s = time.perf_counter() - t
 hull = deformer.Regions[0]  # morph() lists the handle regions first
 dvs = mlsdeform.DesignVariables(deformer)
-dvs.addHandleDV('tx', hull, translate=[1, 0, 0], lower=-0.5, upper=0.5)  # metres per unit
-dvs.addHandleDV('ty', hull, translate=[0, 1, 0], lower=-0.5, upper=0.5)
-dvs.addHandleDV('tz', hull, translate=[0, 0, 1], lower=-0.5, upper=0.5)
-dvs.addHandleDV('ry', hull, rotate=[0, 1, 0], lower=-5, upper=5)        # degrees per unit
-dvs.addHandleDV('rz', hull, rotate=[0, 0, 1], lower=-5, upper=5)
-dvs.addHandleDV('sx', hull, scale=[1, 0, 0], lower=-0.1, upper=0.1)     # scale factor change per unit
+hull_variables.add_body_variables(dvs, hull)
 names = dvs.getVarNames()
 m = len(names)
 first_s, X = timed(dvs.update)
