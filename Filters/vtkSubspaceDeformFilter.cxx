@@ -3,12 +3,16 @@
 #include "Adapters/CaseFaces.h"
 #include "Adapters/CasePath.h"
 #include "Adapters/FailurePolicy.h"
+#include "Adapters/MeshCells.h"
+#include "Adapters/MeshVolume.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
 #include "Adapters/ReportArrays.h"
 #include "Session/DeformationSession.h"
 #include "Session/SolutionReport.h"
 
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
@@ -17,6 +21,7 @@
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
 #include "Common/BoundingBox.h"
 #include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
@@ -434,6 +439,81 @@ bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rh
     if (gradient)
     {
       std::copy(g.begin(), g.end(), resized(gradient, g.size() / 3));
+    }
+  });
+}
+
+bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkDoubleArray* gradient)
+{
+  return this->RunSensitivityRequest([&](const Collective& group) {
+    const std::string set = cellSet ? cellSet : "";
+    agree(group, [&] {
+      if (!value)
+      {
+        throw InvalidInputException("ComputeMeshVolume needs an output array");
+      }
+    });
+    const std::size_t n = this->Session->inputPoints().size();
+    PointList deformed(n), g(gradient ? n : 0, Vec3::Zero());
+    if (n > 0)
+    {
+      this->Session->deformedPoints(deformed.front().data());
+    }
+    double volume = 0, cells = 0, named = set.empty() ? 1 : 0;
+    std::size_t offset = 0;
+    for (vtkPointSet* points : pointSets(this->GetOutputDataObject(0)))
+    {
+      const auto m = static_cast<std::size_t>(points->GetNumberOfPoints());
+      if (auto* grid = vtkUnstructuredGrid::SafeDownCast(points); grid && offset + m <= n)
+      {
+        vtkDataArray* in = set.empty() ? nullptr : grid->GetCellData()->GetArray(set.c_str());
+        named = std::max(named, in ? 1.0 : 0.0);
+        std::vector<char> selected(set.empty() ? 0 : static_cast<std::size_t>(grid->GetNumberOfCells()), 0);
+        for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+        {
+          const bool counted = (set.empty() || (in && in->GetTuple1(c) != 0)) && cellDimension(grid->GetCellType(c)) == 3;
+          if (!set.empty())
+          {
+            selected[static_cast<std::size_t>(c)] = counted ? 1 : 0;
+          }
+          cells += counted ? 1 : 0;
+        }
+        const PointList local(deformed.begin() + static_cast<long>(offset), deformed.begin() + static_cast<long>(offset + m));
+        PointList localGradient(gradient ? m : 0, Vec3::Zero());
+        volume += meshVolume(grid, local, selected, gradient ? &localGradient : nullptr);
+        std::copy(localGradient.begin(), localGradient.end(), g.begin() + static_cast<long>(offset));
+      }
+      offset += m;
+    }
+    // every process's sums, added in process order: the same on every process
+    const std::vector<double> parts = group.gather(std::vector<double>{ volume, cells, named });
+    volume = cells = named = 0;
+    for (std::size_t r = 0; r + 2 < parts.size(); r += 3)
+    {
+      volume += parts[r];
+      cells += parts[r + 1];
+      named = std::max(named, parts[r + 2]);
+    }
+    if (named == 0)
+    {
+      throw InvalidInputException("no volume mesh has the cell array '" + set + "' (a cell set: a deck's element set)");
+    }
+    if (cells == 0)
+    {
+      throw InvalidInputException(set.empty() ? std::string("the output has no volume cells (3D cells of an unstructured grid)")
+                                              : "the cell set '" + set + "' holds no volume cell");
+    }
+    value->SetNumberOfComponents(1);
+    value->SetNumberOfTuples(2);
+    value->SetValue(0, volume);
+    value->SetValue(1, cells);
+    if (gradient)
+    {
+      double* out = resized(gradient, g.size());
+      for (const Vec3& x : g)
+      {
+        out = std::copy(x.data(), x.data() + 3, out);
+      }
     }
   });
 }

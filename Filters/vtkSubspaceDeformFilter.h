@@ -255,6 +255,14 @@ public:
   /// faces or points N (max <= value <= max + ln(N) / rho), gradient (if not null) d/dX (n x 3,
   /// this process's output points).
   bool ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkDoubleArray* gradient);
+  /// The volume of the deformed volume meshes' 3D cells and its gradient, for an optimizer's
+  /// constraint on a part's volume or mass (Adapters/MeshVolume.h: the elements as CalculiX
+  /// integrates them, other cells as OpenFOAM measures them): of the cells whose cell array
+  /// cellSet is not 0 (a deck's element set; empty or null: every cell), summed over the
+  /// processes in their order. value gets the volume and the number of cells, gradient (if not
+  /// null) dV/dX (n x 3, this process's output points). Fails when no process has such a cell,
+  /// or no grid has the array cellSet.
+  bool ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkDoubleArray* gradient);
   const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
 
   /// Whether the last output holds deformed points: a cancelled update leaves the previous

@@ -319,6 +319,37 @@ class DesignConstraints:
             factors.append(float(np.sign(cosine) * np.linalg.norm(db) / np.linalg.norm(da)))
         self.addLinearConstraintsShape(name, A, B, 1.0, factors, 0.0, 0.0)
 
+    def addMeshVolumeConstraint(self, name, cells=None, density=None, lower=1.0, upper=3.0, scaled=True):
+        """The volume of the volume mesh's cells, or with ``density`` their mass (density times
+        the volume): of the cell set ``cells`` (the name of a cell array, 1 in the set: a deck's
+        element set as the Mesh File reader gives it) or of every 3D cell. Each cell as its solver
+        measures it: linear and quadratic tetrahedra, hexahedra and wedges as CalculiX integrates
+        the isoparametric element (its MASS), other cells (a CFD mesh's polyhedra) as OpenFOAM
+        does, by pyramids on its faces. Scaled by the baseline by default (lower=1.0: at least the
+        baseline's)."""
+        self._check_name(name)
+        if cells is not None and (not isinstance(cells, str) or not cells):
+            raise ValueError(f"mesh volume constraint {name!r}: cells is the name of a cell set (a cell array), not {cells!r}")
+        if density is not None:
+            density = float(density)
+            if not (math.isfinite(density) and density > 0):
+                raise ValueError(f"mesh volume constraint {name!r}: density must be a positive finite number, not {density!r}")
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        algorithm = self.dvs._algorithm
+        factor = 1.0 if density is None else density
+
+        def evaluate(X, gradient=True):
+            value, g = vtkDoubleArray(), vtkDoubleArray()
+            if not algorithm.ComputeMeshVolume(cells or '', value, g if gradient else None):
+                raise RuntimeError(algorithm.GetSensitivityError())
+            if not gradient:
+                return np.array([factor * value.GetValue(0)]), None
+            dense = factor * self.dvs._numpy(g)
+            rows = np.flatnonzero(np.any(dense != 0, axis=1))
+            return np.array([factor * value.GetValue(0)]), [(rows, dense[rows])]
+
+        self._add(_Constraint(name, 'meshVolume', lower, upper, scaled, evaluate))
+
     def addMeshQualityConstraint(self, name, measure='nonOrthogonality', upper=None, lower=None, rho=None, scaled=False):
         """The mesh's quality as one smooth function (DAFoam's KS-aggregated mesh quality): the
         KS aggregate of a measure over every interior face of the CFD volume meshes (checkMesh's
@@ -605,7 +636,9 @@ class DesignConstraints:
             raise ValueError(f"constraint {c.name!r}: a baseline value is 0, so it cannot be scaled: give scaled=False")
         c.baseline = values.copy()
         J = self._evaluate([c], X, True)[1][c.name]
-        dead = np.flatnonzero(np.all(J == 0, axis=1))
+        # a gradient below the value's round-off (1e-12 of it per unit of every variable) is no
+        # influence: the volume of a mesh whose boundary is held sums to round-off
+        dead = np.flatnonzero(np.all(np.abs(J) <= 1e-12 * np.abs(values)[:, None], axis=1))
         if len(dead):
             raise ValueError(f"constraint {c.name!r}: no design variable influences its value{'s' if len(dead) > 1 else ''} "
                              f"{', '.join(map(str, dead[:10]))} (the gradient is zero): the points it measures do not move "

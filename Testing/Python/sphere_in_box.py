@@ -9,7 +9,8 @@ import math
 def write_scene(path, cells, jitter=0.0):
     """The scene as a .vtm file at path; the box has `cells` cells per side (6 tetrahedra each),
     its inner grid points moved by up to `jitter` spacings (a deterministic irregular field: no
-    face of the box then has a non-orthogonality or skewness of exactly 0)."""
+    face of the box then has a non-orthogonality or skewness of exactly 0), and the cell set
+    'inner' (a cell array)."""
     from vtkmodules.vtkCommonDataModel import vtkImageData, vtkMultiBlockDataSet
     from vtkmodules.vtkFiltersCore import vtkTriangleFilter
     from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
@@ -37,8 +38,17 @@ def write_scene(path, cells, jitter=0.0):
             r = [math.sin(12.9898 * x[0] + 78.233 * x[1] + 37.719 * x[2] + 11 * k) for k in range(3)]
             grid.GetPoints().SetPoint(i, *(c + jitter * (2 / cells) * rk for c, rk in zip(x, r)))
     scene = vtkMultiBlockDataSet()
+    # a cell set: the cells whose centre lies in [-0.5, 0.5]^3 (1 there, 0 elsewhere)
+    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+    inner = vtkUnsignedCharArray()
+    inner.SetName('inner')
+    for c in range(grid.GetNumberOfCells()):
+        ids = grid.GetCell(c).GetPointIds()
+        centre = [sum(grid.GetPoint(ids.GetId(k))[d] for k in range(ids.GetNumberOfIds())) / ids.GetNumberOfIds() for d in range(3)]
+        inner.InsertNextValue(1 if max(abs(x) for x in centre) < 0.5 else 0)
+    grid.GetCellData().AddArray(inner)
     scene.SetBlock(0, triangles.GetOutput())
-    scene.SetBlock(1, tets.GetOutput())
+    scene.SetBlock(1, grid)
     for block, name in enumerate(('sphere', 'box')):
         scene.GetMetaData(block).Set(vtkMultiBlockDataSet.NAME(), name)
     writer = vtkXMLMultiBlockDataWriter()

@@ -40,6 +40,8 @@ def constraints(dvs):
     cons.addLinearConstraintsShape('linear', ['bump_0', 'bump_1'], ['bump_2', 'bump_3'], 1.0, [-1.0, 2.0], lower=-0.1, upper=0.1)
     cons.addMeshQualityConstraint('nonOrtho', 'nonOrthogonality', upper=70, rho=1.0)
     cons.addMeshQualityConstraint('skew', 'skewness', upper=4)
+    cons.addMeshVolumeConstraint('cellVolume', cells='inner', lower=0.9)
+    cons.addMeshVolumeConstraint('cellMass', cells='inner', density=2.5, scaled=False)
     return cons
 
 
@@ -63,7 +65,8 @@ if mode == 'serial':
     source = pvs.OpenDataFile(path)
     deform, dvs, bumps, pair, regions = sphere_in_box.local_scene(globals(), source)
     cons = constraints(dvs)
-    check(cons.getConstraintNames() == ['thick1d', 'thick2d', 'volume', 'area', 'linear', 'nonOrtho', 'skew'], 'seven constraints added')
+    check(cons.getConstraintNames() == ['thick1d', 'thick2d', 'volume', 'area', 'linear', 'nonOrtho', 'skew', 'cellVolume', 'cellMass'],
+          'nine constraints added')
     base = {}
     cons.evalFunctions(base)
     # at the baseline the scaled values are 1; the absolute ones are the sphere's (a polyhedron of
@@ -86,8 +89,29 @@ if mode == 'serial':
     largest = field.GetArray('MaxSkewness').GetValue(0)
     check(largest <= ks <= largest + cons.getBiasBound('skew'), 'KS skewness %.4f between the largest %.4f and the bound' % (ks, largest))
 
+    # the cell set's volume: its tetrahedra's det / 6, the mass 2.5 times it
+    def inner_volume():
+        """The cell set's tetrahedra's |det| / 6 on the deformed points (doubles), the box after the sphere."""
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        X = dvs.update()
+        out = deform.GetClientSideObject().GetOutputDataObject(0)
+        blocks = [out.GetBlock(b) for b in range(out.GetNumberOfBlocks())]
+        grid = blocks[1]
+        P = X[blocks[0].GetNumberOfPoints():]
+        tets = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 4)
+        tets = tets[vtk_to_numpy(grid.GetCellData().GetArray('inner')) == 1]
+        a, b, c, d = (P[tets[:, k]] for k in range(4))
+        return np.abs(np.einsum('ij,ij->i', np.cross(b - a, c - a), d - a)).sum() / 6
+    V_inner = inner_volume()
+    check(abs(cons._constraints['cellVolume'].baseline[0] - V_inner) <= 1e-14 and abs(base['cellMass'][0] - 2.5 * V_inner) <= 1e-14,
+          "the cell set's volume %.12f = its tetrahedra's %.12f; its mass 2.5 x that" % (cons._constraints['cellVolume'].baseline[0], V_inner))
+    raises(lambda: cons.addMeshVolumeConstraint('nocells', cells='outer'), "no volume mesh has the cell array 'outer'", 'an unknown cell set')
+    raises(lambda: cons.addMeshVolumeConstraint('rho', cells='inner', density=-1), 'positive finite', 'a negative density')
+
     dvs.setDesignVars(DESIGN)
     funcs, jacobian = evaluate(cons)
+    check(abs(funcs['cellVolume'][0] * cons._constraints['cellVolume'].baseline[0] - inner_volume()) <= 1e-13,
+          'deformed: the cell set\'s volume is its tetrahedra\'s (%.12f)' % inner_volume())
     check(funcs['volume'][0] != 1.0 and funcs['thick1d'][1] != 1.0, 'the design changes the volume (%.5f) and the thicknesses (%s)'
           % (funcs['volume'][0], np.round(funcs['thick1d'], 5)))
     names = dvs.getVarNames()
@@ -134,7 +158,7 @@ if mode == 'serial':
     x = np.array([start[n] for n in names])
     scipy_cons = cons.getScipyConstraints()
     sides = sum((lo is not None) + (up is not None) for lo, up in cons.getBounds().values())
-    check(len(scipy_cons) == sides == 12 and all(c['type'] == 'ineq' for c in scipy_cons),
+    check(len(scipy_cons) == sides == 16 and all(c['type'] == 'ineq' for c in scipy_cons),
           'scipy constraints: one inequality per finite bound (%d)' % len(scipy_cons))
     first = scipy_cons[0]
     check(np.allclose(first['fun'](x), funcs['thick1d'] - 0.9) and np.allclose(first['jac'](x), jacobian['thick1d']),
@@ -265,6 +289,56 @@ if mode == 'serial':
     check(scale > 0 and coarse <= 1e-4 and extrapolated <= 1e-7,
           'scaled Jacobian: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
           % (scale, coarse, extrapolated))
+
+    # the volume of the slab's cells as its solver measures it: quadratic tetrahedra (C3D10, as
+    # CalculiX integrates them) and voxels (no element: OpenFOAM's face pyramids); 1 x 0.5 x the
+    # depth at rest, the gradient against central differences
+    from vtkmodules.vtkFiltersCore import vtkAppendFilter
+    from vtkmodules.vtkFiltersGeometry import vtkLinearToQuadraticCellsFilter
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+    quadratic = vtkLinearToQuadraticCellsFilter()
+    quadratic.SetInputData(tets.GetOutput())
+    quadratic.SetOutputPointsPrecision(1)
+    voxels = vtkAppendFilter()
+    voxels.SetInputData(image)
+    for kind, cells in (('C3D10', quadratic), ('voxels', voxels)):
+        writer = vtkXMLUnstructuredGridWriter()
+        writer.SetFileName(os.path.join(work, 'slab-%s.vtu' % kind))
+        writer.SetInputConnection(cells.GetOutputPort())
+        writer.Write()
+        source = pvs.OpenDataFile(os.path.join(work, 'slab-%s.vtu' % kind))
+        box = lambda role, bounds: sphere_in_box.box_region(ConstraintRegion, source, role, bounds)  # noqa: E731,F821
+        top = box('Handle', [-0.01, 1.01, 0.49, 0.51, -0.01, 0.11])
+        vdeform = MLSDeform(Input=source, Regions=[top, box('Fixed', [-0.01, 1.01, -0.01, 0.01, -0.01, 0.11])],  # noqa: F821
+                            NumberOfSamples=60, ExtrusionAxis='Z')
+        vdvs = mlsdeform.DesignVariables(vdeform)
+        vdvs.addLocalDV('top', top, count=4, axis=[0, 0, 1], lower=-0.05, upper=0.05)
+        vcons = mlsdeform.DesignConstraints(vdvs)
+        vcons.addMeshVolumeConstraint('V', scaled=False)
+        f = {}
+        vcons.evalFunctions(f)
+        depth = np.ptp(sphere_in_box.rest_points(vdeform)[:, 2])
+        check(abs(f['V'][0] - 0.5 * depth) <= 1e-15, '%s: the volume %.15f = 1 x 0.5 x the depth' % (kind, f['V'][0]))
+        vdvs.setDesignVars({'top_1': 0.03, 'top_2': -0.02})
+        vstart, vnames = vdvs.getValues(), vdvs.getVarNames()
+        sens = {}
+        vcons.evalFunctionsSens(sens)
+        J = np.array([sens['V'][v] for v in vnames]).reshape(-1)
+        fd = {}
+        for h in (1e-4, 5e-5):
+            fd[h] = np.zeros(len(vnames))
+            for j, v in enumerate(vnames):
+                for sign in (1, -1):
+                    vdvs.setDesignVars({v: vstart[v] + sign * h})
+                    g = {}
+                    vcons.evalFunctions(g)
+                    fd[h][j] += sign * g['V'][0] / (2 * h)
+                vdvs.setDesignVars({v: vstart[v]})
+        scale = np.abs(J).max()
+        coarse, extrapolated = np.abs(fd[1e-4] - J).max() / scale, np.abs((4 * fd[5e-5] - fd[1e-4]) / 3 - J).max() / scale
+        check(scale > 0 and coarse <= 1e-4 and extrapolated <= 1e-7,
+              '%s volume: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
+              % (kind, scale, coarse, extrapolated))
     np.savez(os.path.join(work, 'constraints.npz'), **{'f_' + n: np.atleast_1d(v) for n, v in funcs.items()},
              **{'J_' + n: v for n, v in jacobian.items()})
 else:
@@ -279,7 +353,7 @@ else:
     cons = constraints(dvs)
     dvs.setDesignVars(DESIGN)
     funcs, jacobian = evaluate(cons)
-    for n in ('thick1d', 'thick2d', 'volume', 'area', 'linear'):
+    for n in ('thick1d', 'thick2d', 'volume', 'area', 'linear', 'cellVolume', 'cellMass'):
         f, J = np.atleast_1d(funcs[n]), jacobian[n]
         check(np.allclose(f, reference['f_' + n], rtol=1e-12, atol=0) and
               np.abs(J - reference['J_' + n]).max() <= 1e-10 * np.abs(reference['J_' + n]).max(),
