@@ -16,9 +16,7 @@ import re
 import subprocess
 
 GEO = '''SetFactory("OpenCASCADE");
-Box(1) = {{0, 0, 0, {length}, {width}, {thickness}}};
-{cylinders}
-BooleanDifference(100) = {{ Volume{{1}}; Delete; }}{{ {tools} }};
+{solid}
 e = 1e-6 * {length};
 {fillet}
 Physical Volume("part") = Volume{{:}};
@@ -35,15 +33,26 @@ Mesh.CharacteristicLengthMax = {size};
 Mesh.SaveGroupsOfNodes = 1;
 '''
 
+# The solid: the box minus the holes' cylinders (meshed freely), or the section (the rectangle
+# minus the holes' disks) extruded through the thickness in layers.
+SOLID = '''Box(1) = {{0, 0, 0, {length}, {width}, {thickness}}};
+{cylinders}
+BooleanDifference(100) = {{ Volume{{1}}; Delete; }}{{ {tools} }};'''
+EXTRUDED = '''Rectangle(1) = {{0, 0, 0, {length}, {width}}};
+{disks}
+section() = BooleanDifference{{ Surface{{1}}; Delete; }}{{ {tools} }};
+Extrude {{0, 0, {thickness}}} {{ Surface{{section()}}; Layers{{{layers}}}; }}'''
+
 # Steel in mm, N, MPa (t/mm^3 for the density).
+DENSITY = 7.85e-9
 ANALYSIS = '''*HEADING
-Plate with holes: clamped at x = 0, pulled down at x = {length}
+Plate with holes: clamped at x = 0, loaded at x = {length}
 *INCLUDE, INPUT=mesh.inp
 *MATERIAL, NAME=STEEL
 *ELASTIC
 210000., 0.3
 *DENSITY
-7.85E-9
+{density}
 *SOLID SECTION, ELSET=part, MATERIAL=STEEL
 {design}*STEP
 *STATIC
@@ -66,13 +75,23 @@ SENSITIVITY = '''*STEP
 
 
 def mesh_plate(folder, holes=((5.0, 2.0, 1.0),), length=10.0, width=4.0, thickness=1.0, size=0.6, fillet=0.0,
-               gmsh='gmsh'):
+               layers=0, gmsh='gmsh'):
     """Meshes the plate minus the holes (x, y, radius), its two corners at the loaded end rounded by
-    a fillet of that radius (0: none; the set fillet), into folder/mesh.inp; returns its path."""
+    a fillet of that radius (0: none; the set fillet), into folder/mesh.inp; returns its path.
+    layers: 0, the solid meshed freely; n, its section meshed and extruded through the thickness
+    in n layers of tetrahedra, so that every node lies on a line across the plate (local variables
+    with a line axis then hold the hole's outline through the whole thickness); without fillet."""
+    if layers and fillet > 0:
+        raise ValueError('an extruded plate (layers) has no fillet')
     os.makedirs(folder, exist_ok=True)
-    cylinders = '\n'.join(f'Cylinder({2 + i}) = {{{x}, {y}, -1, 0, 0, {thickness + 2}, {r}}};'
-                          for i, (x, y, r) in enumerate(holes))
-    tools = 'Volume{%s}; Delete;' % ', '.join(str(2 + i) for i in range(len(holes)))
+    if layers:
+        solid = EXTRUDED.format(length=length, width=width, thickness=thickness, layers=int(layers), tools='Surface{%s}; Delete;' % (
+            ', '.join(str(2 + i) for i in range(len(holes)))), disks='\n'.join(
+            f'Disk({2 + i}) = {{{x}, {y}, 0, {r}}};' for i, (x, y, r) in enumerate(holes)))
+    else:
+        solid = SOLID.format(length=length, width=width, thickness=thickness, tools='Volume{%s}; Delete;' % (
+            ', '.join(str(2 + i) for i in range(len(holes)))), cylinders='\n'.join(
+            f'Cylinder({2 + i}) = {{{x}, {y}, -1, 0, 0, {thickness + 2}, {r}}};' for i, (x, y, r) in enumerate(holes)))
     groups = '\n'.join(f'Physical Surface("hole{i + 1}") = Surface In BoundingBox{{{x - r} - e, {y - r} - e, -e, '
                        f'{x + r} + e, {y + r} + e, {thickness} + e}};' for i, (x, y, r) in enumerate(holes))
     geo = os.path.join(folder, 'plate.geo')
@@ -87,8 +106,8 @@ def mesh_plate(folder, holes=((5.0, 2.0, 1.0),), length=10.0, width=4.0, thickne
                        f'{fillet} + e, {thickness} + e}};\n'
                        f'Physical Surface("fillet") += Surface In BoundingBox{{{length - fillet} - e, {width - fillet} - e, -e, '
                        f'{length} + e, {width} + e, {thickness} + e}};')
-        f.write(GEO.format(length=length, width=width, thickness=thickness, cylinders=cylinders, tools=tools,
-                           hole_groups=groups, size=size, fillet=rounded))
+        f.write(GEO.format(length=length, width=width, thickness=thickness, solid=solid, hole_groups=groups, size=size,
+                           fillet=rounded))
     raw = os.path.join(folder, 'gmsh.inp')
     subprocess.run([gmsh, '-3', geo, '-o', raw, '-format', 'inp'], check=True, stdout=subprocess.DEVNULL)
     mesh = os.path.join(folder, 'mesh.inp')
@@ -142,20 +161,20 @@ def volume_elements_only(deck):
     return text if text.endswith('\n') else text + '\n'
 
 
-def write_analysis(folder, length=10.0, force=-100.0, responses=(), double=False):
-    """folder/plate.inp: the static analysis of folder/mesh.inp, force (N, along z) spread evenly over
-    the load nodes; responses: (name, definition) pairs of a sensitivity step on the surface nodes,
+def write_analysis(folder, length=10.0, force=-100.0, responses=(), double=False, dof=3):
+    """folder/plate.inp: the static analysis of folder/mesh.inp, force (N, along the axis dof: 1 x,
+    2 y, 3 z) spread evenly over the load nodes; responses: (name, definition) pairs of a sensitivity step on the surface nodes,
     e.g. (('MASS', 'MASS'), ('TIP', 'ALL-DISP, tip')): the tip displacement's norm over the tip
     nodes, which the morph keeps fixed (a displacement response over nodes it moves would measure
     the mesh, not the part). double: the displacements in full precision (*NODE FILE, DOUBLE: a
     binary .frd, which the exact gradient reads and ccx's own sensitivity path cannot)."""
     load = node_set(os.path.join(folder, 'mesh.inp'), 'load')
-    loads = '\n'.join(f'{n}, 3, {force / len(load):.9g}' for n in load)
+    loads = '\n'.join(f'{n}, {dof}, {force / len(load):.9g}' for n in load)
     design = '*DESIGNVARIABLES, TYPE=COORDINATE\nsurface\n' if responses else ''
     cards = ''.join(f'*DESIGNRESPONSE, NAME={name}\n{definition}\n' for name, definition in responses)
     deck = os.path.join(folder, 'plate.inp')
     with open(deck, 'w') as f:
-        f.write(ANALYSIS.format(length=length, loads=loads, design=design, precision=', DOUBLE' if double else '',
+        f.write(ANALYSIS.format(length=length, density=DENSITY, loads=loads, design=design, precision=', DOUBLE' if double else '',
                                 sensitivity=SENSITIVITY.format(responses=cards) if responses else ''))
     return deck
 

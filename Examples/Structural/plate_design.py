@@ -14,8 +14,6 @@ runs a variable and step), the check the README reports.
 """
 import os
 
-import numpy as np
-
 import mlsdeform
 from mlsdeform import meshfile, vtkfoam
 import plate
@@ -39,8 +37,9 @@ VARIABLES = {
 }
 
 
-# The same responses by the exact path (mlsdeform.exactSensitivity): its response and set.
-EXACT = {'MASS': ('mass', None), 'TIP': ('all-disp', 'tip')}
+# The responses by the exact path (mlsdeform.exactSensitivity): its response and set; the
+# compliance (the loads' work f . u) has no ccx sensitivity card here.
+EXACT = {'MASS': ('mass', None), 'TIP': ('all-disp', 'tip'), 'COMPLIANCE': ('compliance', None)}
 
 
 def make_source(folder, size=0.5, holes=((3.0, 1.5, 0.7), (7.0, 2.5, 0.7)), fillet=0.8, responses=RESPONSES, exact=False):
@@ -51,26 +50,34 @@ def make_source(folder, size=0.5, holes=((3.0, 1.5, 0.7), (7.0, 2.5, 0.7)), fill
 
 
 class PlateDesign:
-    """MLS Deform of the source deck with the variables named (VARIABLES' keys); the bodies are
-    one Handle region each, 'holes' both holes as one body (one pivot: a rotation moves them about
-    their common centre)."""
+    """MLS Deform of the source deck with the variables named (VARIABLES' keys), or given as
+    {name: specification} in VARIABLES' form, where a specification with 'local' (addLocalDV's
+    count/points, direction, axis, mirror) makes local shape variables name_0, name_1, ... on its
+    one body; the bodies are one Handle region each, 'holes' both holes as one body (one pivot: a
+    rotation moves them about their common centre). fixed: the sets the morph holds in place."""
 
-    def __init__(self, deck, work, variables=('x1', 'r1', 'x2', 'r2', 'fillet'), responses=RESPONSES, exact=False, **settings):
+    def __init__(self, deck, work, variables=('x1', 'r1', 'x2', 'r2', 'fillet'), responses=RESPONSES, exact=False,
+                 fixed=('fixed', 'tip'), **settings):
         """exact: J and dJ/dX by mlsdeform.exactSensitivity (the deck of make_source(exact=True));
         otherwise ccx's responses and its own normal-only sensitivities."""
         self.deck, self.work, self.response_cards, self.exact = deck, work, responses, exact
         self.reader = meshfile.open_mesh(deck)
+        specifications = variables if isinstance(variables, dict) else {name: VARIABLES[name] for name in variables}
         bodies = []
-        for name in variables:
-            bodies += [b for b in VARIABLES[name]['bodies'] if b not in bodies]
+        for specification in specifications.values():
+            bodies += [b for b in specification['bodies'] if b not in bodies]
         sets = {'holes': ['hole1', 'hole2']}
         self.deform = vtkfoam.morph(self.reader, {b: sets.get(b, [b]) for b in bodies}, (0, 0, 0),
-                                    fixed=['fixed', 'tip'], slip=['bottom', 'top', 'front', 'back'], **settings)
+                                    fixed=list(fixed), slip=['bottom', 'top', 'front', 'back'], **settings)
         region = {b: self.deform.GetInputAlgorithm(1, i) for i, b in enumerate(bodies)}  # morph connects the bodies first
         self.dvs = mlsdeform.DesignVariables(self.deform)
-        for name in variables:
-            v = dict(VARIABLES[name])
-            self.dvs.addHandleDV(name, [region[b] for b in v.pop('bodies')], **v)
+        for name, specification in specifications.items():
+            v = dict(specification)
+            on = [region[b] for b in v.pop('bodies')]
+            if 'local' in v:
+                self.dvs.addLocalDV(name, on[0], **v.pop('local'), **v)
+            else:
+                self.dvs.addHandleDV(name, on, **v)
         self.runs = 0
 
     def write(self, values, name):
@@ -109,14 +116,14 @@ class PlateDesign:
         return J, {r: self.dvs.totalSensitivity(dJdX[r]) for r, _ in self.response_cards}, quality
 
 
-def validate(design, steps, at=None):
-    """For each variable: dJ/dp by the chain (ccx's sensitivities through dX/dp) and by central
-    differences (J(p + h) - J(p - h)) / 2h of ccx's responses for each step h, at the design at
-    (default: every variable 0). Returns rows (variable, response, chain, {h: difference})."""
+def validate(design, steps, at=None, variables=None):
+    """For each variable (default: all): dJ/dp by the chain (ccx's sensitivities through dX/dp) and
+    by central differences (J(p + h) - J(p - h)) / 2h of ccx's responses for each step h, at the
+    design at (default: every variable 0). Returns rows (variable, response, chain, {h: difference})."""
     at = dict(at or {name: 0.0 for name in design.dvs.getVarNames()})
     _, gradients, _ = design.evaluate(at, 'validate-base')
     rows = []
-    for name in design.dvs.getVarNames():
+    for name in variables or design.dvs.getVarNames():
         differences = {}
         for h in steps:
             plus, _, _ = design.responses(dict(at, **{name: at[name] + h}), 'validate-plus')
