@@ -229,44 +229,53 @@ void simplices(vtkDataSet* set, int dimension, const vtkIdType* pointMap, int of
 }
 
 // The boundary of a grid with nonlinear cells (a deck's C3D10, C3D20), over the grid's own points:
-// each face that one cell alone has (found by its sorted corners), as the polygon around its
-// corners and edge nodes (VTK lists a quadratic face's edge nodes after its corners, edge k from
-// corner k to k + 1), in the cells' order and oriented out of them as VTK's cell faces are.
-// (vtkGeometryFilter of VTK 9.2 gives such faces float points and original point ids that do not
-// name the grid's points.)
+// each face that one cell alone has, as the polygon around its corners and edge nodes
+// (cellTypeFaces), in the cells' order and oriented out of them as VTK's cell faces are. A face is
+// found by its four least node ids: two faces of a conforming mesh share at most an edge, three
+// nodes. (vtkGeometryFilter of VTK 9.2 gives such faces float points and original point ids that
+// do not name the grid's points.)
 vtkSmartPointer<vtkPolyData> nonlinearBoundary(vtkUnstructuredGrid* grid)
 {
   struct Face
   {
-    std::array<vtkIdType, 4> corners; // sorted; -1 after a triangle's three
+    std::array<vtkIdType, 4> key; // the least node ids, sorted; -1 after a face's last
     vtkIdType cell;
     int face;
-    bool operator<(const Face& other) const { return std::tie(corners, cell, face) < std::tie(other.corners, other.cell, other.face); }
+    bool operator<(const Face& other) const { return std::tie(key, cell, face) < std::tie(other.key, other.cell, other.face); }
   };
   std::vector<Face> faces;
-  vtkNew<vtkGenericCell> cell;
+  const vtkIdType* points = nullptr;
+  vtkIdType count = 0;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    grid->GetCell(c, cell);
-    for (int f = 0; cell->GetCellDimension() == 3 && f < cell->GetNumberOfFaces(); ++f)
+    const LocalFaces& local = cellTypeFaces(grid->GetCellType(c));
+    if (local.empty())
     {
-      vtkCell* face = cell->GetFace(f);
-      const int corners = std::min(face->GetNumberOfEdges(), 4); // nonlinear cells' faces are triangles or quadrilaterals
-      Face entry{ { -1, -1, -1, -1 }, c, f };
-      for (int k = 0; k < corners; ++k)
+      continue; // 2D cells, and 3D types without a face table (none a deck has)
+    }
+    grid->GetCellPoints(c, count, points);
+    for (std::size_t f = 0; f < local.size(); ++f)
+    {
+      std::array<vtkIdType, 8> ids; // a quadratic quadrilateral's 8 nodes at most
+      const std::size_t n = std::min(local[f].size(), ids.size());
+      for (std::size_t k = 0; k < n; ++k)
       {
-        entry.corners[k] = face->GetPointId(k);
+        ids[k] = points[local[f][k]];
       }
-      std::sort(entry.corners.begin(), entry.corners.begin() + corners);
+      std::sort(ids.begin(), ids.begin() + static_cast<long>(n));
+      Face entry{ { -1, -1, -1, -1 }, c, static_cast<int>(f) };
+      std::copy_n(ids.begin(), std::min<std::size_t>(n, 4), entry.key.begin());
       faces.push_back(entry);
     }
   }
   std::sort(faces.begin(), faces.end());
+  vtkNew<vtkCellArray> polygons;
+  std::vector<vtkIdType> polygon;
   std::vector<std::pair<vtkIdType, int>> boundary;
   for (std::size_t i = 0; i < faces.size();)
   {
     std::size_t j = i + 1;
-    while (j < faces.size() && faces[j].corners == faces[i].corners)
+    while (j < faces.size() && faces[j].key == faces[i].key)
     {
       ++j;
     }
@@ -277,22 +286,13 @@ vtkSmartPointer<vtkPolyData> nonlinearBoundary(vtkUnstructuredGrid* grid)
     i = j;
   }
   std::sort(boundary.begin(), boundary.end());
-  vtkNew<vtkCellArray> polygons;
-  std::vector<vtkIdType> polygon;
   for (const auto& [c, f] : boundary)
   {
-    grid->GetCell(c, cell);
-    vtkCell* face = cell->GetFace(f);
-    const int corners = face->GetNumberOfEdges();
-    const bool edgeNodes = face->GetNumberOfPoints() >= 2 * corners;
+    grid->GetCellPoints(c, count, points);
     polygon.clear();
-    for (int k = 0; k < corners; ++k)
+    for (int k : cellTypeFaces(grid->GetCellType(c))[static_cast<std::size_t>(f)])
     {
-      polygon.push_back(face->GetPointId(k));
-      if (edgeNodes)
-      {
-        polygon.push_back(face->GetPointId(corners + k));
-      }
+      polygon.push_back(points[k]);
     }
     polygons->InsertNextCell(static_cast<vtkIdType>(polygon.size()), polygon.data());
   }
