@@ -7,6 +7,7 @@
 #include "Adapters/MeshVolume.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
+#include "Adapters/Stamp.h"
 #include "Adapters/ReportArrays.h"
 #include "Session/DeformationSession.h"
 #include "Session/SolutionReport.h"
@@ -443,6 +444,13 @@ bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rh
   });
 }
 
+struct vtkSubspaceDeformFilter::MeshVolumes
+{
+  std::string set;
+  Stamp stamp; // of the output's cells, the input's points and the set's arrays they were found on
+  std::vector<std::unique_ptr<MeshVolume>> grids; // per output set (null: not a grid)
+};
+
 bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkDoubleArray* gradient)
 {
   return this->RunSensitivityRequest([&](const Collective& group) {
@@ -453,34 +461,62 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
         throw InvalidInputException("ComputeMeshVolume needs an output array");
       }
     });
-    const std::size_t n = this->Session->inputPoints().size();
+    const std::vector<vtkPointSet*> outSets = pointSets(this->GetOutputDataObject(0));
+    const std::vector<vtkPointSet*> inSets = pointSets(this->GetInputDataObject(0, 0));
+    const PointList& rest = this->Session->inputPoints();
+    const std::size_t n = rest.size();
+    Stamp stamp = cellsStamp(outSets);
+    for (const Stamp& more : { pointsStamp(inSets) })
+    {
+      stamp.objects.insert(stamp.objects.end(), more.objects.begin(), more.objects.end());
+    }
+    for (vtkPointSet* points : outSets)
+    {
+      stamp.add(set.empty() ? nullptr : points->GetCellData()->GetArray(set.c_str()));
+    }
+    double named = set.empty() ? 1 : 0;
+    if (!this->Volumes || this->Volumes->set != set || this->Volumes->stamp != stamp)
+    {
+      auto volumes = std::make_unique<MeshVolumes>();
+      volumes->set = set;
+      volumes->stamp = stamp;
+      const bool femReader = femReaderUpstream(this);
+      std::size_t offset = 0;
+      for (vtkPointSet* points : outSets)
+      {
+        const auto m = static_cast<std::size_t>(points->GetNumberOfPoints());
+        auto* grid = vtkUnstructuredGrid::SafeDownCast(points);
+        vtkDataArray* in = set.empty() || !grid ? nullptr : grid->GetCellData()->GetArray(set.c_str());
+        std::vector<char> selected(in ? static_cast<std::size_t>(grid->GetNumberOfCells()) : 0, 0);
+        for (std::size_t c = 0; c < selected.size(); ++c)
+        {
+          selected[c] = in->GetTuple1(static_cast<vtkIdType>(c)) != 0 ? 1 : 0;
+        }
+        const bool measured = grid && offset + m <= n && (set.empty() || in);
+        volumes->grids.push_back(measured ? std::make_unique<MeshVolume>(grid,
+          PointList(rest.begin() + static_cast<long>(offset), rest.begin() + static_cast<long>(offset + m)), selected,
+          femReader || femVerdictOf(grid)) : nullptr);
+        offset += m;
+      }
+      this->Volumes = std::move(volumes);
+    }
     PointList deformed(n), g(gradient ? n : 0, Vec3::Zero());
     if (n > 0)
     {
       this->Session->deformedPoints(deformed.front().data());
     }
-    double volume = 0, cells = 0, named = set.empty() ? 1 : 0;
+    double volume = 0, cells = 0;
     std::size_t offset = 0;
-    for (vtkPointSet* points : pointSets(this->GetOutputDataObject(0)))
+    for (std::size_t s = 0; s < outSets.size(); ++s)
     {
-      const auto m = static_cast<std::size_t>(points->GetNumberOfPoints());
-      if (auto* grid = vtkUnstructuredGrid::SafeDownCast(points); grid && offset + m <= n)
+      const auto m = static_cast<std::size_t>(outSets[s]->GetNumberOfPoints());
+      if (const MeshVolume* grid = this->Volumes->grids[s].get())
       {
-        vtkDataArray* in = set.empty() ? nullptr : grid->GetCellData()->GetArray(set.c_str());
-        named = std::max(named, in ? 1.0 : 0.0);
-        std::vector<char> selected(set.empty() ? 0 : static_cast<std::size_t>(grid->GetNumberOfCells()), 0);
-        for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
-        {
-          const bool counted = (set.empty() || (in && in->GetTuple1(c) != 0)) && cellDimension(grid->GetCellType(c)) == 3;
-          if (!set.empty())
-          {
-            selected[static_cast<std::size_t>(c)] = counted ? 1 : 0;
-          }
-          cells += counted ? 1 : 0;
-        }
+        named = 1;
         const PointList local(deformed.begin() + static_cast<long>(offset), deformed.begin() + static_cast<long>(offset + m));
         PointList localGradient(gradient ? m : 0, Vec3::Zero());
-        volume += meshVolume(grid, local, selected, gradient ? &localGradient : nullptr);
+        volume += grid->volume(local, gradient ? &localGradient : nullptr);
+        cells += static_cast<double>(grid->cells());
         std::copy(localGradient.begin(), localGradient.end(), g.begin() + static_cast<long>(offset));
       }
       offset += m;

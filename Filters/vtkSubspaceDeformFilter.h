@@ -322,6 +322,8 @@ private:
   void operator=(const vtkSubspaceDeformFilter&) = delete;
 
   std::unique_ptr<mlsvtk::DeformationSession> Session;
+  struct MeshVolumes; // ComputeMeshVolume's cells and faces, found once per mesh and cell set
+  std::unique_ptr<MeshVolumes> Volumes;
   /// The design table, the dX/dp arrays (on the moving sets) and dJ/dp of this update into the output.
   void WriteSensitivities(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
     const std::vector<char>& moving, vtkFieldData* field, const mlsdeform::Collective& group);

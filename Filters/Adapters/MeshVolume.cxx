@@ -3,16 +3,19 @@
 #include "Adapters/MeshCells.h"
 #include "Adapters/VolumeMeshQuality.h"
 #include "Quality/FaceQualityAggregate.h"
-#include "Structural/ShapeSensitivity.h"
 
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <optional>
+#include <tuple>
 
 namespace mlsvtk
 {
 namespace
 {
+using mlsdeform::Vec3;
+
 // The CalculiX element of an ElementJacobian shape (both in VTK's node order).
 mlsdeform::SolidElement solidElement(mlsdeform::ElementShape shape)
 {
@@ -31,11 +34,8 @@ mlsdeform::SolidElement solidElement(mlsdeform::ElementShape shape)
 }
 }
 
-double meshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& points, const std::vector<char>& selected,
-  mlsdeform::PointList* gradient)
+MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& rest, const std::vector<char>& selected, bool fem)
 {
-  using mlsdeform::Vec3;
-  mlsdeform::SolidMesh elements;
   std::vector<vtkIdType> others; // the cells measured by their faces
   std::vector<int> nodes;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
@@ -45,54 +45,134 @@ double meshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& points,
     {
       continue;
     }
-    if (const std::optional<mlsdeform::ElementShape> shape = elementShape(type))
-    {
-      vtkIdType n = 0;
-      const vtkIdType* ids = nullptr;
-      grid->GetCellPoints(c, n, ids);
-      nodes.assign(ids, ids + n);
-      elements.add(solidElement(*shape), nodes.data(), 0);
-    }
-    else
+    ++Cells;
+    const std::optional<mlsdeform::ElementShape> shape = fem ? elementShape(type) : std::nullopt;
+    if (!shape)
     {
       others.push_back(c);
+      continue;
+    }
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    grid->GetCellPoints(c, n, ids);
+    nodes.assign(ids, ids + n);
+    Elements.add(solidElement(*shape), nodes.data(), 0);
+  }
+  if (others.empty())
+  {
+    return;
+  }
+  // the other cells' faces, each once: a face two of them share (the same points) bounds neither
+  const mlsdeform::CellFaceList faces = cellFaces(grid); // indexed by cell id
+  struct Record
+  {
+    std::tuple<std::size_t, int, int, long> key; // points, least, largest, their sum: equal for equal faces
+    long face;
+    vtkIdType cell;
+    bool operator<(const Record& other) const { return std::tie(key, face) < std::tie(other.key, other.face); }
+  };
+  std::vector<Record> records;
+  for (const vtkIdType c : others)
+  {
+    for (long f = faces.firstFace(static_cast<int>(c)); f < faces.firstFace(static_cast<int>(c) + 1); ++f)
+    {
+      const int* p = faces.face(f);
+      const std::size_t n = faces.faceSize(f);
+      long sum = 0;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        sum += p[k];
+      }
+      records.push_back({ { n, *std::min_element(p, p + n), *std::max_element(p, p + n), sum }, f, c });
     }
   }
-  mlsdeform::PointList elementGradient;
-  double volume = elements.elements() ? mlsdeform::meshVolume(elements, points, { 1.0 }, gradient ? &elementGradient : nullptr) : 0.0;
-  if (gradient && !elementGradient.empty())
+  std::sort(records.begin(), records.end());
+  const auto sortedPoints = [&](long f) {
+    std::vector<int> p(faces.face(f), faces.face(f) + faces.faceSize(f));
+    std::sort(p.begin(), p.end());
+    return p;
+  };
+  std::vector<char> shared(records.size(), 0);
+  for (std::size_t i = 0; i < records.size();)
   {
-    for (std::size_t i = 0; i < points.size(); ++i)
+    std::size_t j = i + 1;
+    while (j < records.size() && records[j].key == records[i].key)
+    {
+      ++j;
+    }
+    for (std::size_t a = i; a < j; ++a)
+    {
+      for (std::size_t b = a + 1; b < j && !shared[a]; ++b)
+      {
+        if (!shared[b] && sortedPoints(records[a].face) == sortedPoints(records[b].face))
+        {
+          shared[a] = shared[b] = 1;
+        }
+      }
+    }
+    i = j;
+  }
+  std::vector<std::pair<vtkIdType, long>> bounding; // (cell, face) in the cells' order
+  for (std::size_t r = 0; r < records.size(); ++r)
+  {
+    if (!shared[r])
+    {
+      bounding.emplace_back(records[r].cell, records[r].face);
+    }
+  }
+  std::sort(bounding.begin(), bounding.end());
+  // each oriented out of its cell on the rest points: S_f . (C_f - C) > 0, C the cell's estimate
+  // (its face centres' mean, as FaceQuality's)
+  std::vector<mlsdeform::FaceGeometry> geometry;
+  vtkIdType cell = -1;
+  Vec3 centre = Vec3::Zero();
+  for (const auto& [c, f] : bounding)
+  {
+    if (c != cell)
+    {
+      cell = c;
+      centre = Vec3::Zero();
+      const long first = faces.firstFace(static_cast<int>(c)), last = faces.firstFace(static_cast<int>(c) + 1);
+      for (long g = first; g < last; ++g)
+      {
+        centre += mlsdeform::faceGeometry(rest, faces.face(g), faces.faceSize(g)).centre;
+      }
+      centre /= static_cast<double>(std::max<long>(1, last - first));
+    }
+    const int* p = faces.face(f);
+    const std::size_t n = faces.faceSize(f);
+    const mlsdeform::FaceGeometry g = mlsdeform::faceGeometry(rest, p, n);
+    const std::size_t start = FacePoints.size();
+    FacePoints.insert(FacePoints.end(), p, p + n);
+    if (g.area.dot(g.centre - centre) < 0)
+    {
+      std::reverse(FacePoints.begin() + static_cast<long>(start), FacePoints.end());
+    }
+    FaceStart.push_back(static_cast<long>(FacePoints.size()));
+  }
+}
+
+double MeshVolume::volume(const mlsdeform::PointList& points, mlsdeform::PointList* gradient) const
+{
+  mlsdeform::PointList elementGradient;
+  double volume = Elements.elements() ? mlsdeform::meshVolume(Elements, points, { 1.0 }, gradient ? &elementGradient : nullptr) : 0.0;
+  if (gradient)
+  {
+    for (std::size_t i = 0; i < elementGradient.size(); ++i)
     {
       (*gradient)[i] += elementGradient[i];
     }
   }
-  if (others.empty())
+  // V = sum_f S_f . C_f / 3 over the bounding faces
+  for (std::size_t f = 0; f + 1 < FaceStart.size(); ++f)
   {
-    return volume;
-  }
-  // V = sum_f |S_f . (C_f - C_est)| / 3 per cell (FaceQuality.h), its adjoint face by face
-  const mlsdeform::CellFaceList faces = cellFaces(grid); // indexed by cell id
-  std::vector<mlsdeform::FaceGeometry> geometry;
-  std::vector<Vec3> centreBar, areaBar;
-  for (const vtkIdType c : others)
-  {
-    const long first = faces.firstFace(static_cast<int>(c)), last = faces.firstFace(static_cast<int>(c) + 1);
-    geometry.clear();
-    for (long f = first; f < last; ++f)
-    {
-      geometry.push_back(mlsdeform::faceGeometry(points, faces.face(f), faces.faceSize(f)));
-    }
-    volume += mlsdeform::cellGeometry(geometry).volume;
+    const int* p = FacePoints.data() + FaceStart[f];
+    const auto n = static_cast<std::size_t>(FaceStart[f + 1] - FaceStart[f]);
+    const mlsdeform::FaceGeometry g = mlsdeform::faceGeometry(points, p, n);
+    volume += g.area.dot(g.centre) / 3;
     if (gradient)
     {
-      centreBar.assign(geometry.size(), Vec3::Zero());
-      areaBar.assign(geometry.size(), Vec3::Zero());
-      mlsdeform::addCellGeometryAdjoint(geometry, Vec3::Zero(), 1.0, centreBar, areaBar);
-      for (long f = first; f < last; ++f)
-      {
-        mlsdeform::addFaceGeometryAdjoint(points, faces.face(f), faces.faceSize(f), centreBar[f - first], areaBar[f - first], *gradient);
-      }
+      mlsdeform::addFaceGeometryAdjoint(points, p, n, Vec3(g.area / 3), Vec3(g.centre / 3), *gradient);
     }
   }
   return volume;

@@ -1,13 +1,15 @@
-// The volume of a volume mesh's 3D cells and its exact gradient at the mesh's points, each cell as
-// its solver measures it: a linear or quadratic tetrahedron, hexahedron or wedge as CalculiX
-// integrates the isoparametric element (Structural/ShapeSensitivity.h meshVolume: a deck's mass is
-// its density times this), any other cell (a CFD mesh's polyhedra, pyramids, prisms) as OpenFOAM
-// does, by pyramids on its faces about the average face centre (Quality/FaceQuality.h
-// cellGeometry, differentiated by FaceQualityAggregate.h's adjoints). For design constraints on a
-// part's volume or mass (DesignConstraints.addMeshVolumeConstraint).
+// The volume of a volume mesh's 3D cells and its exact gradient at the mesh's points, as the mesh's
+// solver measures it: an FEM mesh's linear and quadratic tetrahedra, hexahedra and wedges as
+// CalculiX integrates the isoparametric element (Structural/ShapeSensitivity.h meshVolume: a deck's
+// mass is its density times this); a CFD mesh's cells (and an FEM mesh's other cells) as OpenFOAM
+// does, by pyramids on their faces (Quality/FaceQuality.h cellGeometry), whose sum over a set of
+// cells is sum_f S_f . C_f / 3 over the faces that bound the set (the divergence theorem: the cell
+// centres drop out, sum_f S_f = 0 over a closed cell), so that only the set's boundary has a
+// gradient. For design constraints on a part's volume or mass (DesignConstraints.addMeshVolumeConstraint).
 #pragma once
 
 #include "Common/CoreTypes.h"
+#include "Structural/ShapeSensitivity.h"
 
 #include <vector>
 
@@ -15,10 +17,26 @@ class vtkUnstructuredGrid;
 
 namespace mlsvtk
 {
-/// The volume of the grid's 3D cells with selected[cell] set (empty: every one) on `points` (one
-/// per grid point: the deformed positions), and, when gradient is given (one entry per point),
-/// dV/dX added to it. The elements are summed in parallel, each point's terms in cell order: the
-/// same bits for any thread count.
-double meshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& points, const std::vector<char>& selected,
-  mlsdeform::PointList* gradient);
+class MeshVolume
+{
+public:
+  /// The grid's 3D cells with selected[cell] set (empty: every one), found on its rest points:
+  /// for an FEM mesh (fem) its isoparametric elements, and for the other cells the faces that
+  /// bound their union (a face that one of them alone has), each oriented out of its cell.
+  MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& rest, const std::vector<char>& selected, bool fem);
+
+  /// The number of cells measured.
+  long cells() const { return Cells; }
+
+  /// The volume on points (the grid's, deformed), and dV/dX added to gradient (one per point)
+  /// when it is given. The elements are summed in parallel, each point's terms in element order,
+  /// the faces in their order: the same bits for any thread count.
+  double volume(const mlsdeform::PointList& points, mlsdeform::PointList* gradient) const;
+
+private:
+  mlsdeform::SolidMesh Elements;
+  std::vector<long> FaceStart{ 0 };
+  std::vector<int> FacePoints; // the bounding faces' points, each face oriented out of its cell
+  long Cells = 0;
+};
 } // namespace mlsvtk
