@@ -290,14 +290,14 @@ if mode == 'serial':
           'scaled Jacobian: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
           % (scale, coarse, extrapolated))
 
-    # the volume of the slab's cells as its solver measures it: quadratic tetrahedra (C3D10, as
-    # CalculiX integrates them) and voxels (no element: OpenFOAM's face pyramids); 1 x 0.5 x the
-    # depth at rest, the gradient against central differences
+    # the volume of the slab's cells as its solver measures it: quadratic tetrahedra of an FEM mesh
+    # (C3D10, as CalculiX integrates them) and voxels of a CFD mesh (OpenFOAM's face pyramids);
+    # 1 x 0.5 x the depth at rest, the gradient against central differences
     from vtkmodules.vtkFiltersCore import vtkAppendFilter
     from vtkmodules.vtkFiltersGeometry import vtkLinearToQuadraticCellsFilter
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
     quadratic = vtkLinearToQuadraticCellsFilter()
-    quadratic.SetInputData(tets.GetOutput())
+    quadratic.SetInputData(tets.GetOutput())   # its field data QualityVerdict FemSolver: the FEM verdict
     quadratic.SetOutputPointsPrecision(1)
     voxels = vtkAppendFilter()
     voxels.SetInputData(image)
