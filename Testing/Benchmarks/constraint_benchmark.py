@@ -69,6 +69,7 @@ if variables != 6:
     cons.addTriangulatedVolumeConstraint('volume', surface='hull', lower=1.0)
     cons.addSurfaceAreaConstraint('area', surface='hull', upper=1.05)
     cons.addLinearConstraintsShape('linear', names[0:20:2], names[1:20:2], 1.0, -1.0, lower=-0.01, upper=0.01)
+    cons.addMeshVolumeConstraint('fluid', lower=0.99)   # the volume mesh's (the fluid's, outside the hull)
     quality = mlsdeform.DesignConstraints(dvs)
     quality.addMeshQualityConstraint('nonOrtho', 'nonOrthogonality', upper=70)
     constraints_s = time.perf_counter() - t
