@@ -10,6 +10,15 @@
 #include <limits>
 #include <vector>
 
+// The frames' visitor inlined into each public function: GCC leaves the per-shape frame templates
+// out of line otherwise, and the FEM verdict took 1.3x the time of the per-shape functions they
+// replaced (0.57 against 0.43 us a C3D10; inlined: 0.40).
+#if defined(__GNUC__)
+#define MLSDEFORM_INLINE_FRAMES __attribute__((flatten))
+#else
+#define MLSDEFORM_INLINE_FRAMES
+#endif
+
 namespace mlsdeform
 {
 namespace
@@ -210,28 +219,38 @@ void wedgeFrames(const Vec3* x, bool quadratic, Frame frame)
   }
 }
 
-// Every frame of the element (frame(a, b, c)), and the shape's scale and sign.
+// The shape's scale (the ideal element's scaled Jacobian is 1) and sign (VTK's orientation positive).
+struct ShapeScale
+{
+  double scale, sign;
+};
+ShapeScale shapeScale(ElementShape shape)
+{
+  switch (shape)
+  {
+    case ElementShape::Tetra4:
+    case ElementShape::Tetra10: return { std::sqrt(2.0), 1.0 };
+    case ElementShape::Hexa8:
+    case ElementShape::Hexa20: return { 1.0, 1.0 };
+    case ElementShape::Wedge6:
+    case ElementShape::Wedge15: break;
+  }
+  return { 2 / std::sqrt(3.0), -1.0 };
+}
+
+// Every frame of the element: frame(a, b, c).
 template <typename Frame>
-void elementFrames(ElementShape shape, const Vec3* x, Frame frame, double& scale, double& sign)
+void elementFrames(ElementShape shape, const Vec3* x, Frame frame)
 {
   const bool quadratic = shape == ElementShape::Tetra10 || shape == ElementShape::Hexa20 || shape == ElementShape::Wedge15;
   switch (shape)
   {
     case ElementShape::Tetra4:
-    case ElementShape::Tetra10:
-      scale = std::sqrt(2.0), sign = 1;
-      tetrahedronFrames(x, quadratic, frame);
-      return;
+    case ElementShape::Tetra10: tetrahedronFrames(x, quadratic, frame); return;
     case ElementShape::Hexa8:
-    case ElementShape::Hexa20:
-      scale = 1, sign = 1;
-      hexahedronFrames(x, quadratic, frame);
-      return;
+    case ElementShape::Hexa20: hexahedronFrames(x, quadratic, frame); return;
     case ElementShape::Wedge6:
-    case ElementShape::Wedge15:
-      scale = 2 / std::sqrt(3.0), sign = -1;
-      wedgeFrames(x, quadratic, frame);
-      return;
+    case ElementShape::Wedge15: wedgeFrames(x, quadratic, frame); return;
   }
 }
 
@@ -242,34 +261,34 @@ int nodeCountOf(ElementShape shape)
 }
 } // namespace
 
-ElementJacobian elementJacobian(ElementShape shape, const Vec3* nodes)
+MLSDEFORM_INLINE_FRAMES ElementJacobian elementJacobian(ElementShape shape, const Vec3* nodes)
 {
-  // the least scaled Jacobian and whether some det J <= 0, gathered frame by frame (scale and
-  // sign are the shape's, set before its first frame)
-  double scale = 1, sign = 1;
+  // the least scaled Jacobian and whether some det J <= 0, gathered frame by frame (the shape's
+  // scale and sign constants of the frame's closure)
+  const ShapeScale s = shapeScale(shape);
   ElementJacobian result{ std::numeric_limits<double>::infinity(), false };
-  elementFrames(shape, nodes, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+  elementFrames(shape, nodes, [&result, s](const Vec3& a, const Vec3& b, const Vec3& c) {
     double det;
-    const double scaled = sign * scale * scaledDeterminant(a, b, c, det);
+    const double scaled = s.sign * s.scale * scaledDeterminant(a, b, c, det);
     result.minScaled = std::min(result.minScaled, std::clamp(scaled, -1.0, 1.0));
-    result.inverted = result.inverted || sign * det <= 0;
-  }, scale, sign);
+    result.inverted = result.inverted || s.sign * det <= 0;
+  });
   return result;
 }
 
-void scaledJacobians(ElementShape shape, const Vec3* nodes, std::vector<double>& out)
+MLSDEFORM_INLINE_FRAMES void scaledJacobians(ElementShape shape, const Vec3* nodes, std::vector<double>& out)
 {
-  double scale = 1, sign = 1;
-  elementFrames(shape, nodes, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+  const ShapeScale s = shapeScale(shape);
+  elementFrames(shape, nodes, [&out, s](const Vec3& a, const Vec3& b, const Vec3& c) {
     double det;
-    out.push_back(std::clamp(sign * scale * scaledDeterminant(a, b, c, det), -1.0, 1.0));
-  }, scale, sign);
+    out.push_back(std::clamp(s.sign * s.scale * scaledDeterminant(a, b, c, det), -1.0, 1.0));
+  });
 }
 
-void addScaledJacobianGradient(ElementShape shape, const Vec3* nodes, const double* weights, Vec3* gradient)
+MLSDEFORM_INLINE_FRAMES void addScaledJacobianGradient(ElementShape shape, const Vec3* nodes, const double* weights, Vec3* gradient)
 {
   // d(sj)/d(a, b, c) per frame (zero where sj is clamped at -1 or 1, or a column is zero)
-  double scale = 1, sign = 1;
+  const ShapeScale s = shapeScale(shape);
   std::vector<std::array<Vec3, 3>> slopes;
   elementFrames(shape, nodes, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
     std::array<Vec3, 3> d{ Vec3::Zero(), Vec3::Zero(), Vec3::Zero() };
@@ -280,7 +299,7 @@ void addScaledJacobianGradient(ElementShape shape, const Vec3* nodes, const doub
       d = { Vec3(b.cross(c) / L - r * a / (la * la)), Vec3(c.cross(a) / L - r * b / (lb * lb)), Vec3(a.cross(b) / L - r * c / (lc * lc)) };
     }
     slopes.push_back(d);
-  }, scale, sign);
+  });
   std::vector<double> values;
   scaledJacobians(shape, nodes, values);
   // the frames' columns are linear in the nodes, a = sum_n alpha_n x_n: alpha_n is a's first
@@ -296,10 +315,10 @@ void addScaledJacobianGradient(ElementShape shape, const Vec3* nodes, const doub
     elementFrames(shape, unit.data(), [&](const Vec3& a, const Vec3& b, const Vec3& c) {
       if (weights[f] != 0 && std::abs(values[f]) < 1)
       {
-        sum += weights[f] * sign * scale * (a.x() * slopes[f][0] + b.x() * slopes[f][1] + c.x() * slopes[f][2]);
+        sum += weights[f] * s.sign * s.scale * (a.x() * slopes[f][0] + b.x() * slopes[f][1] + c.x() * slopes[f][2]);
       }
       ++f;
-    }, scale, sign);
+    });
     gradient[node] += sum;
   }
 }
