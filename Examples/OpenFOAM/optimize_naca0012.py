@@ -19,7 +19,6 @@ J after a fixed number of iterations is a function of p alone, as the reduced te
 import argparse
 import csv
 import os
-import shutil
 import sys
 import time
 
@@ -38,7 +37,6 @@ args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False)
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
-import mlsdeform  # noqa: E402
 import naca0012  # noqa: E402
 
 ARMIJO = 1e-4         # sufficient decrease: J(p_new) <= J(p) + ARMIJO g . (p_new - p)
@@ -55,34 +53,15 @@ upper = np.array([bounds[n][1] for n in names])
 scale = (upper - lower) / 2    # the step is taken in p / scale: each variable's range is 2 wide
 
 
-def warm_start(case, previous):
-    """The trial's initial fields are the last accepted run's final ones (same mesh topology)."""
-    latest = max((d for d in os.listdir(previous) if d.replace('.', '', 1).isdigit() and float(d) > 0), key=float)
-    initial = os.path.join(case, '0')
-    for field in ('U', 'p', 'Ua', 'pa'):
-        for ext in ('', '.gz'):
-            if os.path.lexists(os.path.join(initial, field + ext)):
-                os.unlink(os.path.join(initial, field + ext))
-        name = next(field + ext for ext in ('', '.gz') if os.path.exists(os.path.join(previous, latest, field + ext)))
-        shutil.copyfile(os.path.join(previous, latest, name), os.path.join(initial, name))
-
-
 def evaluate(p, label, previous):
-    """Writes the variant at p, checks its mesh, runs the adjoint on it: a dict of the results,
-    with ok False (and no J) for a variant the thresholds reject."""
-    dvs.setDesignVars(dict(zip(names, p)))
-    dvs.update()
-    quality = mlsdeform.meshQuality(dvs)
-    result = dict(p=np.array(p), quality=quality, ok=mlsdeform.passes(quality), case=os.path.join(work, label))
-    if not result['ok']:
-        return result
-    mlsdeform.foam.save_variant(deformed, os.path.join(result['case'], 'case.foam'), overwrite=True, link=True)
-    if previous is not None and not args.cold:
-        warm_start(result['case'], previous)
-    naca0012.finish(naca0012.start_adjoint(result['case'], args.primal, args.adjoint), result['case'])
-    result['J'] = mlsdeform.readFoamObjective(result['case'])
-    g = dvs.totalSensitivity(mlsdeform.readFoamSensitivity(deformed, field=naca0012.FIELD, case=result['case']))
-    result['gradient'] = np.array([g[n] for n in names])
+    """The variant at p (naca0012.run_variant) in WORK/label, from the previous accepted run's
+    fields unless --cold: a dict of the results, with ok False (and no J) for a variant the
+    thresholds reject."""
+    result = naca0012.run_variant(deformed, dvs, dict(zip(names, p)), os.path.join(work, label), args.primal, args.adjoint,
+                                  None if args.cold else previous)
+    result['p'] = np.array(p)
+    if result['ok']:
+        result['gradient'] = np.array([result['gradient'][n] for n in names])
     return result
 
 
