@@ -495,7 +495,7 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
         const bool measured = grid && offset + m <= n && (set.empty() || in);
         volumes->grids.push_back(measured ? std::make_unique<MeshVolume>(grid,
           PointList(rest.begin() + static_cast<long>(offset), rest.begin() + static_cast<long>(offset + m)), selected,
-          femReader || femVerdictOf(grid)) : nullptr);
+          femReader || femVerdictOf(grid), static_cast<int>(offset)) : nullptr);
         offset += m;
       }
       this->Volumes = std::move(volumes);
@@ -506,20 +506,14 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
       this->Session->deformedPoints(deformed.front().data());
     }
     double volume = 0, cells = 0;
-    std::size_t offset = 0;
-    for (std::size_t s = 0; s < outSets.size(); ++s)
+    for (const std::unique_ptr<MeshVolume>& grid : this->Volumes->grids)
     {
-      const auto m = static_cast<std::size_t>(outSets[s]->GetNumberOfPoints());
-      if (const MeshVolume* grid = this->Volumes->grids[s].get())
+      if (grid)
       {
         named = 1;
-        const PointList local(deformed.begin() + static_cast<long>(offset), deformed.begin() + static_cast<long>(offset + m));
-        PointList localGradient(gradient ? m : 0, Vec3::Zero());
-        volume += grid->volume(local, gradient ? &localGradient : nullptr);
+        volume += grid->volume(deformed, gradient ? &g : nullptr);
         cells += static_cast<double>(grid->cells());
-        std::copy(localGradient.begin(), localGradient.end(), g.begin() + static_cast<long>(offset));
       }
-      offset += m;
     }
     // every process's sums, added in process order: the same on every process
     const std::vector<double> parts = group.gather(std::vector<double>{ volume, cells, named });

@@ -7,8 +7,8 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
-#include <tuple>
 
 namespace mlsvtk
 {
@@ -34,7 +34,7 @@ mlsdeform::SolidElement solidElement(mlsdeform::ElementShape shape)
 }
 }
 
-MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& rest, const std::vector<char>& selected, bool fem)
+MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& rest, const std::vector<char>& selected, bool fem, int offset)
 {
   std::vector<vtkIdType> others; // the cells measured by their faces
   std::vector<int> nodes;
@@ -56,6 +56,10 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     const vtkIdType* ids = nullptr;
     grid->GetCellPoints(c, n, ids);
     nodes.assign(ids, ids + n);
+    for (int& node : nodes)
+    {
+      node += offset;
+    }
     Elements.add(solidElement(*shape), nodes.data(), 0);
   }
   if (others.empty())
@@ -64,26 +68,23 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
   }
   // the other cells' faces, each once: a face two of them share (the same points) bounds neither
   const mlsdeform::CellFaceList faces = cellFaces(grid); // indexed by cell id
-  struct Record
-  {
-    std::tuple<std::size_t, int, int, long> key; // points, least, largest, their sum: equal for equal faces
-    long face;
-    vtkIdType cell;
-    bool operator<(const Record& other) const { return std::tie(key, face) < std::tie(other.key, other.face); }
-  };
-  std::vector<Record> records;
+  // a record a face: a hash of its points (their number, least, largest and sum: equal for equal
+  // faces) and the face, 16 bytes for each of a 1M-cell mesh's 7M faces
+  std::vector<std::pair<std::uint64_t, long>> records;
   for (const vtkIdType c : others)
   {
     for (long f = faces.firstFace(static_cast<int>(c)); f < faces.firstFace(static_cast<int>(c) + 1); ++f)
     {
       const int* p = faces.face(f);
       const std::size_t n = faces.faceSize(f);
-      long sum = 0;
+      std::uint64_t sum = 0;
       for (std::size_t k = 0; k < n; ++k)
       {
-        sum += p[k];
+        sum += static_cast<std::uint64_t>(p[k]);
       }
-      records.push_back({ { n, *std::min_element(p, p + n), *std::max_element(p, p + n), sum }, f, c });
+      const auto least = static_cast<std::uint64_t>(*std::min_element(p, p + n));
+      const auto largest = static_cast<std::uint64_t>(*std::max_element(p, p + n));
+      records.emplace_back(((sum * 1000003u + least) * 1000003u + largest) * 31u + n, f);
     }
   }
   std::sort(records.begin(), records.end());
@@ -96,7 +97,7 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
   for (std::size_t i = 0; i < records.size();)
   {
     std::size_t j = i + 1;
-    while (j < records.size() && records[j].key == records[i].key)
+    while (j < records.size() && records[j].first == records[i].first)
     {
       ++j;
     }
@@ -104,7 +105,7 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     {
       for (std::size_t b = a + 1; b < j && !shared[a]; ++b)
       {
-        if (!shared[b] && sortedPoints(records[a].face) == sortedPoints(records[b].face))
+        if (!shared[b] && sortedPoints(records[a].second) == sortedPoints(records[b].second))
         {
           shared[a] = shared[b] = 1;
         }
@@ -112,14 +113,19 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     }
     i = j;
   }
-  std::vector<std::pair<vtkIdType, long>> bounding; // (cell, face) in the cells' order
+  // the bounding faces in the cells' order (a face's cell: the one whose faces hold it)
+  std::vector<std::pair<vtkIdType, long>> bounding;
   for (std::size_t r = 0; r < records.size(); ++r)
   {
     if (!shared[r])
     {
-      bounding.emplace_back(records[r].cell, records[r].face);
+      const long f = records[r].second;
+      const auto c = std::upper_bound(others.begin(), others.end(), f,
+                       [&](long face, vtkIdType cell) { return face < faces.firstFace(static_cast<int>(cell)); }) - 1;
+      bounding.emplace_back(*c, f);
     }
   }
+  std::vector<std::pair<std::uint64_t, long>>().swap(records);
   std::sort(bounding.begin(), bounding.end());
   // each oriented out of its cell on the rest points: S_f . (C_f - C) > 0, C the cell's estimate
   // (its face centres' mean, as FaceQuality's)
@@ -143,7 +149,10 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     const std::size_t n = faces.faceSize(f);
     const mlsdeform::FaceGeometry g = mlsdeform::faceGeometry(rest, p, n);
     const std::size_t start = FacePoints.size();
-    FacePoints.insert(FacePoints.end(), p, p + n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      FacePoints.push_back(offset + p[k]);
+    }
     if (g.area.dot(g.centre - centre) < 0)
     {
       std::reverse(FacePoints.begin() + static_cast<long>(start), FacePoints.end());

@@ -22,13 +22,14 @@ class MeshVolume
 public:
   /// The grid's 3D cells with selected[cell] set (empty: every one), found on its rest points:
   /// for an FEM mesh (fem) its isoparametric elements, and for the other cells the faces that
-  /// bound their union (a face that one of them alone has), each oriented out of its cell.
-  MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& rest, const std::vector<char>& selected, bool fem);
+  /// bound their union (a face that one of them alone has), each oriented out of its cell. Its
+  /// points are offset .. offset + n - 1 of the point lists volume() gets (several grids' points).
+  MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& rest, const std::vector<char>& selected, bool fem, int offset);
 
   /// The number of cells measured.
   long cells() const { return Cells; }
 
-  /// The volume on points (the grid's, deformed), and dV/dX added to gradient (one per point)
+  /// The volume on points (the grids', deformed), and dV/dX added to gradient (one per point)
   /// when it is given. The elements are summed in parallel, each point's terms in element order,
   /// the faces in their order: the same bits for any thread count.
   double volume(const mlsdeform::PointList& points, mlsdeform::PointList* gradient) const;
