@@ -32,13 +32,8 @@ LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402
 import openfoam_variant  # noqa: E402
-import hull_variables  # noqa: E402  (beside this script)
-
-
-def timed(function):
-    start = time.perf_counter()
-    result = function()
-    return time.perf_counter() - start, result
+import hull_benchmark  # noqa: E402  (beside this script)
+from hull_benchmark import timed  # noqa: E402
 
 
 t = time.perf_counter()
@@ -48,7 +43,7 @@ setup_s = time.perf_counter() - t
 hull = deformer.Regions[0]
 dvs = mlsdeform.DesignVariables(deformer)
 if variables == 6:
-    hull_variables.add_body_variables(dvs, hull)
+    hull_benchmark.add_body_variables(dvs, hull)
 else:
     dvs.addLocalDV('hull', hull, count=variables, lower=-0.02, upper=0.02)  # metres along the normal
 names = dvs.getVarNames()

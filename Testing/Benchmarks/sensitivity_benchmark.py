@@ -42,7 +42,8 @@ LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 import mlsdeform  # noqa: E402  (the plugin's package: importable once the plugin is loaded)
 import openfoam_variant  # noqa: E402
-import hull_variables  # noqa: E402  (beside this script)
+import hull_benchmark  # noqa: E402  (beside this script)
+from hull_benchmark import timed  # noqa: E402
 
 
 def patch_range(algorithm, patch):
@@ -71,12 +72,6 @@ def field_number(algorithm, name):
     return array.GetTuple1(0) if array is not None else None
 
 
-def timed(function):
-    start = time.perf_counter()
-    result = function()
-    return time.perf_counter() - start, result
-
-
 # The case and its deformation with the hull at rest (the set-up), then the design variables.
 t = time.perf_counter()
 reader = openfoam_variant.open_case(case, handle + fixed + slip, decompose_polyhedra=False)
@@ -86,7 +81,7 @@ deformer = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip, **sett
 setup_s = time.perf_counter() - t
 hull = deformer.Regions[0]  # morph() lists the handle regions first
 dvs = mlsdeform.DesignVariables(deformer)
-hull_variables.add_body_variables(dvs, hull)
+hull_benchmark.add_body_variables(dvs, hull)
 names = dvs.getVarNames()
 m = len(names)
 first_s, X = timed(dvs.update)

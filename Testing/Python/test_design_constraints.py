@@ -45,6 +45,30 @@ def constraints(dvs):
     return cons
 
 
+def check_single_gradient(dvs, cons, name, what):
+    """A one-value constraint's exact gradient against central differences with h = 1e-4 and h/2
+    (as for the sphere's: FD(h) within 1e-4 of the largest entry, their extrapolation within 1e-7)."""
+    start, names = dvs.getValues(), dvs.getVarNames()
+    sens = {}
+    cons.evalFunctionsSens(sens)
+    J = np.array([sens[name][v] for v in names]).reshape(-1)
+    fd = {}
+    for h in (1e-4, 5e-5):
+        fd[h] = np.zeros(len(names))
+        for j, v in enumerate(names):
+            for sign in (1, -1):
+                dvs.setDesignVars({v: start[v] + sign * h})
+                g = {}
+                cons.evalFunctions(g)
+                fd[h][j] += sign * g[name][0] / (2 * h)
+            dvs.setDesignVars({v: start[v]})
+    scale = np.abs(J).max()
+    coarse, extrapolated = np.abs(fd[1e-4] - J).max() / scale, np.abs((4 * fd[5e-5] - fd[1e-4]) / 3 - J).max() / scale
+    check(scale > 0 and coarse <= 1e-4 and extrapolated <= 1e-7,
+          '%s: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
+          % (what, scale, coarse, extrapolated))
+
+
 def flat(funcs):
     return np.concatenate([np.atleast_1d(funcs[n]) for n in sorted(funcs)])
 
@@ -270,25 +294,7 @@ if mode == 'serial':
     least = slabDeform.GetClientSideObject().GetOutputDataObject(0).GetFieldData().GetArray('MinScaledJacobian').GetValue(0)
     check(least - scons.getBiasBound('sj') <= f['sj'][0] <= least,
           'KS scaled Jacobian %.4f between the verdict\'s least %.4f less ln(N)/rho and the least' % (f['sj'][0], least))
-    sstart, snames = sdvs.getValues(), sdvs.getVarNames()
-    sens = {}
-    scons.evalFunctionsSens(sens)
-    J = np.array([sens['sj'][v] for v in snames]).reshape(-1)
-    fd = {}
-    for h in (1e-4, 5e-5):
-        fd[h] = np.zeros(len(snames))
-        for j, v in enumerate(snames):
-            for sign in (1, -1):
-                sdvs.setDesignVars({v: sstart[v] + sign * h})
-                g = {}
-                scons.evalFunctions(g)
-                fd[h][j] += sign * g['sj'][0] / (2 * h)
-            sdvs.setDesignVars({v: sstart[v]})
-    scale = np.abs(J).max()
-    coarse, extrapolated = np.abs(fd[1e-4] - J).max() / scale, np.abs((4 * fd[5e-5] - fd[1e-4]) / 3 - J).max() / scale
-    check(scale > 0 and coarse <= 1e-4 and extrapolated <= 1e-7,
-          'scaled Jacobian: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
-          % (scale, coarse, extrapolated))
+    check_single_gradient(sdvs, scons, 'sj', 'scaled Jacobian')
 
     # the volume of the slab's cells as its solver measures it: quadratic tetrahedra of an FEM mesh
     # (C3D10, as CalculiX integrates them) and voxels of a CFD mesh (OpenFOAM's face pyramids);
@@ -320,25 +326,7 @@ if mode == 'serial':
         depth = np.ptp(sphere_in_box.rest_points(vdeform)[:, 2])
         check(abs(f['V'][0] - 0.5 * depth) <= 1e-15, '%s: the volume %.15f = 1 x 0.5 x the depth' % (kind, f['V'][0]))
         vdvs.setDesignVars({'top_1': 0.03, 'top_2': -0.02})
-        vstart, vnames = vdvs.getValues(), vdvs.getVarNames()
-        sens = {}
-        vcons.evalFunctionsSens(sens)
-        J = np.array([sens['V'][v] for v in vnames]).reshape(-1)
-        fd = {}
-        for h in (1e-4, 5e-5):
-            fd[h] = np.zeros(len(vnames))
-            for j, v in enumerate(vnames):
-                for sign in (1, -1):
-                    vdvs.setDesignVars({v: vstart[v] + sign * h})
-                    g = {}
-                    vcons.evalFunctions(g)
-                    fd[h][j] += sign * g['V'][0] / (2 * h)
-                vdvs.setDesignVars({v: vstart[v]})
-        scale = np.abs(J).max()
-        coarse, extrapolated = np.abs(fd[1e-4] - J).max() / scale, np.abs((4 * fd[5e-5] - fd[1e-4]) / 3 - J).max() / scale
-        check(scale > 0 and coarse <= 1e-4 and extrapolated <= 1e-7,
-              '%s volume: the exact gradient (largest %.3g) against central differences: %.2g (h = 1e-4), %.2g (extrapolated)'
-              % (kind, scale, coarse, extrapolated))
+        check_single_gradient(vdvs, vcons, 'V', '%s volume' % kind)
     np.savez(os.path.join(work, 'constraints.npz'), **{'f_' + n: np.atleast_1d(v) for n, v in funcs.items()},
              **{'J_' + n: v for n, v in jacobian.items()})
 else:
