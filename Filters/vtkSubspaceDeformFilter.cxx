@@ -3,7 +3,6 @@
 #include "Adapters/CaseFaces.h"
 #include "Adapters/CasePath.h"
 #include "Adapters/FailurePolicy.h"
-#include "Adapters/MeshCells.h"
 #include "Adapters/MeshVolume.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
@@ -466,10 +465,8 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
     const PointList& rest = this->Session->inputPoints();
     const std::size_t n = rest.size();
     Stamp stamp = cellsStamp(outSets);
-    for (const Stamp& more : { pointsStamp(inSets) })
-    {
-      stamp.objects.insert(stamp.objects.end(), more.objects.begin(), more.objects.end());
-    }
+    const Stamp restPoints = pointsStamp(inSets);
+    stamp.objects.insert(stamp.objects.end(), restPoints.objects.begin(), restPoints.objects.end());
     for (vtkPointSet* points : outSets)
     {
       stamp.add(set.empty() ? nullptr : points->GetCellData()->GetArray(set.c_str()));

@@ -88,10 +88,8 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     }
   }
   std::sort(records.begin(), records.end());
-  const auto sortedPoints = [&](long f) {
-    std::vector<int> p(faces.face(f), faces.face(f) + faces.faceSize(f));
-    std::sort(p.begin(), p.end());
-    return p;
+  const auto samePoints = [&](long f, long g) { // (a face has a few points: no sorting, no allocation)
+    return faces.faceSize(f) == faces.faceSize(g) && std::is_permutation(faces.face(f), faces.face(f) + faces.faceSize(f), faces.face(g));
   };
   std::vector<char> shared(records.size(), 0);
   for (std::size_t i = 0; i < records.size();)
@@ -105,7 +103,7 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     {
       for (std::size_t b = a + 1; b < j && !shared[a]; ++b)
       {
-        if (!shared[b] && sortedPoints(records[a].second) == sortedPoints(records[b].second))
+        if (!shared[b] && samePoints(records[a].second, records[b].second))
         {
           shared[a] = shared[b] = 1;
         }
