@@ -334,19 +334,12 @@ class DesignConstraints:
             density = float(density)
             if not (math.isfinite(density) and density > 0):
                 raise ValueError(f"mesh volume constraint {name!r}: density must be a positive finite number, not {density!r}")
-        from vtkmodules.vtkCommonCore import vtkDoubleArray
         algorithm = self.dvs._algorithm
         factor = 1.0 if density is None else density
 
         def evaluate(X, gradient=True):
-            value, g = vtkDoubleArray(), vtkDoubleArray()
-            if not algorithm.ComputeMeshVolume(cells or '', value, g if gradient else None):
-                raise RuntimeError(algorithm.GetSensitivityError())
-            if not gradient:
-                return np.array([factor * value.GetValue(0)]), None
-            dense = factor * self.dvs._numpy(g)
-            rows = np.flatnonzero(np.any(dense != 0, axis=1))
-            return np.array([factor * value.GetValue(0)]), [(rows, dense[rows])]
+            value, g = self._computed(lambda v, d: algorithm.ComputeMeshVolume(cells or '', v, d), gradient)
+            return np.array([factor * value.GetValue(0)]), None if g is None else [(g[0], factor * g[1])]
 
         self._add(_Constraint(name, 'meshVolume', lower, upper, scaled, evaluate))
 
@@ -369,21 +362,14 @@ class DesignConstraints:
         rho = (10.0 if measure == 'nonOrthogonality' else 100.0) if rho is None else float(rho)
         if not (math.isfinite(rho) and rho > 0):
             raise ValueError(f"mesh quality constraint {name!r}: rho must be a positive finite number, not {rho!r}")
-        from vtkmodules.vtkCommonCore import vtkDoubleArray
         algorithm = self.dvs._algorithm
         index = measures.index(measure)
         constraint = None
 
         def evaluate(X, gradient=True):
-            value, g = vtkDoubleArray(), vtkDoubleArray()
-            if not algorithm.ComputeMeshQualityAggregate(index, rho, value, g if gradient else None):
-                raise RuntimeError(algorithm.GetSensitivityError())
+            value, g = self._computed(lambda v, d: algorithm.ComputeMeshQualityAggregate(index, rho, v, d), gradient)
             constraint.count = int(value.GetValue(1))
-            if not gradient:
-                return np.array([value.GetValue(0)]), None
-            dense = self.dvs._numpy(g)
-            rows = np.flatnonzero(np.any(dense != 0, axis=1))
-            return np.array([value.GetValue(0)]), [(rows, dense[rows])]
+            return np.array([value.GetValue(0)]), None if g is None else [g]
 
         constraint = _Constraint(name, 'meshQuality', lower, upper, scaled, evaluate)
         constraint.rho = rho
@@ -430,6 +416,20 @@ class DesignConstraints:
         return out
 
     # -- internals ----------------------------------------------------------------------------
+    def _computed(self, compute, gradient):
+        """A function the filter computes: compute(value, g) fills value (a vtkDoubleArray, the
+        value first) and, when g is given, dF/dX at the output points (n x 3). Returns value and,
+        when asked, the gradient as (rows, values) of its points that are not zero."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        value, g = vtkDoubleArray(), vtkDoubleArray()
+        if not compute(value, g if gradient else None):
+            raise RuntimeError(self.dvs._algorithm.GetSensitivityError())
+        if not gradient:
+            return value, None
+        dense = self.dvs._numpy(g)
+        rows = np.flatnonzero(np.any(dense != 0, axis=1))
+        return value, (rows, dense[rows])
+
     def _set(self, x):
         names = self.dvs.getVarNames()
         x = np.asarray(x, dtype=float).reshape(-1)
@@ -637,7 +637,7 @@ class DesignConstraints:
         c.baseline = values.copy()
         J = self._evaluate([c], X, True)[1][c.name]
         # a gradient below the value's round-off (1e-12 of it per unit of every variable) is no
-        # influence: the volume of a mesh whose boundary is held sums to round-off
+        # influence: terms that cancel leave round-off, not a dependence
         dead = np.flatnonzero(np.all(np.abs(J) <= 1e-12 * np.abs(values)[:, None], axis=1))
         if len(dead):
             raise ValueError(f"constraint {c.name!r}: no design variable influences its value{'s' if len(dead) > 1 else ''} "
