@@ -325,7 +325,8 @@ bool vtkSubspaceDeformFilter::GetDeformedPoints(vtkDoubleArray* out)
     {
       throw InvalidInputException("GetDeformedPoints needs an output array");
     }
-    this->Session->deformedPoints(resized(out, this->Session->inputPoints().size()));
+    const PointList& deformed = this->Session->deformedPoints();
+    std::copy_n(deformed.empty() ? nullptr : deformed.front().data(), 3 * deformed.size(), resized(out, deformed.size()));
   });
 }
 
@@ -497,11 +498,8 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
       }
       this->Volumes = std::move(volumes);
     }
-    PointList deformed(n), g(gradient ? n : 0, Vec3::Zero());
-    if (n > 0)
-    {
-      this->Session->deformedPoints(deformed.front().data());
-    }
+    const PointList& deformed = this->Session->deformedPoints();
+    PointList g(gradient ? n : 0, Vec3::Zero());
     double volume = 0, cells = 0;
     for (const std::unique_ptr<MeshVolume>& grid : this->Volumes->grids)
     {

@@ -296,21 +296,23 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
   return summarizeMeasures();
 }
 
-mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho)
+mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(
+  const mlsdeform::PointList& points, long pointsKey, mlsdeform::QualityMeasure measure, double rho)
 {
-  if (PerFacePoints.empty() || points != PerFacePoints)
+  if (pointsKey != TailKey || measure != TailMeasure || rho != TailRho)
   {
-    mlsdeform::faceMeasures(points, Cells, Faces, Orientation, PerFaceWork, PerFace);
-    PerFacePoints = points;
+    Tail = mlsdeform::aggregateFaces(points, Cells, Faces, Orientation, measure, rho, TailWork);
+    TailKey = pointsKey;
+    TailMeasure = measure;
+    TailRho = rho;
   }
-  return mlsdeform::aggregatePart(measure == mlsdeform::QualityMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, rho);
+  return Tail.part;
 }
 
 void VolumeMeshQuality::addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho,
   const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const
 {
-  mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, PerFaceWork,
-    measure == mlsdeform::QualityMeasure::NonOrthogonality ? PerFace.nonOrthogonality : PerFace.skewness, measure, rho, whole, gradient);
+  mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, TailWork, Tail.tail, measure, rho, whole, gradient);
 }
 
 QualitySummary VolumeMeshQuality::summarizeMeasures()

@@ -126,10 +126,10 @@ public:
   Elements& elements() { return JacobianElements; }
 
   /// The KS aggregate's part of a face measure over the interior faces on these points (the
-  /// rest grid's cells, FaceQualityAggregate.h); its faces' measures are kept for the gradient
-  /// and for the next call on the same points (a value, then its gradient, then another measure:
-  /// one pass over the cells).
-  mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho);
+  /// rest grid's cells, FaceQualityAggregate.h); the faces that weigh in it are kept for the
+  /// gradient and for the next call with the same pointsKey (the deformation's number of these
+  /// points), measure and rho (a value, then its gradient: one pass over the cells).
+  mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, long pointsKey, mlsdeform::QualityMeasure measure, double rho);
   /// Adds the aggregate's gradient (the weights of whole, the parts of every mesh and process)
   /// at the points of the last aggregatePart to gradient.
   void addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho,
@@ -149,9 +149,11 @@ private:
   mlsdeform::PointList Points;
   mlsdeform::FaceWorkspace Work;
   mlsdeform::FaceMeasures Measures;
-  mlsdeform::FaceMeasures PerFace; // the aggregate's: every face's measures
-  mlsdeform::PointList PerFacePoints; // the points they were measured on
-  mlsdeform::FaceWorkspace PerFaceWork; // their faces' and cells' geometry (the summary's may be of other points)
+  mlsdeform::FaceAggregate Tail; // the last aggregate's part and the faces that weigh in it
+  long TailKey = -1; // the points' key, measure and rho it was measured with
+  mlsdeform::QualityMeasure TailMeasure = mlsdeform::QualityMeasure::NonOrthogonality;
+  double TailRho = 0;
+  mlsdeform::FaceWorkspace TailWork; // its faces' and cells' geometry (the summary's may be of other points)
   QualitySummary Original;
   Elements JacobianElements;
   QualityVerdict Verdict;

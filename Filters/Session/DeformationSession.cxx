@@ -316,6 +316,7 @@ SpaceDeformation::Solution DeformationSession::solve(const IterationSettings& se
   vtkLogScopeF(TRACE, "MLS Deform: solve");
   Last = SpaceDeformation::Solution();
   LastField = PointField();
+  ++Solutions;
   TargetConflicts.clear();
   ConstraintConflicts.clear();
   Intersected = false;
@@ -666,29 +667,32 @@ const DeformationSession::GradientRows& DeformationSession::gradientRows(const P
   return r;
 }
 
-void DeformationSession::deformedPoints(double* out) const
+const PointList& DeformationSession::deformedPoints()
 {
-  const long n = static_cast<long>(Points.size());
-  displacement(LastField, 0, n, out); // d(x), as writeOutput computes it
-  for (long i = 0; i < n; ++i)
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
+  if (DeformedOf != Solutions || Deformed.size() != Points.size())
   {
-    for (int c = 0; c < 3; ++c)
+    const long n = static_cast<long>(Points.size());
+    Deformed.resize(Points.size());
+    if (n > 0)
     {
-      out[3 * i + c] += Points[i][c];
+      double* out = Deformed.front().data();
+      displacement(LastField, 0, n, out); // d(x), as writeOutput computes it
+#pragma omp parallel for schedule(static)
+      for (long i = 0; i < n; ++i)
+      {
+        Deformed[i] += Points[i];
+      }
     }
+    DeformedOf = Solutions;
   }
+  return Deformed;
 }
 
 MeshQualityReport::Aggregate DeformationSession::qualityAggregate(
   QualityMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
 {
-  static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
-  PointList deformed(Points.size());
-  if (!deformed.empty())
-  {
-    deformedPoints(deformed.front().data());
-  }
-  return Quality.aggregate(deformed, measure, rho, group, gradient);
+  return Quality.aggregate(deformedPoints(), Solutions, measure, rho, group, gradient);
 }
 
 bool DeformationSession::dragged() const

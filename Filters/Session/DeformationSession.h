@@ -230,8 +230,11 @@ public:
   std::vector<std::vector<double>> objectiveSensitivities(
     SparseGradients gradients, const mlsdeform::Collective& group, std::string& method);
   /// x + d(x) in double precision at this process's points (the output's points before they are
-  /// stored in the input's precision).
-  void deformedPoints(double* out) const;
+  /// stored in the input's precision), computed once per solution.
+  const mlsdeform::PointList& deformedPoints();
+  /// The last solution's number (a new one at every solve): what is measured on the deformed
+  /// points is keyed by it.
+  long solutionNumber() const { return Solutions; }
   /// The KS aggregate of a face measure of the deformed volume meshes and its gradient at the
   /// output points (MeshQualityReport::aggregate; the last update's report).
   MeshQualityReport::Aggregate qualityAggregate(
@@ -305,6 +308,9 @@ private:
   PrescribedDerivatives Derivatives;
   mlsdeform::SpaceDeformation::Solution Last;
   PointField LastField;
+  long Solutions = 0;
+  mlsdeform::PointList Deformed; // deformedPoints() of solution DeformedOf
+  long DeformedOf = -1;
   // Phi w of the last solve at every point, when the whole output is written (no drag): the
   // exact targets' Phi w at the region positions that are points is read from it rather than
   // multiplied again (a 1M-point sphere's regions' 410k rows doubled its variation), and the

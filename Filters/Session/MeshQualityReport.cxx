@@ -151,7 +151,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
 }
 
 MeshQualityReport::Aggregate MeshQualityReport::aggregate(
-  const PointList& points, QualityMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
+  const PointList& points, long pointsKey, QualityMeasure measure, double rho, const Collective& group, std::vector<double>* gradient)
 {
   auto meshPoints = [&](std::size_t s) {
     return PointList(points.begin() + Starts[s], points.begin() + Starts[s + 1]);
@@ -170,7 +170,7 @@ MeshQualityReport::Aggregate MeshQualityReport::aggregate(
       if (Quality[s] && (elements ? Quality[s]->hasElementMeasures() : Quality[s]->hasFaceMeasures()))
       {
         measured[s] = meshPoints(s);
-        local.add(elements ? Quality[s]->elements().aggregatePart(measured[s], rho) : Quality[s]->aggregatePart(measured[s], measure, rho), rho);
+        local.add(elements ? Quality[s]->elements().aggregatePart(measured[s], rho) : Quality[s]->aggregatePart(measured[s], pointsKey, measure, rho), rho);
       }
     }
   });

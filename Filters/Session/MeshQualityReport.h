@@ -46,14 +46,15 @@ public:
   /// sets), and its gradient there (3 per point) when gradient is given: the aggregate's value
   /// and its number of faces, the same on every process. Throws InvalidInputException when no
   /// mesh of any process has checkMesh's face measures (none measured: MeshQuality off; an FEM
-  /// solver's mesh).
+  /// solver's mesh). pointsKey names the points (the deformation's number): the faces' pass is
+  /// made once per key, measure and rho (a value, then its gradient).
   struct Aggregate
   {
     double value;
     long count;
   };
-  Aggregate aggregate(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho, const mlsdeform::Collective& group,
-    std::vector<double>* gradient);
+  Aggregate aggregate(const mlsdeform::PointList& points, long pointsKey, mlsdeform::QualityMeasure measure, double rho,
+    const mlsdeform::Collective& group, std::vector<double>* gradient);
 
 private:
   // The stamp of the cells and points of inSets, to compare with Measured.

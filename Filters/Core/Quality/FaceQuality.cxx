@@ -479,6 +479,92 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const Inte
 }
 }
 
+FaceTail faceTail(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation,
+  bool skewness, double width, FaceWorkspace& work)
+{
+  std::vector<unsigned char> inverted;
+  cellCentres(points, cells, faces, inverted, work);
+  const long count = static_cast<long>(faces.size());
+  FaceTail tail;
+  if (count == 0)
+  {
+    return tail;
+  }
+  // a face's oriented geometry, its cells' centres, its cosine and its skewness's offset
+  auto measured = [&](long i, const auto& use) {
+    if (i + Ahead < count)
+    {
+      __builtin_prefetch(work.centres[faces[i + Ahead].neighbour].data());
+    }
+    FaceGeometry g = work.faces[i];
+    g.area *= orientation[i];
+    const Vec3& P = work.centres[faces[i].owner];
+    const Vec3& N = work.centres[faces[i].neighbour];
+    return use(g, P, N);
+  };
+  auto skewnessAt = [&](long i, const SkewOffset& offset, const FaceGeometry& g) {
+    return skewnessOf(offset, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
+  };
+  // the largest: the least cosine, or the skewness where its bound exceeds this thread's largest;
+  // each face's cosine (or skewness bound) kept for the tail's pass
+  work.screen.resize(static_cast<std::size_t>(count));
+  double leastCosine = 1, largestSkewness = 0;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(min : leastCosine) reduction(max : largestSkewness)
+  for (long i = 0; i < count; ++i)
+  {
+    measured(i, [&](const FaceGeometry& g, const Vec3& P, const Vec3& N) {
+      if (!skewness)
+      {
+        work.screen[i] = faceCosine(P, N, g.area);
+        leastCosine = std::min(leastCosine, work.screen[i]);
+        return;
+      }
+      const SkewOffset offset = skewOffset(P, N, g);
+      work.screen[i] = offset.bound();
+      if (work.screen[i] > largestSkewness)
+      {
+        largestSkewness = std::max(largestSkewness, skewnessAt(i, offset, g));
+      }
+    });
+  }
+  tail.largest = skewness ? largestSkewness : nonOrthogonalityOf(leastCosine);
+  const double floor = tail.largest - width;
+  // the non-orthogonality decreases with the cosine: no face of a cosine above cos(floor) is in
+  // the tail (the margin keeps a face at the floor that rounding puts just above it)
+  const double mostCosine = floor > 0 ? std::cos(floor * M_PI / 180.0) + 1e-12 : 2.0;
+  // in fixed blocks, concatenated in block order: the same faces in face order for any thread count
+  constexpr long Block = 4096;
+  const long blocks = (count + Block - 1) / Block;
+  std::vector<std::vector<std::pair<long, double>>> found(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(dynamic)
+  for (long b = 0; b < blocks; ++b)
+  {
+    for (long i = b * Block; i < std::min(count, (b + 1) * Block); ++i)
+    {
+      if (skewness ? work.screen[i] < floor : work.screen[i] > mostCosine)
+      {
+        continue;
+      }
+      const double q = skewness ? measured(i, [&](const FaceGeometry& g, const Vec3& P, const Vec3& N) {
+        return skewnessAt(i, skewOffset(P, N, g), g);
+      }) : nonOrthogonalityOf(work.screen[i]);
+      if (q >= floor)
+      {
+        found[b].emplace_back(i, q);
+      }
+    }
+  }
+  for (const auto& block : found)
+  {
+    for (const auto& [face, q] : block)
+    {
+      tail.faces.push_back(face);
+      tail.values.push_back(q);
+    }
+  }
+  return tail;
+}
+
 MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<int>& points, const std::vector<int>& owner,
   const std::vector<int>& neighbour, int pointCount)
 {

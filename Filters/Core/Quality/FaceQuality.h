@@ -204,11 +204,26 @@ struct FaceWorkspace
   std::vector<FaceGeometry> faces; // per interior face, out of its owner as listed
   std::vector<int> interiorOf;     // per face of the cells: i for interior face i's owner's copy,
                                    // -2 - i for its neighbour's, -1 on the boundary
+  std::vector<double> screen;      // per interior face: faceTail's cosine or skewness bound
 };
 
 /// faceMeasures into out (per face as out.perFace says), with the buffers of work.
 void faceMeasures(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
   const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
+
+/// The interior faces whose measure (the non-orthogonality, or with `skewness` the skewness) is
+/// at least largest - width, in face order, with their measures and the largest over every face;
+/// the faces' and cells' geometry of these points in work. One pass over the cells and one over
+/// the faces, which keeps their cosines (or skewness bounds, in work.screen): a face's arc cosine
+/// (or its points' extent) is computed only where it may lie within width of the largest.
+struct FaceTail
+{
+  double largest = 0;
+  std::vector<long> faces;
+  std::vector<double> values;
+};
+FaceTail faceTail(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation,
+  bool skewness, double width, FaceWorkspace& work);
 
 /// faceOrientation, and with it the measures of these points into out (with the buffers of work):
 /// the rest mesh's measures at the cost of one pass over its cells.

@@ -1,5 +1,6 @@
 #include "Quality/FaceQualityAggregate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -158,25 +159,43 @@ AggregatePart aggregatePart(const std::vector<double>& q, double rho)
   return part;
 }
 
+FaceAggregate aggregateFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
+  const std::vector<int>& orientation, QualityMeasure measure, double rho, FaceWorkspace& work)
+{
+  FaceAggregate a;
+  const double width = (std::log(std::max<double>(1, static_cast<double>(faces.size()))) + 46) / rho;
+  a.tail = faceTail(points, cells, faces, orientation, measure == QualityMeasure::Skewness, width, work);
+  a.part.count = static_cast<long>(faces.size());
+  if (a.part.count > 0)
+  {
+    a.part.largest = a.tail.largest;
+    for (double v : a.tail.values) // in face order: the same sum for any thread count
+    {
+      a.part.sum += std::exp(rho * (v - a.part.largest));
+    }
+  }
+  return a;
+}
+
 void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, QualityMeasure measure, double rho,
+  const std::vector<int>& orientation, const FaceWorkspace& work, const FaceTail& tail, QualityMeasure measure, double rho,
   const AggregatePart& whole, PointList& gradient)
 {
-  std::vector<long> heavy; // the faces of weight >= LeastWeight, in face order
-  for (long i = 0; i < static_cast<long>(q.size()); ++i)
+  std::vector<std::size_t> heavy; // the tail's faces of weight >= LeastWeight, in face order
+  for (std::size_t t = 0; t < tail.faces.size(); ++t)
   {
-    if (std::exp(rho * (q[i] - whole.largest)) / whole.sum >= LeastWeight)
+    if (std::exp(rho * (tail.values[t] - whole.largest)) / whole.sum >= LeastWeight)
     {
-      heavy.push_back(i);
+      heavy.push_back(t);
     }
   }
   std::vector<Terms> terms(heavy.size());
 #pragma omp parallel for schedule(dynamic, 16)
   for (long h = 0; h < static_cast<long>(heavy.size()); ++h)
   {
-    const long i = heavy[h];
+    const long i = tail.faces[heavy[h]];
     const InteriorFace& f = faces[i];
-    const double weight = std::exp(rho * (q[i] - whole.largest)) / whole.sum;
+    const double weight = std::exp(rho * (tail.values[heavy[h]] - whole.largest)) / whole.sum;
     const Vec3& P = work.centres[f.owner];
     const Vec3& N = work.centres[f.neighbour];
     FaceGeometry g = faceGeometry(points, cells.face(f.face), cells.faceSize(f.face));

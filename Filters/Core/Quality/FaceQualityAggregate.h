@@ -37,14 +37,27 @@ struct AggregatePart
   double value(double rho) const;
 };
 
-/// The part of values q (one per interior face, as FaceMeasures holds them with perFace).
+/// The part of values q (the elements' measures; one part of the tests' faces).
 AggregatePart aggregatePart(const std::vector<double>& q, double rho);
 
+/// The part of a face measure (NonOrthogonality or Skewness) over the interior faces on these
+/// points, and the faces that weigh in it: those within (ln N + 46) / rho of the largest
+/// (FaceQuality's faceTail). The others' terms exp(rho (q - m)) are below e^-46 / N each, their
+/// sum below 1e-20 of the sum (at least 1): under a double's round-off, and none of them is heavy
+/// enough for the gradient. work holds the geometry the gradient needs.
+struct FaceAggregate
+{
+  AggregatePart part;
+  FaceTail tail;
+};
+FaceAggregate aggregateFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
+  const std::vector<int>& orientation, QualityMeasure measure, double rho, FaceWorkspace& work);
+
 /// Adds sum_f w_f dq_f/dX to gradient (one entry per point), the weights of the aggregate `whole`
-/// (over every part); work and q as faceMeasures left them on these points. The faces' terms
+/// (over every part); work and tail as aggregateFaces left them on these points. The faces' terms
 /// are summed in face order: the same bits for any thread count.
 void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, const std::vector<double>& q, QualityMeasure measure, double rho,
+  const std::vector<int>& orientation, const FaceWorkspace& work, const FaceTail& tail, QualityMeasure measure, double rho,
   const AggregatePart& whole, PointList& gradient);
 
 /// The reverse-mode derivatives of FaceQuality's geometry: given dF/d(centre) and dF/d(area) of a
