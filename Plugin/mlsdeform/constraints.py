@@ -99,7 +99,13 @@ class _Surface:
         return self._corners
 
     def corners(self, X):
-        return X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]]
+        """The triangles' corners x0, x1, x2 on the points X and (x1 - x0) x (x2 - x0), once per X
+        (the same array: a design's points, shared by a value and its gradient and by the
+        constraints on this surface)."""
+        if getattr(self, '_on', None) is not X:
+            x0, x1, x2 = X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]]
+            self._on, self._geometry = X, (x0, x1, x2, np.cross(x1 - x0, x2 - x0))
+        return self._geometry
 
 
 def _polygons(block):
@@ -163,6 +169,7 @@ class DesignConstraints:
         self.dvs = dvs
         self._constraints = {}
         self._cache = None   # (values of the variables, X)
+        self._surfaces = {}  # the surfaces the constraints measure, by their blocks' names
 
     # -- the functions ------------------------------------------------------------------------
     def addThicknessConstraints1D(self, name, ptList, nCon, axis, surface=None, lower=1.0, upper=3.0, scaled=True):
@@ -217,7 +224,7 @@ class DesignConstraints:
         of one triangle only, other than on the front and back with an axis)."""
         what = f"volume constraint {name!r}"
         self._check_name(name)
-        surf = _Surface(self._output(), surface, what)
+        surf = self._surface(surface, what)
         a = None if axis is None else self._direction(axis, name)
         X = self._points()
         self._check_closed(surf, X, a, what)
@@ -227,8 +234,8 @@ class DesignConstraints:
 
         def evaluate(X, gradient=True):
             nonlocal sign
-            x0, x1, x2 = surf.corners(X)
-            S = np.cross(x1 - x0, x2 - x0) / 2
+            x0, x1, x2, n = surf.corners(X)
+            S = n / 2
             Pc = ((x0 + x1 + x2) / 3) @ P
             V = alpha * np.einsum('ij,ij->', Pc, S)
             V = all_reduce(V, 'sum')
@@ -246,11 +253,10 @@ class DesignConstraints:
     def addSurfaceAreaConstraint(self, name, surface=None, lower=1.0, upper=3.0, scaled=True):
         """The area of the named blocks' polygons (their triangles' sum)."""
         self._check_name(name)
-        surf = _Surface(self._output(), surface, f"area constraint {name!r}")
+        surf = self._surface(surface, f"area constraint {name!r}")
 
         def evaluate(X, gradient=True):
-            x0, x1, x2 = surf.corners(X)
-            n = np.cross(x1 - x0, x2 - x0)
+            x0, x1, x2, n = surf.corners(X)
             length = np.linalg.norm(n, axis=1)
             A = all_reduce(length.sum() / 2, 'sum')
             if not gradient:
@@ -510,7 +516,7 @@ class DesignConstraints:
     def _thickness(self, name, at, directions, surface, lower, upper, scaled):
         what = f"thickness constraints {name!r}"
         self._check_name(name)
-        surf = _Surface(self._output(), surface, what)
+        surf = self._surface(surface, what)
         X = self._points()
         ends = []   # per line, per side: (process holding the hit, triangle, barycentric weights)
         for p, u in zip(at, directions):
@@ -554,7 +560,7 @@ class DesignConstraints:
     def _cast(surf, X, p, u):
         """The nearest hit of the ray p + t u (t > 0) with the surface's triangles on this process:
         (t, triangle, barycentric weights), t = inf when it misses (Moeller-Trumbore)."""
-        x0, x1, x2 = surf.corners(X)
+        x0, x1, x2, _ = surf.corners(X)
         e1, e2 = x1 - x0, x2 - x0
         h = np.cross(u, e2)
         det = np.einsum('ij,ij->i', e1, h)
@@ -610,6 +616,14 @@ class DesignConstraints:
             raise ValueError(f"a constraint's name must be a non-empty string, not {name!r}")
         if name in self._constraints:
             raise ValueError(f"constraint {name!r} is defined already")
+
+    def _surface(self, names, what):
+        """The _Surface of the named blocks, one per names for all the constraints on it (so that
+        they share its corners on a design's points)."""
+        key = names if names is None or isinstance(names, str) else tuple(names)
+        if key not in self._surfaces:
+            self._surfaces[key] = _Surface(self._output(), names, what)
+        return self._surfaces[key]
 
     def _output(self):
         self.dvs._updated()
