@@ -325,8 +325,8 @@ bool vtkSubspaceDeformFilter::GetDeformedPoints(vtkDoubleArray* out)
     {
       throw InvalidInputException("GetDeformedPoints needs an output array");
     }
-    const PointList& deformed = this->Session->deformedPoints();
-    std::copy_n(deformed.empty() ? nullptr : deformed.front().data(), 3 * deformed.size(), resized(out, deformed.size()));
+    const DeformationSession& session = *this->Session;
+    session.deformedPoints(resized(out, session.inputPoints().size()));
   });
 }
 

@@ -667,22 +667,33 @@ const DeformationSession::GradientRows& DeformationSession::gradientRows(const P
   return r;
 }
 
-const PointList& DeformationSession::deformedPoints()
+void DeformationSession::deformedPoints(double* out) const
 {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
+  if (DeformedOf == Solutions && Deformed.size() == Points.size())
+  {
+    std::copy_n(Deformed.empty() ? nullptr : Deformed.front().data(), 3 * Deformed.size(), out);
+    return;
+  }
+  const long n = static_cast<long>(Points.size());
+  displacement(LastField, 0, n, out); // d(x), as writeOutput computes it
+  for (long i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out[3 * i + c] += Points[i][c];
+    }
+  }
+}
+
+const PointList& DeformationSession::deformedPoints()
+{
   if (DeformedOf != Solutions || Deformed.size() != Points.size())
   {
-    const long n = static_cast<long>(Points.size());
     Deformed.resize(Points.size());
-    if (n > 0)
+    if (!Deformed.empty())
     {
-      double* out = Deformed.front().data();
-      displacement(LastField, 0, n, out); // d(x), as writeOutput computes it
-#pragma omp parallel for schedule(static)
-      for (long i = 0; i < n; ++i)
-      {
-        Deformed[i] += Points[i];
-      }
+      deformedPoints(Deformed.front().data());
     }
     DeformedOf = Solutions;
   }

@@ -230,7 +230,9 @@ public:
   std::vector<std::vector<double>> objectiveSensitivities(
     SparseGradients gradients, const mlsdeform::Collective& group, std::string& method);
   /// x + d(x) in double precision at this process's points (the output's points before they are
-  /// stored in the input's precision), computed once per solution.
+  /// stored in the input's precision) into out (3 per point); and kept, computed once per
+  /// solution, for what is measured on them (the mesh quality, the mesh volume).
+  void deformedPoints(double* out) const;
   const mlsdeform::PointList& deformedPoints();
   /// The last solution's number (a new one at every solve): what is measured on the deformed
   /// points is keyed by it.
