@@ -618,18 +618,29 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
   // a dense block updates the whole k x k triangle, which costs memory traffic ~k^2 however
   // few rows it has, so it must be tall to run at the BLAS's arithmetic speed
   const long block = std::max(1024L, (1L << 23) / std::max(1L, k));
+  // the blocks taken along the Z-order curve: a block's points are near each other and meet few
+  // samples (the points come from a farthest-point selection, the most spread order there is: a
+  // block of 1024 of a 20k-point case's integration points met 7,000 of its 10,000 samples, and
+  // the blocks' Grams, dense over those, made the set-up 42 s; 12 s in this order)
+  const std::vector<int> order = zOrder(integrationPoints, 0, n);
   GramAccumulator stretch(k), bend(k);
   for (long first = 0; first < n; first += block)
   {
     const long last = std::min(n, first + block);
-    const PointList points(integrationPoints.begin() + first, integrationPoints.begin() + last);
+    PointList points;
+    std::vector<double> pointVolume;
+    for (long i = first; i < last; ++i)
+    {
+      points.push_back(integrationPoints[order[i]]);
+      pointVolume.push_back(volume[order[i]]);
+    }
     progress.stopIfAsked();
     const Progress part = progress.part(static_cast<double>(first) / n, static_cast<double>(last) / n);
     // rows 4i..4i+2: the gradient at q_i, row 4i+3: the Laplacian; then split into G and L
     SparseRowMatrix D = concatenate(assembleRows<SparseRowMatrix>(
       basis, points, 4, true,
       [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
-        const double g = std::sqrt(volume[first + i]) * gradientScale, l = std::sqrt(volume[first + i]) * laplacianScale;
+        const double g = std::sqrt(pointVolume[i]) * gradientScale, l = std::sqrt(pointVolume[i]) * laplacianScale;
         for (std::size_t a = 0; a < phi.index.size(); ++a)
         {
           for (int d = 0; d < 3; ++d)
