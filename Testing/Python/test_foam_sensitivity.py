@@ -23,7 +23,7 @@ import naca0012  # noqa: E402
 
 from checks import check, finish, raises  # noqa: E402
 
-ITERATIONS = 200   # primal and adjoint: enough for non-trivial fields, far from converged
+ITERATIONS = 50    # primal and adjoint: enough for non-trivial fields, far from converged
 
 
 def field_file(case, name):
