@@ -8,7 +8,7 @@ and on the case invert no cell. A system that the requested weights leave singul
 with a larger stretch weight, which the field data RegularizingStretchWeight names (0, 1e-4 or
 1e-2 of the bend weight).
 Usage: pvpython test_sample_counts.py PLUGIN EXAMPLES_DIR FANDISK.off WORK_DIR [FANDISK_COUNTS CASE_COUNTS]
-(comma-separated; without them both sweep 4,100,1000,4000,6000,10000,20000: about 7 minutes)"""
+(comma-separated; without them both sweep 4,100,1000,4000,6000,10000,20000: a few minutes)"""
 import os
 import subprocess
 import sys
