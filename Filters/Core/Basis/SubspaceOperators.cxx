@@ -628,11 +628,9 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
   {
     const long last = std::min(n, first + block);
     PointList points;
-    std::vector<double> pointVolume;
     for (long i = first; i < last; ++i)
     {
       points.push_back(integrationPoints[order[i]]);
-      pointVolume.push_back(volume[order[i]]);
     }
     progress.stopIfAsked();
     const Progress part = progress.part(static_cast<double>(first) / n, static_cast<double>(last) / n);
@@ -640,7 +638,7 @@ EnergyNormals volumetricEnergyNormals(const ShapeFunctions& basis, const PointLi
     SparseRowMatrix D = concatenate(assembleRows<SparseRowMatrix>(
       basis, points, 4, true,
       [&](long i, const ShapeFunctionValues& phi, std::vector<std::vector<double>>& rows) {
-        const double g = std::sqrt(pointVolume[i]) * gradientScale, l = std::sqrt(pointVolume[i]) * laplacianScale;
+        const double g = std::sqrt(volume[order[first + i]]) * gradientScale, l = std::sqrt(volume[order[first + i]]) * laplacianScale;
         for (std::size_t a = 0; a < phi.index.size(); ++a)
         {
           for (int d = 0; d < 3; ++d)
