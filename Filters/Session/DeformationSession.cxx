@@ -596,7 +596,7 @@ std::vector<std::vector<double>> DeformationSession::objectiveSensitivities(
   // g -> S^T g (the slide's transpose), then H = Phi^T S^T g over the canonical positions
   slideRowsOnPlanes(Slips, Points, gradients.rows, gradients.values.data(), true);
   const GatheredGradients g = gatherGradients(Points, gradients, group);
-  const GradientRows& at = gradientRows(g.positions);
+  const GradientRows& at = gradientRows(g.positions, g.among);
   std::vector<PointField> tangents; // the nonlinear solution's: one per variable, shared by the functions
   if (!Model->isLinear())
   {
@@ -613,12 +613,14 @@ std::vector<std::vector<double>> DeformationSession::objectiveSensitivities(
   {
     method = "exact: one back-substitution for dJ/d(dbar), independent of the number of variables";
   }
+  // dJ = (Phi^T g) . dw + h . dr for each function (ExactTargets.h; h = 0 for the penalty solution)
+  const std::vector<PointDisplacements> products = multiplyTransposedEach(at.rows, g.values);
+  const std::vector<PointDisplacements> pulled = Exact.active() ? Exact.pull(at.blend, g.values) : std::vector<PointDisplacements>();
   std::vector<std::vector<double>> out;
-  for (const PointDisplacements& values : g.values)
+  for (std::size_t f = 0; f < g.values.size(); ++f)
   {
-    // dJ = (Phi^T g) . dw + h . dr (ExactTargets.h; h = 0 for the penalty solution)
-    const Displacements H = multiplyTransposed(at.rows, 0, at.rows.rows(), values, true);
-    const PointDisplacements h = Exact.active() ? Exact.pull(at.blend, values) : PointDisplacements();
+    const Displacements H = products[f];
+    const PointDisplacements h = Exact.active() ? pulled[f] : PointDisplacements();
     if (Model->isLinear())
     {
       // = (Phi^T g - Phi_T^T e) . dw + e . d(dbar): one back-substitution
@@ -641,7 +643,7 @@ std::vector<std::vector<double>> DeformationSession::objectiveSensitivities(
   return out;
 }
 
-const DeformationSession::GradientRows& DeformationSession::gradientRows(const PointList& positions)
+const DeformationSession::GradientRows& DeformationSession::gradientRows(const PointList& positions, const std::vector<long>& among)
 {
   const auto current = [&](const GradientRows& r) {
     return r.subspace == Counts.subspace && r.points == PointsVersion && r.exactBuild == ExactBuilds && r.positions == positions;
@@ -656,7 +658,6 @@ const DeformationSession::GradientRows& DeformationSession::gradientRows(const P
     // rows at input points are stage 2's (3b's), viewed (the same bits as evaluating them)
     PointList projected;
     const PointList& evaluated = Extruded.evaluated(positions, projected);
-    const std::vector<long> among = positionsAmong(Points, positions);
     r.rows = gatherRows(Model->basis(), evaluated, { &PointRows, among });
     r.blend = Exact.active() ? Exact.rowsAt(evaluated, among) : GatheredRows();
     r.positions = positions;

@@ -336,8 +336,9 @@ private:
     mlsdeform::GatheredRows blend; // B there (exact targets)
   };
   std::array<GradientRows, 2> Gradients;
-  /// Gradients' entry for these positions, made first (evaluated if neither is).
-  const GradientRows& gradientRows(const mlsdeform::PointList& positions);
+  /// Gradients' entry for these positions (among[i]: a point at positions[i], or -1), made first
+  /// (evaluated if neither is).
+  const GradientRows& gradientRows(const mlsdeform::PointList& positions, const std::vector<long>& among);
   DeformedOutput Output;
   MeshQualityReport Quality;
 };

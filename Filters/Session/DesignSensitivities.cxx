@@ -1,6 +1,7 @@
 #include "Session/DesignSensitivities.h"
 
 #include "Common/GatheredPositions.h"
+#include "Common/PositionIndex.h"
 #include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 
@@ -169,58 +170,66 @@ SparseGradients sparseGradient(const std::vector<double>& gradient)
 
 GatheredGradients gatherGradients(const PointList& points, const SparseGradients& gradients, const Collective& group)
 {
-  // this process's entries with a non-zero value, equal positions together (in their order)
+  // this process's points with a non-zero value, each once, ordered by position (an integer sort
+  // first: most points have a value in several functions)
   const std::size_t m = gradients.functions();
-  std::vector<long> entries;
+  const auto nonZero = [&](long e) {
+    const double* g = gradients.values.data() + 3 * e;
+    return g[0] != 0 || g[1] != 0 || g[2] != 0;
+  };
+  std::vector<int> slot(points.size(), -1); // a point's place among the local positions
+  struct Row
+  {
+    Vec3 x; // its position, beside it: the sort reads no other memory
+    long point;
+    bool operator<(const Row& o) const
+    {
+      return std::lexicographical_compare(x.data(), x.data() + 3, o.x.data(), o.x.data() + 3) || (x == o.x && point < o.point);
+    }
+  };
+  std::vector<Row> rows;
   for (long e = 0; e < static_cast<long>(gradients.rows.size()); ++e)
   {
-    const double* g = gradients.values.data() + 3 * e;
-    if (g[0] != 0 || g[1] != 0 || g[2] != 0)
+    if (nonZero(e) && slot[gradients.rows[e]] < 0)
     {
-      entries.push_back(e);
+      slot[gradients.rows[e]] = 0;
+      rows.push_back({ points[gradients.rows[e]], gradients.rows[e] });
     }
   }
-  const auto at = [&](long e) -> const Vec3& { return points[gradients.rows[e]]; };
-  const auto less = [&](long a, long b) {
-    return std::lexicographical_compare(at(a).data(), at(a).data() + 3, at(b).data(), at(b).data() + 3);
-  };
-  std::stable_sort(entries.begin(), entries.end(), less);
-  std::vector<std::size_t> functionOf(gradients.rows.size());
-  for (std::size_t f = 0; f < m; ++f)
+  std::sort(rows.begin(), rows.end());
+  PointList local;         // equal positions once
+  std::vector<long> first; // the first point at each
+  for (const Row& r : rows)
   {
-    std::fill(functionOf.begin() + gradients.starts[f], functionOf.begin() + gradients.starts[f + 1], f);
-  }
-  PointList local;
-  std::vector<double> sums; // 3 m per position: function after function
-  for (std::size_t j = 0; j < entries.size(); ++j)
-  {
-    const long e = entries[j];
-    if (j == 0 || at(e) != at(entries[j - 1]))
+    if (local.empty() || r.x != local.back())
     {
-      local.push_back(at(e));
-      sums.resize(sums.size() + 3 * m, 0.0);
+      local.push_back(r.x);
+      first.push_back(r.point);
     }
-    for (int c = 0; c < 3; ++c)
-    {
-      sums[sums.size() - 3 * m + 3 * functionOf[e] + c] += gradients.values[3 * e + c];
-    }
+    slot[r.point] = static_cast<int>(local.size()) - 1;
   }
   const GatheredPositions order = gatherPositions(local, {}, group);
-  const std::vector<double> values = gatherValues(sums.data(), static_cast<long>(local.size()), static_cast<int>(3 * m), order, group);
   GatheredGradients out;
   out.positions = order.positions;
-  const long count = static_cast<long>(order.positions.size());
+  const PositionIndex mine(local);
+  for (const Vec3& x : out.positions)
+  {
+    const long j = mine.find(x);
+    out.among.push_back(j < 0 ? -1 : first[j]);
+  }
+  // per function, the sum of its entries at each position, in the entries' order
   for (std::size_t f = 0; f < m; ++f)
   {
-    PointDisplacements g(count, 3);
-    for (long i = 0; i < count; ++i)
+    PointDisplacements sums = PointDisplacements::Zero(static_cast<long>(local.size()), 3);
+    for (long e = gradients.starts[f]; e < gradients.starts[f + 1]; ++e)
     {
-      for (int c = 0; c < 3; ++c)
+      if (nonZero(e))
       {
-        g(i, c) = values[3 * m * i + 3 * f + c];
+        sums.row(slot[gradients.rows[e]]) += Eigen::Map<const Eigen::RowVector3d>(gradients.values.data() + 3 * e);
       }
     }
-    out.values.push_back(std::move(g));
+    const std::vector<double> values = gatherValues(sums.data(), sums.rows(), 3, order, group);
+    out.values.push_back(Eigen::Map<const PointDisplacements>(values.data(), static_cast<long>(order.positions.size()), 3));
   }
   return out;
 }

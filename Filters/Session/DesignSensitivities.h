@@ -78,12 +78,14 @@ struct SparseGradients
 SparseGradients sparseGradient(const std::vector<double>& gradient);
 
 /// The points carrying the functions' gradients, each position once with the sum of its copies
-/// (per function), gathered from all processes in canonical order (see above): the positions
-/// and, per function, its values there (zero where it has none).
+/// (per function), gathered from all processes in canonical order (see above): the positions,
+/// per function its values there (zero where it has none), and per position the first of this
+/// process's points there that carries a gradient, or -1 (another process's).
 struct GatheredGradients
 {
   mlsdeform::PointList positions;
   std::vector<mlsdeform::PointDisplacements> values;
+  std::vector<long> among;
 };
 GatheredGradients gatherGradients(const mlsdeform::PointList& points, const SparseGradients& gradients, const mlsdeform::Collective& group);
 } // namespace mlsvtk

@@ -70,9 +70,9 @@ GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> 
   return gatherRows(*Blend, positions, { &PointRows, std::move(among) });
 }
 
-PointDisplacements ExactTargets::pull(const GatheredRows& rows, const PointDisplacements& g) const
+std::vector<PointDisplacements> ExactTargets::pull(const GatheredRows& rows, const std::vector<PointDisplacements>& g) const
 {
-  return multiplyTransposed(rows, 0, rows.rows(), g, true); // a constraint's gradient: on a few of the rows
+  return multiplyTransposedEach(rows, g);
 }
 
 PointDisplacements ExactTargets::targetShare(const PointDisplacements& h) const

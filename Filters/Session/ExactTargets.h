@@ -53,8 +53,8 @@ public:
   /// among[i] names the point at positions[i] (positionsAmong).
   mlsdeform::GatheredRows rowsAt(const mlsdeform::PointList& positions, std::vector<long> among) const;
 
-  /// h = B^T g per site for g given at the positions of rows (rowsAt).
-  mlsdeform::PointDisplacements pull(const mlsdeform::GatheredRows& rows, const mlsdeform::PointDisplacements& g) const;
+  /// h_f = B^T g_f per site for each function's g_f given at the positions of rows (rowsAt).
+  std::vector<mlsdeform::PointDisplacements> pull(const mlsdeform::GatheredRows& rows, const std::vector<mlsdeform::PointDisplacements>& g) const;
   /// e (one row per stacked target) of h.
   mlsdeform::PointDisplacements targetShare(const mlsdeform::PointDisplacements& h) const;
 

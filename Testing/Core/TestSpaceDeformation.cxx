@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 using namespace mlsdeform;
 
@@ -285,6 +286,35 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
       same = a.column(e) == b.column(e);
   }
   CHECK(same);
+}
+
+TEST(TransposedProductsOfSeveralFunctionsAreEachAlone)
+{
+  // Phi^T g_f for several functions at once (DeformationSession's reverse mode): the dense ones
+  // in one pass, the sparse ones alone over their rows; each the bits of its own product
+  const Scene scene;
+  const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
+  const PointList x = testgeometry::randomPoints(20000, Vec3(0, 0, 0), Vec3(3, 1, 1), 5);
+  const RowBlocks blocks = subspaceBlocks(basis, x);
+  std::vector<long> all(x.size());
+  std::iota(all.begin(), all.end(), 0L);
+  const GatheredRows rows = gatherRows(basis, x, { &blocks, all });
+  std::vector<PointDisplacements> g;
+  for (int f = 0; f < 5; ++f)
+  {
+    g.push_back(PointDisplacements::Random(rows.rows(), 3));
+  }
+  g[1].bottomRows(rows.rows() / 2).setZero();      // dense enough: in the pass with the others
+  g[3].bottomRows(rows.rows() - 100).setZero();    // on a few rows: alone
+  g[4].setZero();                                  // no row
+  const std::vector<PointDisplacements> each = multiplyTransposedEach(rows, g);
+  CHECK(each.size() == g.size());
+  for (std::size_t f = 0; f < g.size(); ++f)
+  {
+    const PointDisplacements alone = multiplyTransposed(rows, 0, rows.rows(), g[f], true);
+    CHECK(each[f].rows() == rows.cols() && each[f].cols() == 3 && (each[f].array() == alone.array()).all());
+  }
+  CHECK(each[0].norm() > 0 && each[4].norm() == 0);
 }
 
 TEST(ResidualBlendInterpolatesTheSitesAndFades)
