@@ -103,6 +103,26 @@ double* resized(vtkDoubleArray* out, std::size_t n)
   return out->GetPointer(0);
 }
 
+/// g (n rows of 3) as its rows that are not zero: their indices and values.
+void writeNonZeroRows(const double* g, std::size_t n, vtkIdTypeArray* rows, vtkDoubleArray* values)
+{
+  rows->SetNumberOfComponents(1);
+  rows->SetNumberOfTuples(0);
+  values->SetNumberOfComponents(3);
+  values->SetNumberOfTuples(0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* x = g + 3 * i;
+    if (x[0] != 0 || x[1] != 0 || x[2] != 0)
+    {
+      rows->InsertNextValue(static_cast<vtkIdType>(i));
+      values->InsertNextTuple(x);
+    }
+  }
+  rows->Modified();
+  values->Modified();
+}
+
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start)
 {
@@ -417,14 +437,14 @@ bool vtkSubspaceDeformFilter::ComputeObjectiveSensitivities(vtkIdTypeArray* rows
   });
 }
 
-bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkDoubleArray* gradient)
+bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient)
 {
   return this->RunSensitivityRequest([&](const Collective& group) {
     agree(group, [&] {
-      if (!value || measure < 0 || measure > 2 || !std::isfinite(rho) || rho <= 0)
+      if (!value || !rows != !gradient || measure < 0 || measure > 2 || !std::isfinite(rho) || rho <= 0)
       {
         throw InvalidInputException("ComputeMeshQualityAggregate needs measure 0 (non-orthogonality), 1 (skewness) or 2 (the scaled "
-                                    "Jacobian), a positive finite rho and an output array");
+                                    "Jacobian), a positive finite rho, an output array, and rows with the gradient or neither");
       }
       if (!this->MeshQuality)
       {
@@ -439,7 +459,7 @@ bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rh
     value->SetValue(1, static_cast<double>(result.count));
     if (gradient)
     {
-      std::copy(g.begin(), g.end(), resized(gradient, g.size() / 3));
+      writeNonZeroRows(g.data(), g.size() / 3, rows, gradient);
     }
   });
 }
@@ -451,14 +471,14 @@ struct vtkSubspaceDeformFilter::MeshVolumes
   std::vector<std::unique_ptr<MeshVolume>> grids; // per output set (null: not a grid)
 };
 
-bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkDoubleArray* gradient)
+bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient)
 {
   return this->RunSensitivityRequest([&](const Collective& group) {
     const std::string set = cellSet ? cellSet : "";
     agree(group, [&] {
-      if (!value)
+      if (!value || !rows != !gradient)
       {
-        throw InvalidInputException("ComputeMeshVolume needs an output array");
+        throw InvalidInputException("ComputeMeshVolume needs an output array, and rows with the gradient or neither");
       }
     });
     const std::vector<vtkPointSet*> outSets = pointSets(this->GetOutputDataObject(0));
@@ -534,11 +554,8 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
     value->SetValue(1, cells);
     if (gradient)
     {
-      double* out = resized(gradient, g.size());
-      for (const Vec3& x : g)
-      {
-        out = std::copy(x.data(), x.data() + 3, out);
-      }
+      static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
+      writeNonZeroRows(g.empty() ? nullptr : g.front().data(), g.size(), rows, gradient);
     }
   });
 }

@@ -252,17 +252,18 @@ public:
   /// the least scaled Jacobian (2: -KS of -sj over an FEM mesh's elements' points, least -
   /// ln(N) / rho <= value <= least) (needs MeshQuality on;
   /// Filters/Core/Quality/FaceQualityAggregate.h). value gets the aggregate and the number of
-  /// faces or points N (max <= value <= max + ln(N) / rho), gradient (if not null) d/dX (n x 3,
-  /// this process's output points).
-  bool ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkDoubleArray* gradient);
+  /// faces or points N (max <= value <= max + ln(N) / rho), rows and gradient (if not null)
+  /// d/dX at this process's output points where it is not zero: their indices and values (3 a row).
+  bool ComputeMeshQualityAggregate(int measure, double rho, vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient);
   /// The volume of the deformed volume meshes' 3D cells and its gradient, for an optimizer's
   /// constraint on a part's volume or mass (Adapters/MeshVolume.h: the elements as CalculiX
   /// integrates them, other cells as OpenFOAM measures them): of the cells whose cell array
   /// cellSet is not 0 (a deck's element set; empty or null: every cell), summed over the
-  /// processes in their order. value gets the volume and the number of cells, gradient (if not
-  /// null) dV/dX (n x 3, this process's output points). Fails when no process has such a cell,
-  /// or no grid has the array cellSet.
-  bool ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkDoubleArray* gradient);
+  /// processes in their order. value gets the volume and the number of cells, rows and gradient
+  /// (if not null) dV/dX at this process's output points where it is not zero (the boundary's),
+  /// as for ComputeMeshQualityAggregate. Fails when no process has such a cell, or no grid has
+  /// the array cellSet.
+  bool ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient);
   const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
 
   /// Whether the last output holds deformed points: a cancelled update leaves the previous

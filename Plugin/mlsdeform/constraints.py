@@ -344,7 +344,7 @@ class DesignConstraints:
         factor = 1.0 if density is None else density
 
         def evaluate(X, gradient=True):
-            value, g = self._computed(lambda v, d: algorithm.ComputeMeshVolume(cells or '', v, d), gradient)
+            value, g = self._computed(lambda v, r, d: algorithm.ComputeMeshVolume(cells or '', v, r, d), gradient)
             return np.array([factor * value.GetValue(0)]), None if g is None else [(g[0], factor * g[1])]
 
         self._add(_Constraint(name, 'meshVolume', lower, upper, scaled, evaluate))
@@ -373,7 +373,7 @@ class DesignConstraints:
         constraint = None
 
         def evaluate(X, gradient=True):
-            value, g = self._computed(lambda v, d: algorithm.ComputeMeshQualityAggregate(index, rho, v, d), gradient)
+            value, g = self._computed(lambda v, r, d: algorithm.ComputeMeshQualityAggregate(index, rho, v, r, d), gradient)
             constraint.count = int(value.GetValue(1))
             return np.array([value.GetValue(0)]), None if g is None else [g]
 
@@ -423,18 +423,18 @@ class DesignConstraints:
 
     # -- internals ----------------------------------------------------------------------------
     def _computed(self, compute, gradient):
-        """A function the filter computes: compute(value, g) fills value (a vtkDoubleArray, the
-        value first) and, when g is given, dF/dX at the output points (n x 3). Returns value and,
-        when asked, the gradient as (rows, values) of its points that are not zero."""
-        from vtkmodules.vtkCommonCore import vtkDoubleArray
-        value, g = vtkDoubleArray(), vtkDoubleArray()
-        if not compute(value, g if gradient else None):
+        """A function the filter computes: compute(value, rows, g) fills value (a vtkDoubleArray,
+        the value first) and, when rows and g are given, dF/dX at the output points where it is
+        not zero (their indices, their values). Returns value and, when asked, the gradient as
+        (rows, values)."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        value, rows, g = vtkDoubleArray(), vtkIdTypeArray(), vtkDoubleArray()
+        if not compute(value, *((rows, g) if gradient else (None, None))):
             raise RuntimeError(self.dvs._algorithm.GetSensitivityError())
         if not gradient:
             return value, None
-        dense = self.dvs._numpy(g)
-        rows = np.flatnonzero(np.any(dense != 0, axis=1))
-        return value, (rows, dense[rows])
+        return value, (vtk_to_numpy(rows).astype(np.int64), vtk_to_numpy(g).reshape(-1, 3).astype(float))
 
     def _set(self, x):
         names = self.dvs.getVarNames()
