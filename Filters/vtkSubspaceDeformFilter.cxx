@@ -345,8 +345,10 @@ bool vtkSubspaceDeformFilter::GetDeformedPoints(vtkDoubleArray* out)
     {
       throw InvalidInputException("GetDeformedPoints needs an output array");
     }
-    const DeformationSession& session = *this->Session;
-    session.deformedPoints(resized(out, session.inputPoints().size()));
+    // the points kept for the solution: an optimizer's design measures them next (a mesh volume)
+    const PointList& deformed = this->Session->deformedPoints();
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
+    std::copy_n(deformed.empty() ? nullptr : deformed.front().data(), 3 * deformed.size(), resized(out, deformed.size()));
   });
 }
 
