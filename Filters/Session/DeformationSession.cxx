@@ -648,18 +648,22 @@ const DeformationSession::GradientRows& DeformationSession::gradientRows(const P
   const auto current = [&](const GradientRows& r) {
     return r.subspace == Counts.subspace && r.points == PointsVersion && r.exactBuild == ExactBuilds && r.positions == positions;
   };
-  if (!current(Gradients[0]))
+  // the entry found, or else the least recently used, moved to the front
+  auto found = std::find_if(Gradients.begin(), Gradients.end(), current);
+  if (found == Gradients.end())
   {
-    std::swap(Gradients[0], Gradients[1]);
+    found = Gradients.end() - 1; // the least recently used, made anew
   }
+  std::rotate(Gradients.begin(), found, found + 1);
   GradientRows& r = Gradients[0];
   if (!current(r))
   {
-    // rows at input points are stage 2's (3b's), viewed (the same bits as evaluating them)
+    // rows at input points are stage 2's (3b's), viewed (the same bits as evaluating them); only
+    // summed over (multiplyTransposed), so not sorted by where they are stored
     PointList projected;
     const PointList& evaluated = Extruded.evaluated(positions, projected);
-    r.rows = gatherRows(Model->basis(), evaluated, { &PointRows, among });
-    r.blend = Exact.active() ? Exact.rowsAt(evaluated, among) : GatheredRows();
+    r.rows = gatherRows(Model->basis(), evaluated, { &PointRows, among }, nullptr, {}, false);
+    r.blend = Exact.active() ? Exact.rowsAt(evaluated, among, false) : GatheredRows();
     r.positions = positions;
     r.subspace = Counts.subspace;
     r.points = PointsVersion;

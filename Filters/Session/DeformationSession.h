@@ -335,9 +335,9 @@ private:
     int exactBuild = -1;
     mlsdeform::GatheredRows blend; // B there (exact targets)
   };
-  std::array<GradientRows, 2> Gradients;
+  std::array<GradientRows, 3> Gradients; // an optimizer's objective, its constraints, its mesh quality
   /// Gradients' entry for these positions (among[i]: a point at positions[i], or -1), made first
-  /// (evaluated if neither is).
+  /// (evaluated in place of the least recently used if none is).
   const GradientRows& gradientRows(const mlsdeform::PointList& positions, const std::vector<long>& among);
   DeformedOutput Output;
   MeshQualityReport Quality;

@@ -184,7 +184,14 @@ GatheredGradients gatherGradients(const PointList& points, const SparseGradients
     long point;
     bool operator<(const Row& o) const
     {
-      return std::lexicographical_compare(x.data(), x.data() + 3, o.x.data(), o.x.data() + 3) || (x == o.x && point < o.point);
+      for (int c = 0; c < 3; ++c)
+      {
+        if (x[c] != o.x[c])
+        {
+          return x[c] < o.x[c];
+        }
+      }
+      return point < o.point;
     }
   };
   std::vector<Row> rows;

@@ -65,9 +65,9 @@ void ExactTargets::add(const PointDisplacements& r, long begin, long end, double
   multiplyRows(PointRows, r, begin, end, out, Into::Add); // the blend's rows, by block
 }
 
-GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> among) const
+GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> among, bool storageOrder) const
 {
-  return gatherRows(*Blend, positions, { &PointRows, std::move(among) });
+  return gatherRows(*Blend, positions, { &PointRows, std::move(among) }, nullptr, {}, storageOrder);
 }
 
 std::vector<PointDisplacements> ExactTargets::pull(const GatheredRows& rows, const std::vector<PointDisplacements>& g) const

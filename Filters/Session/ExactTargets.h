@@ -50,8 +50,8 @@ public:
   void add(const mlsdeform::PointDisplacements& r, long begin, long end, double* out) const;
 
   /// B at positions (as Phi is evaluated at them), viewed from the points' rows where
-  /// among[i] names the point at positions[i] (positionsAmong).
-  mlsdeform::GatheredRows rowsAt(const mlsdeform::PointList& positions, std::vector<long> among) const;
+  /// among[i] names the point at positions[i] (positionsAmong); storageOrder as gatherRows'.
+  mlsdeform::GatheredRows rowsAt(const mlsdeform::PointList& positions, std::vector<long> among, bool storageOrder = true) const;
 
   /// h_f = B^T g_f per site for each function's g_f given at the positions of rows (rowsAt).
   std::vector<mlsdeform::PointDisplacements> pull(const mlsdeform::GatheredRows& rows, const std::vector<mlsdeform::PointDisplacements>& g) const;

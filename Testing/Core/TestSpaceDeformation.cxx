@@ -291,7 +291,8 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
 TEST(TransposedProductsOfSeveralFunctionsAreEachAlone)
 {
   // Phi^T g_f for several functions at once (DeformationSession's reverse mode): the dense ones
-  // in one pass, the sparse ones alone over their rows; each the bits of its own product
+  // in one pass, the sparse ones alone over their rows; each the bits of its own product, with
+  // the rows in storage order or not
   const Scene scene;
   const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
   const PointList x = testgeometry::randomPoints(20000, Vec3(0, 0, 0), Vec3(3, 1, 1), 5);
@@ -315,6 +316,14 @@ TEST(TransposedProductsOfSeveralFunctionsAreEachAlone)
     CHECK(each[f].rows() == rows.cols() && each[f].cols() == 3 && (each[f].array() == alone.array()).all());
   }
   CHECK(each[0].norm() > 0 && each[4].norm() == 0);
+  // rows gathered without their storage order (a gradient's) are read in turn: the same products
+  const GatheredRows inTurn = gatherRows(basis, x, { &blocks, all }, nullptr, {}, false);
+  CHECK(inTurn.order(0, inTurn.rows()) == nullptr && rows.order(0, rows.rows()) != nullptr);
+  const Displacements w = Displacements::Random(rows.cols(), 3);
+  PointDisplacements sorted(rows.rows(), 3), turn(rows.rows(), 3);
+  multiplyRows(rows, w, 0, rows.rows(), sorted.data());
+  multiplyRows(inTurn, w, 0, inTurn.rows(), turn.data());
+  CHECK((sorted.array() == turn.array()).all() && (multiplyTransposed(inTurn, 0, inTurn.rows(), g[0]).array() == each[0].array()).all());
 }
 
 TEST(ResidualBlendInterpolatesTheSitesAndFades)

@@ -553,11 +553,11 @@ const long* GatheredRows::order(long begin, long end) const
     throw std::logic_error("a product over rows " + std::to_string(begin) + " to " + std::to_string(end) +
       " of gathered rows, not a run of their segments");
   }
-  return Order.data() + begin;
+  return Order.empty() ? nullptr : Order.data() + begin;
 }
 
-GatheredRows gatherRows(
-  const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside, const std::vector<long>& segments)
+GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside,
+  const std::vector<long>& segments, bool storageOrder)
 {
   const bool usable = known.known && known.row.size() == positions.size();
   // Phi evaluated at the positions without a known row, then every row viewed in the positions' order
@@ -593,6 +593,10 @@ GatheredRows gatherRows(
   if (A.Segments.front() != 0 || A.Segments.back() != A.rows() || !std::is_sorted(A.Segments.begin(), A.Segments.end()))
   {
     throw std::invalid_argument("gatherRows: the segments do not cover the positions in order");
+  }
+  if (!storageOrder)
+  {
+    return A;
   }
   A.Order.resize(positions.size());
   std::iota(A.Order.begin(), A.Order.end(), 0L);

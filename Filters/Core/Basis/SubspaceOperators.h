@@ -124,24 +124,26 @@ public:
   long rows() const { return static_cast<long>(Rows.size()); }
   long cols() const { return Columns; }
   const PhiRowSpan& row(long i) const { return Rows[i]; }
-  /// The rows begin..end - 1 in storage order (a permutation of them); throws std::logic_error
-  /// when the range is not a run of whole segments.
+  /// The rows begin..end - 1 in storage order (a permutation of them), or null when gathered
+  /// without it (in turn); throws std::logic_error when the range is not a run of whole segments.
   const long* order(long begin, long end) const;
 
 private:
-  friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*, const std::vector<long>&);
+  friend GatheredRows gatherRows(const ShapeFunctions&, const PointList&, const KnownRows&, std::vector<int>*, const std::vector<long>&, bool);
   std::unique_ptr<RowBlocks> Own; // the rows evaluated here (on the heap: the views outlive a move)
   std::vector<PhiRowSpan> Rows;
-  std::vector<long> Order;    // per segment, its rows by where their entries are stored
+  std::vector<long> Order;    // per segment, its rows by where their entries are stored (or empty: in turn)
   std::vector<long> Segments; // the first row of each segment, and the end
   long Columns = 0;
 };
 
 /// Phi at the positions, the rows in `known` viewed, the others evaluated (indices of positions
 /// outside every support appended to outside). segments: the first position of each segment of
-/// positions, and the end (empty: one segment).
+/// positions, and the end (empty: one segment). storageOrder: each segment's rows are sorted by
+/// where they are stored, for multiplyRows; without it (rows only summed over, as a gradient's:
+/// the sort took half the gathering of 70k rows) they are read in turn.
 GatheredRows gatherRows(const ShapeFunctions& basis, const PointList& positions, const KnownRows& known, std::vector<int>* outside = nullptr,
-  const std::vector<long>& segments = {});
+  const std::vector<long>& segments = {}, bool storageOrder = true);
 
 /// Row i of a row-major sparse matrix: its column indices and values (column(a) and value[a],
 /// the one way the products below read a row, as they read PhiRowSpan's).
