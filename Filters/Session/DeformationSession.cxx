@@ -595,7 +595,12 @@ std::vector<std::vector<double>> DeformationSession::objectiveSensitivities(
 {
   // g -> S^T g (the slide's transpose), then H = Phi^T S^T g over the canonical positions
   slideRowsOnPlanes(Slips, Points, gradients.rows, gradients.values.data(), true);
-  const GatheredGradients g = gatherGradients(Points, gradients, group);
+  if (PointOrderOf != PointsVersion)
+  {
+    PointOrder = positionOrder(Points);
+    PointOrderOf = PointsVersion;
+  }
+  const GatheredGradients g = gatherGradients(Points, PointOrder, gradients, group);
   const GradientRows& at = gradientRows(g.positions, g.among);
   std::vector<PointField> tangents; // the nonlinear solution's: one per variable, shared by the functions
   if (!Model->isLinear())

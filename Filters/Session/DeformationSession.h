@@ -335,6 +335,8 @@ private:
     int exactBuild = -1;
     mlsdeform::GatheredRows blend; // B there (exact targets)
   };
+  PositionOrder PointOrder; // of Points at PointOrderOf (gradients' points are gathered in it)
+  long PointOrderOf = -1;
   std::array<GradientRows, 3> Gradients; // an optimizer's objective, its constraints, its mesh quality
   /// Gradients' entry for these positions (among[i]: a point at positions[i], or -1), made first
   /// (evaluated in place of the least recently used if none is).

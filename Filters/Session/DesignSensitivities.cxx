@@ -1,7 +1,6 @@
 #include "Session/DesignSensitivities.h"
 
 #include "Common/GatheredPositions.h"
-#include "Common/PositionIndex.h"
 #include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 
@@ -168,61 +167,68 @@ SparseGradients sparseGradient(const std::vector<double>& gradient)
   return g;
 }
 
-GatheredGradients gatherGradients(const PointList& points, const SparseGradients& gradients, const Collective& group)
+PositionOrder positionOrder(const PointList& points)
 {
-  // this process's points with a non-zero value, each once, ordered by position (an integer sort
-  // first: most points have a value in several functions)
+  std::vector<long> sorted(points.size());
+  std::iota(sorted.begin(), sorted.end(), 0L);
+  std::sort(sorted.begin(), sorted.end(), [&](long a, long b) {
+    return std::lexicographical_compare(points[a].data(), points[a].data() + 3, points[b].data(), points[b].data() + 3) ||
+      (points[a] == points[b] && a < b);
+  });
+  PositionOrder order;
+  order.rank.resize(points.size());
+  for (long p : sorted)
+  {
+    if (order.first.empty() || points[p] != points[order.first.back()])
+    {
+      order.first.push_back(p);
+    }
+    order.rank[p] = static_cast<int>(order.first.size()) - 1;
+  }
+  return order;
+}
+
+GatheredGradients gatherGradients(const PointList& points, const PositionOrder& order, const SparseGradients& gradients, const Collective& group)
+{
+  // this process's positions with a non-zero value, each once, in order: marked by rank, then
+  // taken in rank order (no sort)
   const std::size_t m = gradients.functions();
   const auto nonZero = [&](long e) {
     const double* g = gradients.values.data() + 3 * e;
     return g[0] != 0 || g[1] != 0 || g[2] != 0;
   };
-  std::vector<int> slot(points.size(), -1); // a point's place among the local positions
-  struct Row
-  {
-    Vec3 x; // its position, beside it: the sort reads no other memory
-    long point;
-    bool operator<(const Row& o) const
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        if (x[c] != o.x[c])
-        {
-          return x[c] < o.x[c];
-        }
-      }
-      return point < o.point;
-    }
-  };
-  std::vector<Row> rows;
+  std::vector<int> slot(order.first.size(), -1); // a position's place among the local positions
   for (long e = 0; e < static_cast<long>(gradients.rows.size()); ++e)
   {
-    if (nonZero(e) && slot[gradients.rows[e]] < 0)
+    if (nonZero(e))
     {
-      slot[gradients.rows[e]] = 0;
-      rows.push_back({ points[gradients.rows[e]], gradients.rows[e] });
+      slot[order.rank[gradients.rows[e]]] = 0;
     }
   }
-  std::sort(rows.begin(), rows.end());
-  PointList local;         // equal positions once
+  PointList local;
   std::vector<long> first; // the first point at each
-  for (const Row& r : rows)
+  for (std::size_t r = 0; r < slot.size(); ++r)
   {
-    if (local.empty() || r.x != local.back())
+    if (slot[r] == 0)
     {
-      local.push_back(r.x);
-      first.push_back(r.point);
+      slot[r] = static_cast<int>(local.size());
+      local.push_back(points[order.first[r]]);
+      first.push_back(order.first[r]);
     }
-    slot[r.point] = static_cast<int>(local.size()) - 1;
   }
-  const GatheredPositions order = gatherPositions(local, {}, group);
+  const GatheredPositions gathered = gatherPositions(local, {}, group);
   GatheredGradients out;
-  out.positions = order.positions;
-  const PositionIndex mine(local);
+  out.positions = gathered.positions;
+  // both lists sorted by position (gatherPositions sorts as positionOrder does): one merge
+  const auto less = [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); };
+  std::size_t j = 0;
   for (const Vec3& x : out.positions)
   {
-    const long j = mine.find(x);
-    out.among.push_back(j < 0 ? -1 : first[j]);
+    while (j < local.size() && less(local[j], x))
+    {
+      ++j;
+    }
+    out.among.push_back(j < local.size() && local[j] == x ? first[j] : -1);
   }
   // per function, the sum of its entries at each position, in the entries' order
   for (std::size_t f = 0; f < m; ++f)
@@ -232,11 +238,11 @@ GatheredGradients gatherGradients(const PointList& points, const SparseGradients
     {
       if (nonZero(e))
       {
-        sums.row(slot[gradients.rows[e]]) += Eigen::Map<const Eigen::RowVector3d>(gradients.values.data() + 3 * e);
+        sums.row(slot[order.rank[gradients.rows[e]]]) += Eigen::Map<const Eigen::RowVector3d>(gradients.values.data() + 3 * e);
       }
     }
-    const std::vector<double> values = gatherValues(sums.data(), sums.rows(), 3, order, group);
-    out.values.push_back(Eigen::Map<const PointDisplacements>(values.data(), static_cast<long>(order.positions.size()), 3));
+    const std::vector<double> values = gatherValues(sums.data(), sums.rows(), 3, gathered, group);
+    out.values.push_back(Eigen::Map<const PointDisplacements>(values.data(), static_cast<long>(gathered.positions.size()), 3));
   }
   return out;
 }

@@ -77,15 +77,27 @@ struct SparseGradients
 /// points with a non-zero value.
 SparseGradients sparseGradient(const std::vector<double>& gradient);
 
+/// Points ordered by position (lexicographic, equal positions together): each point's rank
+/// among the distinct positions, and the first point of each rank. Found once per set of points
+/// (one sort of them), so that a gradient's points are ordered without a sort each time (sorting
+/// the 70k points of the hull case's constraints took 12 ms of their 65 ms chain).
+struct PositionOrder
+{
+  std::vector<int> rank;
+  std::vector<long> first;
+};
+PositionOrder positionOrder(const mlsdeform::PointList& points);
+
 /// The points carrying the functions' gradients, each position once with the sum of its copies
 /// (per function), gathered from all processes in canonical order (see above): the positions,
 /// per function its values there (zero where it has none), and per position the first of this
-/// process's points there that carries a gradient, or -1 (another process's).
+/// process's points there, or -1 (another process's). order: positionOrder(points).
 struct GatheredGradients
 {
   mlsdeform::PointList positions;
   std::vector<mlsdeform::PointDisplacements> values;
   std::vector<long> among;
 };
-GatheredGradients gatherGradients(const mlsdeform::PointList& points, const SparseGradients& gradients, const mlsdeform::Collective& group);
+GatheredGradients gatherGradients(
+  const mlsdeform::PointList& points, const PositionOrder& order, const SparseGradients& gradients, const mlsdeform::Collective& group);
 } // namespace mlsvtk
