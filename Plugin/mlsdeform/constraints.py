@@ -104,7 +104,7 @@ class _Surface:
         constraints on this surface)."""
         if getattr(self, '_on', None) is not X:
             x0, x1, x2 = X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]]
-            self._on, self._geometry = X, (x0, x1, x2, np.cross(x1 - x0, x2 - x0))
+            self._on, self._geometry = X, (x0, x1, x2, _cross(x1 - x0, x2 - x0))
         return self._geometry
 
 
@@ -134,6 +134,16 @@ def _polygons(block):
     if not np.any(sizes >= 3):
         return None
     return offsets, connectivity
+
+
+def _cross(a, b):
+    """Row-wise a x b of two (n, 3) arrays: np.cross's values, six times faster on a hull's
+    130k triangles (np.cross moves its axes and copies)."""
+    out = np.empty(a.shape)
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    return out
 
 
 def _corner_sums(surf, g0, g1, g2):
@@ -244,8 +254,8 @@ class DesignConstraints:
             if not gradient:
                 return np.array([sign * V]), None
             PS = S @ P / 3
-            rows, g = _corner_sums(surf, PS + np.cross(x1 - x2, Pc) / 2, PS + np.cross(x2 - x0, Pc) / 2,
-                                   PS + np.cross(x0 - x1, Pc) / 2)
+            rows, g = _corner_sums(surf, PS + _cross(x1 - x2, Pc) / 2, PS + _cross(x2 - x0, Pc) / 2,
+                                   PS + _cross(x0 - x1, Pc) / 2)
             return np.array([sign * V]), [(rows, sign * alpha * g)]
 
         self._add(_Constraint(name, 'volume', lower, upper, scaled, evaluate))
@@ -262,8 +272,8 @@ class DesignConstraints:
             if not gradient:
                 return np.array([A]), None
             u = n / np.where(length > 0, length, 1)[:, None]   # a degenerate triangle: no direction, no gradient
-            return np.array([A]), [_corner_sums(surf, np.cross(x1 - x2, u) / 2, np.cross(x2 - x0, u) / 2,
-                                                np.cross(x0 - x1, u) / 2)]
+            return np.array([A]), [_corner_sums(surf, _cross(x1 - x2, u) / 2, _cross(x2 - x0, u) / 2,
+                                                _cross(x0 - x1, u) / 2)]
 
         self._add(_Constraint(name, 'area', lower, upper, scaled, evaluate))
 
