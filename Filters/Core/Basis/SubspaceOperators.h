@@ -392,9 +392,9 @@ Eigen::Matrix<double, Eigen::Dynamic, Dense::ColsAtCompileTime, Eigen::RowMajor>
 
 /// A^T X_f for several functions' X_f (each one row per row of A, three columns): those that are
 /// not zero on at least a quarter of the rows in one product, their columns side by side (an
-/// entry of A is read once for all of them: four dense gradients on the 1M-cell hull case's
-/// 70k rows cost 2.5 times one's, not 4 times), each other alone over its non-zero rows (a
-/// thickness on a few rows). Each sum is the one multiplyTransposed gives for X_f alone.
+/// entry of A is read once for all of them: the hull case's area, volume and fluid volume), each
+/// other alone over its non-zero rows (a thickness on a few rows). Each sum is the one
+/// multiplyTransposed gives for X_f alone.
 template <typename Rows>
 std::vector<PointDisplacements> multiplyTransposedEach(const Rows& A, const std::vector<PointDisplacements>& X)
 {
