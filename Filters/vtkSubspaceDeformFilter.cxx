@@ -4,6 +4,7 @@
 #include "Adapters/CasePath.h"
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/MeshVolume.h"
+#include "Quality/PolygonSurface.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
 #include "Adapters/Stamp.h"
@@ -103,20 +104,28 @@ double* resized(vtkDoubleArray* out, std::size_t n)
   return out->GetPointer(0);
 }
 
-/// g (n rows of 3) as its rows that are not zero: their indices and values.
-void writeNonZeroRows(const double* g, std::size_t n, vtkIdTypeArray* rows, vtkDoubleArray* values)
+/// The rows of g (n rows of 3) that are not zero: their indices (at[i] for row i; i when at is
+/// null) and values.
+void writeNonZeroRows(const double* g, const int* at, std::size_t n, vtkIdTypeArray* rows, vtkDoubleArray* values)
 {
-  rows->SetNumberOfComponents(1);
-  rows->SetNumberOfTuples(0);
-  values->SetNumberOfComponents(3);
-  values->SetNumberOfTuples(0);
+  const auto nonZero = [&](std::size_t i) { return g[3 * i] != 0 || g[3 * i + 1] != 0 || g[3 * i + 2] != 0; };
+  vtkIdType count = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    const double* x = g + 3 * i;
-    if (x[0] != 0 || x[1] != 0 || x[2] != 0)
+    count += nonZero(i) ? 1 : 0;
+  }
+  rows->SetNumberOfComponents(1);
+  rows->SetNumberOfTuples(count);
+  values->SetNumberOfComponents(3);
+  values->SetNumberOfTuples(count);
+  vtkIdType* r = rows->GetPointer(0);
+  double* v = values->GetPointer(0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (nonZero(i))
     {
-      rows->InsertNextValue(static_cast<vtkIdType>(i));
-      values->InsertNextTuple(x);
+      *r++ = at ? at[i] : static_cast<vtkIdType>(i);
+      v = std::copy_n(g + 3 * i, 3, v);
     }
   }
   rows->Modified();
@@ -461,7 +470,7 @@ bool vtkSubspaceDeformFilter::ComputeMeshQualityAggregate(int measure, double rh
     value->SetValue(1, static_cast<double>(result.count));
     if (gradient)
     {
-      writeNonZeroRows(g.data(), g.size() / 3, rows, gradient);
+      writeNonZeroRows(g.data(), nullptr, g.size() / 3, rows, gradient);
     }
   });
 }
@@ -521,14 +530,19 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
       this->Volumes = std::move(volumes);
     }
     const PointList& deformed = this->Session->deformedPoints();
-    PointList g(gradient ? n : 0, Vec3::Zero());
+    std::vector<int> at; // the grids' gradient rows (their points apart: ascending) and values
+    PointList g;
     double volume = 0, cells = 0;
     for (const std::unique_ptr<MeshVolume>& grid : this->Volumes->grids)
     {
       if (grid)
       {
         named = 1;
-        volume += grid->volume(deformed, gradient ? &g : nullptr);
+        std::vector<int> gridRows;
+        PointList gridGradient;
+        volume += grid->volume(deformed, gradient ? &gridRows : nullptr, &gridGradient);
+        at.insert(at.end(), gridRows.begin(), gridRows.end());
+        g.insert(g.end(), gridGradient.begin(), gridGradient.end());
         cells += static_cast<double>(grid->cells());
       }
     }
@@ -557,9 +571,113 @@ bool vtkSubspaceDeformFilter::ComputeMeshVolume(const char* cellSet, vtkDoubleAr
     if (gradient)
     {
       static_assert(sizeof(Vec3) == 3 * sizeof(double), "points as packed doubles");
-      writeNonZeroRows(g.empty() ? nullptr : g.front().data(), g.size(), rows, gradient);
+      writeNonZeroRows(g.empty() ? nullptr : g.front().data(), at.data(), g.size(), rows, gradient);
     }
   });
+}
+
+struct vtkSubspaceDeformFilter::MeasuredSurfaces
+{
+  struct Entry
+  {
+    vtkIdTypeArray* polygons; // the array (kept by the caller) and its time: a new array has a new one
+    vtkMTimeType time;
+    mlsdeform::PolygonSurface surface;
+  };
+  std::vector<Entry> recent; // the last few, the latest first (a design's constraints measure a few surfaces)
+};
+
+template <typename Measure>
+bool vtkSubspaceDeformFilter::ComputeSurfaceMeasure(const std::string& problem, const char* name, vtkIdTypeArray* polygons,
+  vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient, Measure measure)
+{
+  return this->RunSensitivityRequest([&](const Collective& group) {
+    const PointList& deformed = this->Session->deformedPoints();
+    if (!this->Surfaces)
+    {
+      this->Surfaces = std::make_unique<MeasuredSurfaces>();
+    }
+    std::vector<MeasuredSurfaces::Entry>& recent = this->Surfaces->recent;
+    auto hit = std::find_if(recent.begin(), recent.end(), [&](const MeasuredSurfaces::Entry& e) {
+      return polygons && e.polygons == polygons && e.time == polygons->GetMTime();
+    });
+    agree(group, [&] {
+      if (!problem.empty())
+      {
+        throw InvalidInputException(problem);
+      }
+      if (!value || !rows != !gradient || !polygons || (polygons->GetNumberOfTuples() > 0 && polygons->GetNumberOfComponents() < 3))
+      {
+        throw InvalidInputException(std::string(name) + " needs polygons (a tuple of at least 3 point indices each), an output "
+                                    "array, and rows with the gradient or neither");
+      }
+      if (hit == recent.end())
+      {
+        const auto m = static_cast<std::size_t>(polygons->GetNumberOfTuples());
+        const auto n = static_cast<std::size_t>(polygons->GetNumberOfComponents());
+        std::vector<long> starts(m + 1);
+        std::vector<int> corners(m * n);
+        for (std::size_t k = 0; k < m * n; ++k)
+        {
+          const vtkIdType p = polygons->GetValue(static_cast<vtkIdType>(k));
+          if (p < 0 || static_cast<std::size_t>(p) >= deformed.size())
+          {
+            throw InvalidInputException(std::string(name) + ": polygon " + std::to_string(k / n) + " has the point " + std::to_string(p) +
+                                        ", not one of the output's " + std::to_string(deformed.size()) + " points");
+          }
+          corners[k] = static_cast<int>(p);
+        }
+        for (std::size_t f = 0; f <= m; ++f)
+        {
+          starts[f] = static_cast<long>(f * n);
+        }
+        recent.insert(recent.begin(), { polygons, polygons->GetMTime(), mlsdeform::PolygonSurface(starts, corners) });
+        recent.erase(recent.begin() + static_cast<long>(std::min<std::size_t>(recent.size(), 4)), recent.end());
+        hit = recent.begin();
+      }
+    });
+    std::rotate(recent.begin(), hit, hit + 1);
+    const mlsdeform::PolygonSurface& surface = recent.front().surface;
+    PointList g;
+    const double local = measure(surface, deformed, gradient ? &g : nullptr);
+    // every process's sums, added in process order: the same on every process
+    const std::vector<double> parts = group.gather(std::vector<double>{ local, static_cast<double>(surface.polygons()) });
+    double total = 0, count = 0;
+    for (std::size_t r = 0; r + 1 < parts.size(); r += 2)
+    {
+      total += parts[r];
+      count += parts[r + 1];
+    }
+    value->SetNumberOfComponents(1);
+    value->SetNumberOfTuples(2);
+    value->SetValue(0, total);
+    value->SetValue(1, count);
+    if (gradient)
+    {
+      writeNonZeroRows(g.empty() ? nullptr : g.front().data(), surface.points().data(), g.size(), rows, gradient);
+    }
+  });
+}
+
+bool vtkSubspaceDeformFilter::ComputeSurfaceVolume(vtkIdTypeArray* polygons, const double axis[3], vtkDoubleArray* value,
+  vtkIdTypeArray* rows, vtkDoubleArray* gradient)
+{
+  const Vec3 a = axis ? Vec3(axis[0], axis[1], axis[2]) : Vec3::Zero();
+  return this->ComputeSurfaceMeasure(a.allFinite() ? "" : "ComputeSurfaceVolume needs a finite axis (zero: a closed surface)",
+    "ComputeSurfaceVolume", polygons, value, rows, gradient,
+    [&](const mlsdeform::PolygonSurface& surface, const PointList& points, PointList* g) {
+      // closed: V = 1/3 sum_f C_f . S_f; extruded along a: V = 1/2 sum_f (P C_f) . S_f, P = I - a a^T
+      const bool extruded = a.norm() > 0;
+      const Vec3 u = extruded ? Vec3(a.normalized()) : Vec3::Zero();
+      return surface.volume(points, Eigen::Matrix3d::Identity() - u * u.transpose(), extruded ? 0.5 : 1.0 / 3, g);
+    });
+}
+
+bool vtkSubspaceDeformFilter::ComputeSurfaceArea(vtkIdTypeArray* polygons, vtkDoubleArray* value, vtkIdTypeArray* rows,
+  vtkDoubleArray* gradient)
+{
+  return this->ComputeSurfaceMeasure("", "ComputeSurfaceArea", polygons, value, rows, gradient,
+    [](const mlsdeform::PolygonSurface& surface, const PointList& points, PointList* g) { return surface.area(points, g); });
 }
 
 int vtkSubspaceDeformFilter::GetNumberOfSamplings()

@@ -264,6 +264,19 @@ public:
   /// as for ComputeMeshQualityAggregate. Fails when no process has such a cell, or no grid has
   /// the array cellSet.
   bool ComputeMeshVolume(const char* cellSet, vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient);
+  /// The volume a closed surface of polygons encloses on the deformed output points and its
+  /// gradient, for an optimizer's constraint on a body (Filters/Core/Quality/PolygonSurface.h:
+  /// the divergence theorem; positive with the polygons' normals out of the body): polygons has
+  /// a tuple per polygon, its points (this process's output points; 3 components: triangles).
+  /// With a non-zero axis, the volume of a shape extruded along it whose surface is open at its
+  /// front and back (a one-cell thick 2D case): the flux of the in-plane field, its cross-section
+  /// times its depth. value gets the sum over the processes in their order and the number of
+  /// polygons, rows and gradient (if not null) dV/dX at this process's output points, as for
+  /// ComputeMeshQualityAggregate.
+  bool ComputeSurfaceVolume(vtkIdTypeArray* polygons, const double axis[3], vtkDoubleArray* value, vtkIdTypeArray* rows,
+    vtkDoubleArray* gradient);
+  /// The area of the polygons (as ComputeSurfaceVolume's) and its gradient.
+  bool ComputeSurfaceArea(vtkIdTypeArray* polygons, vtkDoubleArray* value, vtkIdTypeArray* rows, vtkDoubleArray* gradient);
   const char* GetSensitivityError() { return this->SensitivityError.c_str(); }
 
   /// Whether the last output holds deformed points: a cancelled update leaves the previous
@@ -325,6 +338,14 @@ private:
   std::unique_ptr<mlsvtk::DeformationSession> Session;
   struct MeshVolumes; // ComputeMeshVolume's cells and faces, found once per mesh and cell set
   std::unique_ptr<MeshVolumes> Volumes;
+  struct MeasuredSurfaces; // ComputeSurfaceVolume's and ComputeSurfaceArea's last polygon arrays
+  std::unique_ptr<MeasuredSurfaces> Surfaces;
+  /// measure(surface, points, gradient) of the polygons, summed over the processes, into value,
+  /// rows and gradient (ComputeSurfaceVolume's and ComputeSurfaceArea's convention); fails with
+  /// problem when it is not empty.
+  template <typename Measure>
+  bool ComputeSurfaceMeasure(const std::string& problem, const char* name, vtkIdTypeArray* polygons, vtkDoubleArray* value, vtkIdTypeArray* rows,
+    vtkDoubleArray* gradient, Measure measure);
   /// The design table, the dX/dp arrays (on the moving sets) and dJ/dp of this update into the output.
   void WriteSensitivities(const std::vector<vtkPointSet*>& inSets, const std::vector<vtkPointSet*>& outSets,
     const std::vector<char>& moving, vtkFieldData* field, const mlsdeform::Collective& group);

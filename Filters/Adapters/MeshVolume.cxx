@@ -2,7 +2,7 @@
 
 #include "Adapters/MeshCells.h"
 #include "Adapters/VolumeMeshQuality.h"
-#include "Quality/FaceQualityAggregate.h"
+#include "Quality/FaceQuality.h"
 
 #include <vtkUnstructuredGrid.h>
 
@@ -127,7 +127,8 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
   std::sort(bounding.begin(), bounding.end());
   // each oriented out of its cell on the rest points: S_f . (C_f - C) > 0, C the cell's estimate
   // (its face centres' mean, as FaceQuality's)
-  std::vector<mlsdeform::FaceGeometry> geometry;
+  std::vector<long> faceStart{ 0 };
+  std::vector<int> facePoints;
   vtkIdType cell = -1;
   Vec3 centre = Vec3::Zero();
   for (const auto& [c, f] : bounding)
@@ -146,42 +147,53 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
     const int* p = faces.face(f);
     const std::size_t n = faces.faceSize(f);
     const mlsdeform::FaceGeometry g = mlsdeform::faceGeometry(rest, p, n);
-    const std::size_t start = FacePoints.size();
+    const std::size_t start = facePoints.size();
     for (std::size_t k = 0; k < n; ++k)
     {
-      FacePoints.push_back(offset + p[k]);
+      facePoints.push_back(offset + p[k]);
     }
     if (g.area.dot(g.centre - centre) < 0)
     {
-      std::reverse(FacePoints.begin() + static_cast<long>(start), FacePoints.end());
+      std::reverse(facePoints.begin() + static_cast<long>(start), facePoints.end());
     }
-    FaceStart.push_back(static_cast<long>(FacePoints.size()));
+    faceStart.push_back(static_cast<long>(facePoints.size()));
   }
+  Faces = mlsdeform::PolygonSurface(faceStart, facePoints);
 }
 
-double MeshVolume::volume(const mlsdeform::PointList& points, mlsdeform::PointList* gradient) const
+double MeshVolume::volume(const mlsdeform::PointList& points, std::vector<int>* rows, mlsdeform::PointList* gradient) const
 {
-  mlsdeform::PointList elementGradient;
-  double volume = Elements.elements() ? mlsdeform::meshVolume(Elements, points, { 1.0 }, gradient ? &elementGradient : nullptr) : 0.0;
-  if (gradient)
-  {
-    for (std::size_t i = 0; i < elementGradient.size(); ++i)
-    {
-      (*gradient)[i] += elementGradient[i];
-    }
-  }
   // V = sum_f S_f . C_f / 3 over the bounding faces
-  for (std::size_t f = 0; f + 1 < FaceStart.size(); ++f)
+  mlsdeform::PointList faceGradient;
+  const double faces = Faces.volume(points, Eigen::Matrix3d::Identity(), 1.0 / 3, rows ? &faceGradient : nullptr);
+  if (!Elements.elements())
   {
-    const int* p = FacePoints.data() + FaceStart[f];
-    const auto n = static_cast<std::size_t>(FaceStart[f + 1] - FaceStart[f]);
-    const mlsdeform::FaceGeometry g = mlsdeform::faceGeometry(points, p, n);
-    volume += g.area.dot(g.centre) / 3;
-    if (gradient)
+    if (rows)
     {
-      mlsdeform::addFaceGeometryAdjoint(points, p, n, Vec3(g.area / 3), Vec3(g.centre / 3), *gradient);
+      *rows = Faces.points();
+      *gradient = std::move(faceGradient);
+    }
+    return faces;
+  }
+  mlsdeform::PointList dense; // the elements' gradient, at every point
+  const double elements = mlsdeform::meshVolume(Elements, points, { 1.0 }, rows ? &dense : nullptr);
+  if (rows)
+  {
+    for (std::size_t i = 0; i < faceGradient.size(); ++i)
+    {
+      dense[static_cast<std::size_t>(Faces.points()[i])] += faceGradient[i];
+    }
+    rows->clear();
+    gradient->clear();
+    for (std::size_t i = 0; i < dense.size(); ++i)
+    {
+      if (!dense[i].isZero(0))
+      {
+        rows->push_back(static_cast<int>(i));
+        gradient->push_back(dense[i]);
+      }
     }
   }
-  return volume;
+  return elements + faces;
 }
 } // namespace mlsvtk

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "Common/CoreTypes.h"
+#include "Quality/PolygonSurface.h"
 #include "Structural/ShapeSensitivity.h"
 
 #include <vector>
@@ -29,15 +30,15 @@ public:
   /// The number of cells measured.
   long cells() const { return Cells; }
 
-  /// The volume on points (the grids', deformed), and dV/dX added to gradient (one per point)
-  /// when it is given. The elements are summed in parallel, each point's terms in element order,
-  /// the faces in their order: the same bits for any thread count.
-  double volume(const mlsdeform::PointList& points, mlsdeform::PointList* gradient) const;
+  /// The volume on points (the grids', deformed), and when rows is given dV/dX at the points
+  /// that have one (the elements' nodes, the bounding faces' points: rows ascending, gradient a
+  /// value each). The elements and faces are summed in parallel, each point's terms in element
+  /// and face order: the same bits for any thread count.
+  double volume(const mlsdeform::PointList& points, std::vector<int>* rows, mlsdeform::PointList* gradient) const;
 
 private:
   mlsdeform::SolidMesh Elements;
-  std::vector<long> FaceStart{ 0 };
-  std::vector<int> FacePoints; // the bounding faces' points, each face oriented out of its cell
+  mlsdeform::PolygonSurface Faces{ { 0 }, {} }; // the bounding faces, each oriented out of its cell
   long Cells = 0;
 };
 } // namespace mlsvtk

@@ -91,21 +91,25 @@ class _Surface:
             raise ValueError(f"{what}: {which} names no block with surface polygons (2D cells, such as an "
                              f"OpenFOAM case's patches); blocks with polygons here: {', '.join(found) or 'none'}")
 
-    def corner_points(self):
-        """The points that are triangle corners, and each corner's index among them (T x 3)."""
-        if not hasattr(self, '_corners'):
-            points, inverse = np.unique(self.triangles, return_inverse=True)
-            self._corners = (points, inverse.reshape(self.triangles.shape))
-        return self._corners
+    def polygons(self):
+        """The triangles as a vtkIdTypeArray (a tuple of 3 corners each) for the filter's surface
+        measures (ComputeSurfaceVolume, ComputeSurfaceArea), made once: the filter keeps what it
+        found on it for this array."""
+        if not hasattr(self, '_polygons'):
+            from vtkmodules.util.numpy_support import vtk_to_numpy
+            from vtkmodules.vtkCommonCore import vtkIdTypeArray
+            self._polygons = vtkIdTypeArray()
+            self._polygons.SetNumberOfComponents(3)
+            self._polygons.SetNumberOfTuples(len(self.triangles))
+            vtk_to_numpy(self._polygons).reshape(-1, 3)[:] = self.triangles
+        return self._polygons
 
     def corners(self, X):
-        """The triangles' corners x0, x1, x2 on the points X and (x1 - x0) x (x2 - x0), once per X
-        (the same array: a design's points, shared by a value and its gradient and by the
-        constraints on this surface)."""
+        """The triangles' corners x0, x1, x2 on the points X, once per X (the same array: the
+        lines of thickness constraints cast on a design's points)."""
         if getattr(self, '_on', None) is not X:
-            x0, x1, x2 = X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]]
-            self._on, self._geometry = X, (x0, x1, x2, _cross(x1 - x0, x2 - x0))
-        return self._geometry
+            self._on, self._corners = X, (X[self.triangles[:, 0]], X[self.triangles[:, 1]], X[self.triangles[:, 2]])
+        return self._corners
 
 
 def _polygons(block):
@@ -134,26 +138,6 @@ def _polygons(block):
     if not np.any(sizes >= 3):
         return None
     return offsets, connectivity
-
-
-def _cross(a, b):
-    """Row-wise a x b of two (n, 3) arrays: np.cross's values, six times faster on a hull's
-    130k triangles (np.cross moves its axes and copies)."""
-    out = np.empty(a.shape)
-    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
-    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
-    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-    return out
-
-
-def _corner_sums(surf, g0, g1, g2):
-    """The gradient rows of the surface's triangle corners summed per point: (points, (len(points), 3) values)."""
-    points, inverse = surf.corner_points()
-    g = np.zeros((len(points), 3))
-    for k, gk in enumerate((g0, g1, g2)):
-        for c in range(3):
-            g[:, c] += np.bincount(inverse[:, k], weights=gk[:, c], minlength=len(points))
-    return points, g
 
 
 class _Constraint:
@@ -238,25 +222,16 @@ class DesignConstraints:
         a = None if axis is None else self._direction(axis, name)
         X = self._points()
         self._check_closed(surf, X, a, what)
-        P = np.eye(3) if a is None else np.eye(3) - np.outer(a, a)
-        alpha = 1 / 3 if a is None else 1 / 2
+        algorithm, axis = self.dvs._algorithm, [0.0, 0.0, 0.0] if a is None else list(a)
         sign = None
 
         def evaluate(X, gradient=True):
             nonlocal sign
-            x0, x1, x2, n = surf.corners(X)
-            S = n / 2
-            Pc = ((x0 + x1 + x2) / 3) @ P
-            V = alpha * np.einsum('ij,ij->', Pc, S)
-            V = all_reduce(V, 'sum')
+            value, g = self._computed(lambda v, r, d: algorithm.ComputeSurfaceVolume(surf.polygons(), axis, v, r, d), gradient)
+            V = value.GetValue(0)
             if sign is None:
                 sign = 1.0 if V >= 0 else -1.0   # the surface's orientation (a case's patches point into the body)
-            if not gradient:
-                return np.array([sign * V]), None
-            PS = S @ P / 3
-            rows, g = _corner_sums(surf, PS + _cross(x1 - x2, Pc) / 2, PS + _cross(x2 - x0, Pc) / 2,
-                                   PS + _cross(x0 - x1, Pc) / 2)
-            return np.array([sign * V]), [(rows, sign * alpha * g)]
+            return np.array([sign * V]), None if g is None else [(g[0], sign * g[1])]
 
         self._add(_Constraint(name, 'volume', lower, upper, scaled, evaluate))
 
@@ -264,16 +239,11 @@ class DesignConstraints:
         """The area of the named blocks' polygons (their triangles' sum)."""
         self._check_name(name)
         surf = self._surface(surface, f"area constraint {name!r}")
+        algorithm = self.dvs._algorithm
 
         def evaluate(X, gradient=True):
-            x0, x1, x2, n = surf.corners(X)
-            length = np.linalg.norm(n, axis=1)
-            A = all_reduce(length.sum() / 2, 'sum')
-            if not gradient:
-                return np.array([A]), None
-            u = n / np.where(length > 0, length, 1)[:, None]   # a degenerate triangle: no direction, no gradient
-            return np.array([A]), [_corner_sums(surf, _cross(x1 - x2, u) / 2, _cross(x2 - x0, u) / 2,
-                                                _cross(x0 - x1, u) / 2)]
+            value, g = self._computed(lambda v, r, d: algorithm.ComputeSurfaceArea(surf.polygons(), v, r, d), gradient)
+            return np.array([value.GetValue(0)]), None if g is None else [g]
 
         self._add(_Constraint(name, 'area', lower, upper, scaled, evaluate))
 
@@ -570,7 +540,7 @@ class DesignConstraints:
     def _cast(surf, X, p, u):
         """The nearest hit of the ray p + t u (t > 0) with the surface's triangles on this process:
         (t, triangle, barycentric weights), t = inf when it misses (Moeller-Trumbore)."""
-        x0, x1, x2, _ = surf.corners(X)
+        x0, x1, x2 = surf.corners(X)
         e1, e2 = x1 - x0, x2 - x0
         h = np.cross(u, e2)
         det = np.einsum('ij,ij->i', e1, h)

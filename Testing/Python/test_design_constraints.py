@@ -177,6 +177,14 @@ if mode == 'serial':
           abs(batch[2]['bump_0'] - dvs.totalSensitivity(np.where(np.isin(np.arange(len(g)), rows[:5])[:, None], g, 0.0))['bump_0']) <= 1e-14 * scale,
           'totalSensitivities: three functions at once (dense, as rows, a part) give totalSensitivity\'s dJ/dp')
     raises(lambda: dvs.totalSensitivities([(np.array([len(g)]), np.zeros((1, 3)))]), 'point indices', 'a row beyond the points')
+    # the filter's surface measures refuse a polygon beyond the output's points, the value untouched
+    from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray
+    beyond, value = vtkIdTypeArray(), vtkDoubleArray()
+    beyond.SetNumberOfComponents(3)
+    beyond.InsertNextTuple3(0, 1, len(g))
+    check(not dvs._algorithm.ComputeSurfaceArea(beyond, value, None, None) and value.GetNumberOfTuples() == 0 and
+          'not one of the output' in dvs._algorithm.GetSensitivityError(),
+          'ComputeSurfaceArea: a polygon beyond the points fails: %s' % dvs._algorithm.GetSensitivityError())
 
     # scipy's list: fun and jac of each side at x
     x = np.array([start[n] for n in names])

@@ -23,6 +23,15 @@ FaceGeometry faceGeometry(const PointList& points, const int* face, std::size_t 
   {
     return g;
   }
+  if (n == 3) // a triangle directly, as OpenFOAM does (makeFaceCentresAndAreas)
+  {
+    const Vec3& p0 = points[face[0]];
+    const Vec3& p1 = points[face[1]];
+    const Vec3& p2 = points[face[2]];
+    g.centre = (p0 + p1 + p2) / 3;
+    g.area = (p1 - p0).cross(p2 - p0) / 2;
+    return g;
+  }
   Vec3 average = Vec3::Zero(); // OpenFOAM's estimate: the sum of the points over their number
   for (std::size_t i = 0; i < n; ++i)
   {

@@ -16,16 +16,8 @@ using Terms = std::vector<std::pair<int, Vec3>>;
 
 void addFace(const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, Terms& terms)
 {
-  // the adjoint on a copy of the face's points, renumbered 0 .. n-1
-  PointList local(n);
-  std::vector<int> index(n);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    local[k] = points[face[k]];
-    index[k] = static_cast<int>(k);
-  }
   PointList bar(n, Vec3::Zero());
-  addFaceGeometryAdjoint(local, index.data(), n, centreBar, areaBar, bar);
+  faceGeometryAdjoint(points, face, n, centreBar, areaBar, bar.data());
   for (std::size_t k = 0; k < n; ++k)
   {
     terms.emplace_back(face[k], bar[k]);
@@ -222,11 +214,21 @@ void addAggregateGradient(const PointList& points, const CellFaceList& cells, co
   }
 }
 
-void addFaceGeometryAdjoint(
-  const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, PointList& gradient)
+void faceGeometryAdjoint(
+  const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, Vec3* cornerBar)
 {
   if (n < 3)
   {
+    return;
+  }
+  if (n == 3)
+  {
+    // centre = (p0 + p1 + p2) / 3, area = e x f / 2 (e = p1 - p0, f = p2 - p0)
+    const Vec3 e = points[face[1]] - points[face[0]], f = points[face[2]] - points[face[0]];
+    const Vec3 eBar = f.cross(areaBar) / 2, fBar = areaBar.cross(e) / 2;
+    cornerBar[0] += centreBar / 3 - eBar - fBar;
+    cornerBar[1] += centreBar / 3 + eBar;
+    cornerBar[2] += centreBar / 3 + fBar;
     return;
   }
   // faceGeometry again, then its steps backwards
@@ -262,26 +264,26 @@ void addFaceGeometryAdjoint(
   }
   for (std::size_t i = 0; i < n; ++i)
   {
-    const int ip = face[i], iq = face[i + 1 < n ? i + 1 : 0];
-    const Vec3& p = points[ip];
-    const Vec3& q = points[iq];
+    const std::size_t iq = i + 1 < n ? i + 1 : 0;
+    const Vec3& p = points[face[i]];
+    const Vec3& q = points[face[iq]];
     const Vec3 e = q - p, f = average - p;
     const Vec3 normal = e.cross(f);
     const double a = normal.norm();
     // sumA += a, sumAc += a (p + q + average), sumN += normal, normal = e x f
     const double aBar = sumABar + sumAcBar.dot(p + q + average);
-    gradient[ip] += a * sumAcBar;
-    gradient[iq] += a * sumAcBar;
+    cornerBar[i] += a * sumAcBar;
+    cornerBar[iq] += a * sumAcBar;
     averageBar += a * sumAcBar;
     const Vec3 normalBar = sumNBar + (a > 0 ? Vec3(aBar * normal / a) : Vec3::Zero());
     const Vec3 eBar = f.cross(normalBar), fBar = normalBar.cross(e);
-    gradient[iq] += eBar;
-    gradient[ip] -= eBar + fBar;
+    cornerBar[iq] += eBar;
+    cornerBar[i] -= eBar + fBar;
     averageBar += fBar;
   }
   for (std::size_t i = 0; i < n; ++i)
   {
-    gradient[face[i]] += averageBar / static_cast<double>(n);
+    cornerBar[i] += averageBar / static_cast<double>(n);
   }
 }
 

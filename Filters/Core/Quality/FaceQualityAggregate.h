@@ -61,9 +61,9 @@ void addAggregateGradient(const PointList& points, const CellFaceList& cells, co
   const AggregatePart& whole, PointList& gradient);
 
 /// The reverse-mode derivatives of FaceQuality's geometry: given dF/d(centre) and dF/d(area) of a
-/// face, adds dF/d(point) to gradient[its points].
-void addFaceGeometryAdjoint(
-  const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, PointList& gradient);
+/// face, adds dF/d(its k-th point) to cornerBar[k] (k = 0 .. n-1).
+void faceGeometryAdjoint(
+  const PointList& points, const int* face, std::size_t n, const Vec3& centreBar, const Vec3& areaBar, Vec3* cornerBar);
 
 /// Given dF/d(centre) and dF/d(volume) of a cell with these faces' geometries, adds dF/d(face
 /// centre) and dF/d(face area) of each face to centreBar[f] and areaBar[f].
