@@ -622,7 +622,7 @@ std::vector<std::vector<double>> DeformationSession::objectiveSensitivities(
   const std::vector<PointDisplacements> products = multiplyTransposedEach(at.rows, g.values);
   const std::vector<PointDisplacements> pulled = Exact.active() ? Exact.pull(at.blend, g.values) : std::vector<PointDisplacements>();
   std::vector<std::vector<double>> out;
-  for (std::size_t f = 0; f < g.values.size(); ++f)
+  for (std::size_t f = 0; f < g.values.functions(); ++f)
   {
     const Displacements H = products[f];
     const PointDisplacements h = Exact.active() ? pulled[f] : PointDisplacements();

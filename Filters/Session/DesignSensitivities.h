@@ -63,15 +63,8 @@ private:
   std::vector<std::vector<double>> Values; // per target region: n_r x 3 m_r, gathered
 };
 
-/// The gradients of several functions, each at some of this process's points: function f's
-/// entries are starts[f] .. starts[f + 1] - 1, each a point (rows) and its 3 values (values).
-struct SparseGradients
-{
-  std::vector<long> rows;
-  std::vector<double> values;
-  std::vector<long> starts{ 0 };
-  std::size_t functions() const { return starts.size() - 1; }
-};
+/// The gradients of several functions at some of this process's points (the rows).
+using mlsdeform::SparseGradients;
 
 /// One function's gradient g (3 values per point, this process's points in order) as its
 /// points with a non-zero value.
@@ -90,12 +83,13 @@ PositionOrder positionOrder(const mlsdeform::PointList& points);
 
 /// The points carrying the functions' gradients, each position once with the sum of its copies
 /// (per function), gathered from all processes in canonical order (see above): the positions,
-/// per function its values there (zero where it has none), and per position the first of this
-/// process's points there, or -1 (another process's). order: positionOrder(points).
+/// per function its non-zero sums there (values: rows are indices into positions, ascending),
+/// and per position the first of this process's points there, or -1 (another process's).
+/// order: positionOrder(points).
 struct GatheredGradients
 {
   mlsdeform::PointList positions;
-  std::vector<mlsdeform::PointDisplacements> values;
+  SparseGradients values;
   std::vector<long> among;
 };
 GatheredGradients gatherGradients(

@@ -70,7 +70,7 @@ GatheredRows ExactTargets::rowsAt(const PointList& positions, std::vector<long> 
   return gatherRows(*Blend, positions, { &PointRows, std::move(among) }, nullptr, {}, storageOrder);
 }
 
-std::vector<PointDisplacements> ExactTargets::pull(const GatheredRows& rows, const std::vector<PointDisplacements>& g) const
+std::vector<PointDisplacements> ExactTargets::pull(const GatheredRows& rows, const mlsdeform::SparseGradients& g) const
 {
   return multiplyTransposedEach(rows, g);
 }

@@ -54,7 +54,7 @@ public:
   mlsdeform::GatheredRows rowsAt(const mlsdeform::PointList& positions, std::vector<long> among, bool storageOrder = true) const;
 
   /// h_f = B^T g_f per site for each function's g_f given at the positions of rows (rowsAt).
-  std::vector<mlsdeform::PointDisplacements> pull(const mlsdeform::GatheredRows& rows, const std::vector<mlsdeform::PointDisplacements>& g) const;
+  std::vector<mlsdeform::PointDisplacements> pull(const mlsdeform::GatheredRows& rows, const mlsdeform::SparseGradients& g) const;
   /// e (one row per stacked target) of h.
   mlsdeform::PointDisplacements targetShare(const mlsdeform::PointDisplacements& h) const;
 

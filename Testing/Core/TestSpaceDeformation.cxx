@@ -290,9 +290,9 @@ TEST(KnownRowsAreViewedAsTheyWouldBeEvaluated)
 
 TEST(TransposedProductsOfSeveralFunctionsAreEachAlone)
 {
-  // Phi^T g_f for several functions at once (DeformationSession's reverse mode): the dense ones
-  // in one pass, the sparse ones alone over their rows; each the bits of its own product, with
-  // the rows in storage order or not
+  // Phi^T g_f for several functions at once given by their non-zero rows (DeformationSession's
+  // reverse mode): the dense ones in one pass, the sparse ones alone over their rows; each the
+  // bits of its own dense product, with the rows in storage order or not
   const Scene scene;
   const MLSBasis basis(scene.samples.centers, scene.samples.supportRadius);
   const PointList x = testgeometry::randomPoints(20000, Vec3(0, 0, 0), Vec3(3, 1, 1), 5);
@@ -307,8 +307,23 @@ TEST(TransposedProductsOfSeveralFunctionsAreEachAlone)
   }
   g[1].bottomRows(rows.rows() / 2).setZero();      // dense enough: in the pass with the others
   g[3].bottomRows(rows.rows() - 100).setZero();    // on a few rows: alone
+  g[3].row(40).setZero();
   g[4].setZero();                                  // no row
-  const std::vector<PointDisplacements> each = multiplyTransposedEach(rows, g);
+  SparseGradients nonZero; // each function's non-zero rows
+  for (const PointDisplacements& gf : g)
+  {
+    for (long i = 0; i < gf.rows(); ++i)
+    {
+      if (!(gf.row(i).array() == 0).all())
+      {
+        nonZero.rows.push_back(i);
+        nonZero.values.insert(nonZero.values.end(), { gf(i, 0), gf(i, 1), gf(i, 2) });
+      }
+    }
+    nonZero.starts.push_back(static_cast<long>(nonZero.rows.size()));
+  }
+  CHECK(nonZero.starts[4] - nonZero.starts[3] == 99);
+  const std::vector<PointDisplacements> each = multiplyTransposedEach(rows, nonZero);
   CHECK(each.size() == g.size());
   for (std::size_t f = 0; f < g.size(); ++f)
   {

@@ -342,21 +342,16 @@ Displacements multiplyRows(const SparseRowMatrix& A, const Eigen::MatrixBase<Den
   return out;
 }
 
-/// A(begin:end, :)^T X (k x X's columns, row-major) for a dense X with one row per row of the
-/// range (b_r = Phi_r^T dbar_r; three columns, or several functions' side by side), without a
-/// transposed copy of A: partial sums over fixed blocks of rows, added in block order, so that the
-/// result does not depend on the number of threads. The rows are summed in their own order, not
-/// in GatheredRows' storage order: that depends on where the rows lie in memory, which differs
-/// between processes and runs.
-///
-/// skipZeroRows: X's zero rows are passed over without reading A's rows (a constraint's gradient
-/// on a few of many rows); the sums are the same.
-template <typename Rows, typename Dense>
-Eigen::Matrix<double, Eigen::Dynamic, Dense::ColsAtCompileTime, Eigen::RowMajor> multiplyTransposed(
-  const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X, bool skipZeroRows = false)
+/// sum_i A_i^T x_i (k x columns, row-major) over the rows i of A(begin:end, :) that
+/// visit(lo, hi, add) hands to add(i, x_i, next) in ascending order, for each block [lo, hi) of
+/// rows (x_i a row of values; next: the row add gets next, or -1, whose entries are fetched
+/// meanwhile): partial sums over fixed blocks of rows, added in block order, so that the result
+/// does not depend on the number of threads.
+template <int Columns, typename Rows, typename Visit>
+Eigen::Matrix<double, Eigen::Dynamic, Columns, Eigen::RowMajor> blockTransposedSum(
+  const Rows& A, long begin, long end, long columns, Visit visit)
 {
-  using Product = Eigen::Matrix<double, Eigen::Dynamic, Dense::ColsAtCompileTime, Eigen::RowMajor>;
-  static_assert(Dense::ColsAtCompileTime != 1, "X has several columns");
+  using Product = Eigen::Matrix<double, Eigen::Dynamic, Columns, Eigen::RowMajor>;
   constexpr long Block = 8192;
   const long blocks = (end - begin + Block - 1) / Block;
   std::vector<Product> partial(static_cast<std::size_t>(blocks)); // a row's columns side by side
@@ -364,25 +359,20 @@ Eigen::Matrix<double, Eigen::Dynamic, Dense::ColsAtCompileTime, Eigen::RowMajor>
   for (long b = 0; b < blocks; ++b)
   {
     Product& sum = partial[b];
-    sum.setZero(A.cols(), X.cols());
-    for (long i = begin + b * Block; i < std::min(end, begin + (b + 1) * Block); ++i)
-    {
-      if (skipZeroRows && (X.row(i - begin).array() == 0).all())
-      {
-        continue;
-      }
+    sum.setZero(A.cols(), columns);
+    visit(begin + b * Block, std::min(end, begin + (b + 1) * Block), [&](long i, const auto& x, long next) {
       const auto& row = rowOf(A, i);
-      if (i + 1 < end)
+      if (next >= 0)
       {
-        prefetch(rowOf(A, i + 1));
+        prefetch(rowOf(A, next));
       }
       for (long a = 0; a < row.size; ++a)
       {
-        sum.row(row.column(a)) += static_cast<double>(row.value[a]) * X.row(i - begin);
+        sum.row(row.column(a)) += static_cast<double>(row.value[a]) * x;
       }
-    }
+    });
   }
-  Product product = Product::Zero(A.cols(), X.cols());
+  Product product = Product::Zero(A.cols(), columns);
   for (const Product& sum : partial)
   {
     product += sum;
@@ -390,34 +380,65 @@ Eigen::Matrix<double, Eigen::Dynamic, Dense::ColsAtCompileTime, Eigen::RowMajor>
   return product;
 }
 
-/// A^T X_f for several functions' X_f (each one row per row of A, three columns): those that are
-/// not zero on at least a quarter of the rows in one product, their columns side by side (an
-/// entry of A is read once for all of them: the hull case's area, volume and fluid volume), each
-/// other alone over its non-zero rows (a thickness on a few rows). Each sum is the one
-/// multiplyTransposed gives for X_f alone.
-template <typename Rows>
-std::vector<PointDisplacements> multiplyTransposedEach(const Rows& A, const std::vector<PointDisplacements>& X)
+/// A(begin:end, :)^T X (k x X's columns, row-major) for a dense X with one row per row of the
+/// range (b_r = Phi_r^T dbar_r; three columns, or several functions' side by side), without a
+/// transposed copy of A (blockTransposedSum). The rows are summed in their own order, not in
+/// GatheredRows' storage order: that depends on where the rows lie in memory, which differs
+/// between processes and runs.
+///
+/// skipZeroRows: X's zero rows are passed over without reading A's rows; the sums are the same.
+template <typename Rows, typename Dense>
+Eigen::Matrix<double, Eigen::Dynamic, Dense::ColsAtCompileTime, Eigen::RowMajor> multiplyTransposed(
+  const Rows& A, long begin, long end, const Eigen::MatrixBase<Dense>& X, bool skipZeroRows = false)
 {
-  std::vector<PointDisplacements> out(X.size());
+  static_assert(Dense::ColsAtCompileTime != 1, "X has several columns");
+  return blockTransposedSum<Dense::ColsAtCompileTime>(A, begin, end, X.cols(), [&](long lo, long hi, const auto& add) {
+    for (long i = lo; i < hi; ++i)
+    {
+      if (!skipZeroRows || !(X.row(i - begin).array() == 0).all())
+      {
+        add(i, X.row(i - begin), i + 1 < end ? i + 1 : -1);
+      }
+    }
+  });
+}
+
+/// A^T X_f for several functions' X_f given by their non-zero rows (rows of A, ascending per
+/// function; SparseGradients): those on at least a quarter of A's rows in one product, their
+/// columns side by side (an entry of A is read once for all of them: the hull case's area, volume
+/// and fluid volume), each other over its own rows alone (a thickness on a few rows). Each sum
+/// is the one multiplyTransposed gives for X_f (zero elsewhere) alone.
+template <typename Rows>
+std::vector<PointDisplacements> multiplyTransposedEach(const Rows& A, const SparseGradients& X)
+{
+  std::vector<PointDisplacements> out(X.functions());
   std::vector<std::size_t> together;
-  for (std::size_t f = 0; f < X.size(); ++f)
+  for (std::size_t f = 0; f < X.functions(); ++f)
   {
-    const long nonZero = (X[f].array() != 0).rowwise().any().count();
-    if (4 * nonZero >= A.rows() && A.rows() > 0)
+    const long first = X.starts[f], last = X.starts[f + 1];
+    if (4 * (last - first) >= A.rows() && A.rows() > 0)
     {
       together.push_back(f);
+      continue;
     }
-    else
-    {
-      out[f] = multiplyTransposed(A, 0, A.rows(), X[f], true);
-    }
+    out[f] = blockTransposedSum<3>(A, 0, A.rows(), 3, [&](long lo, long hi, const auto& add) {
+      const auto from = std::lower_bound(X.rows.begin() + first, X.rows.begin() + last, lo) - X.rows.begin();
+      for (long e = from; e < last && X.rows[e] < hi; ++e)
+      {
+        add(X.rows[e], Eigen::Map<const Eigen::RowVector3d>(X.values.data() + 3 * e), e + 1 < last ? X.rows[e + 1] : -1);
+      }
+    });
   }
   if (!together.empty())
   {
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> side(A.rows(), 3 * together.size());
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> side =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(A.rows(), 3 * together.size());
     for (std::size_t t = 0; t < together.size(); ++t)
     {
-      side.middleCols(3 * t, 3) = X[together[t]];
+      for (long e = X.starts[together[t]]; e < X.starts[together[t] + 1]; ++e)
+      {
+        side.row(X.rows[e]).segment<3>(3 * t) = Eigen::Map<const Eigen::RowVector3d>(X.values.data() + 3 * e);
+      }
     }
     const auto product = multiplyTransposed(A, 0, A.rows(), side, true);
     for (std::size_t t = 0; t < together.size(); ++t)

@@ -20,6 +20,17 @@ using Displacements = Eigen::Matrix<double, Eigen::Dynamic, 3>; // one row per p
 using PointDisplacements = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using PointDisplacementsView = Eigen::Map<const PointDisplacements>;
 
+/// The gradients of several functions, each at some rows (a process's points, or gathered
+/// positions): function f's entries are starts[f] .. starts[f + 1] - 1, each a row (rows) and its
+/// 3 values (values).
+struct SparseGradients
+{
+  std::vector<long> rows;
+  std::vector<double> values;
+  std::vector<long> starts{ 0 };
+  std::size_t functions() const { return starts.size() - 1; }
+};
+
 /// The one family of the plugin's exceptions: every VTK algorithm catches it at its boundary and
 /// reports the message (and catches any other std::exception the same way).
 struct Error : std::runtime_error

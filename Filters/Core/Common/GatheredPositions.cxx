@@ -39,7 +39,11 @@ GatheredPositions gatherPositions(const PointList& local, const std::vector<int>
   for (auto& entry : sets)
   {
     std::vector<long>& list = entry.second;
-    std::stable_sort(list.begin(), list.end(), [&](long a, long b) { return lexicographicLess(position(a), position(b)); });
+    const auto less = [&](long a, long b) { return lexicographicLess(position(a), position(b)); };
+    if (!std::is_sorted(list.begin(), list.end(), less)) // one process's sorted positions are
+    {
+      std::stable_sort(list.begin(), list.end(), less);
+    }
     list.erase(std::unique(list.begin(), list.end(), [&](long a, long b) { return position(a) == position(b); }), list.end());
     lists.push_back(std::move(list));
   }
