@@ -4,7 +4,6 @@
 #include "Adapters/CasePath.h"
 #include "Adapters/FailurePolicy.h"
 #include "Adapters/MeshVolume.h"
-#include "Quality/PolygonSurface.h"
 #include "Adapters/PointSets.h"
 #include "Adapters/ProcessCollective.h"
 #include "Adapters/Stamp.h"
@@ -24,6 +23,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include "Common/BoundingBox.h"
+#include "Quality/PolygonSurface.h"
 #include "Vocabulary/FieldNames.h"
 #include "Vocabulary/RegionRoles.h"
 #include <vtkErrorCode.h>
@@ -634,6 +634,11 @@ bool vtkSubspaceDeformFilter::ComputeSurfaceMeasure(const std::string& problem, 
         recent.insert(recent.begin(), { polygons, polygons->GetMTime(), mlsdeform::PolygonSurface(starts, corners) });
         recent.erase(recent.begin() + static_cast<long>(std::min<std::size_t>(recent.size(), 4)), recent.end());
         hit = recent.begin();
+      }
+      if (hit->surface.pointsNeeded() > deformed.size()) // found on another output
+      {
+        throw InvalidInputException(std::string(name) + ": the polygons name the point " + std::to_string(hit->surface.pointsNeeded() - 1) +
+                                    ", not one of the output's " + std::to_string(deformed.size()) + " points");
       }
     });
     std::rotate(recent.begin(), hit, hit + 1);
