@@ -231,7 +231,14 @@ HeldPositions holdControlPoints(const std::vector<ControlPoint>& controls, const
   {
     if (controls[c].direction != Vec3::Zero())
     {
-      held.directions.push_back(controls[c].direction);
+      const Vec3& d = controls[c].direction;
+      if (controls[c].lineAxis != Vec3::Zero() && std::abs(d.dot(unit(controls[c].lineAxis))) > 1e-9 * d.norm())
+      {
+        throw InvalidInputException("the direction " + text(d) + " of '" + controls[c].variable + "' has a part along its line axis " +
+          text(controls[c].lineAxis) + ": a control line moves across its axis only (the depth of a 2D case, a plate's thickness " +
+          "stay as they are); give a direction normal to the axis");
+      }
+      held.directions.push_back(d);
       continue;
     }
     const Vec3 n = across(normals[query++], unit(controls[c].lineAxis));

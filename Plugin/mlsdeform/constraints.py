@@ -391,7 +391,8 @@ class DesignConstraints:
         """Constraint dicts for scipy.optimize.minimize (SLSQP, trust-constr's old form) over the
         vector x of the design variables in getVarNames() order: 'eq' for lower == upper, else
         'ineq' (value - lower >= 0, upper - value >= 0), each with its 'jac'. fun(x) and jac(x)
-        set the variables to x (setDesignVars) when they differ."""
+        set the variables to x (setDesignVars) when they differ, clipped to their bounds
+        (trust-constr tries points beyond them: clip x in the objective too, np.clip)."""
         out = []
         for name, c in self._constraints.items():
             sides = [(1.0, c.lower)] if c.lower is not None and c.lower == c.upper else \
@@ -417,10 +418,17 @@ class DesignConstraints:
         return value, (vtk_to_numpy(rows).astype(np.int64), vtk_to_numpy(g).reshape(-1, 3).astype(float))
 
     def _set(self, x):
+        """The variables set to x, clipped to their bounds: an optimizer's trial point may lie
+        beyond them (trust-constr's), where the functions continue as at the bound."""
         names = self.dvs.getVarNames()
         x = np.asarray(x, dtype=float).reshape(-1)
         if len(x) != len(names):
             raise ValueError(f"x has {len(x)} entries; the design has {len(names)} variables")
+        if not np.all(np.isfinite(x)):
+            raise ValueError("x has values that are not finite")
+        bounds = self.dvs.getBounds()
+        x = [min(max(v, -math.inf if bounds[n][0] is None else bounds[n][0]), math.inf if bounds[n][1] is None else bounds[n][1])
+             for n, v in zip(names, x)]
         current = self.dvs.getValues()
         changed = {n: v for n, v in zip(names, x) if current[n] != v}
         if changed:

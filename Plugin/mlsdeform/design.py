@@ -222,13 +222,16 @@ class DesignVariables:
     def setDesignVars(self, values):
         """Sets the values of the variables named in ``values`` (a dict; the others keep theirs).
         Only the handles' motions change: the deformation's set-up stays cached. Raises
-        ValueError and changes nothing for an unknown name or a value outside its bounds."""
+        ValueError and changes nothing for an unknown name, a value that is not finite or one
+        outside its bounds."""
         checked = {}
         for name, value in dict(values).items():
             if name not in self._variables:
                 raise ValueError(f"unknown design variable {name!r} (known: {', '.join(self._variables) or 'none'})")
             value = float(np.asarray(value).reshape(-1)[0]) if np.ndim(value) else float(value)
             v = self._variables[name]
+            if not math.isfinite(value):
+                raise ValueError(f"design variable {name!r}: the value {value} is not finite")
             if not (v["lower"] <= value <= v["upper"]):
                 raise ValueError(f"design variable {name!r}: {value} is outside its bounds [{v['lower']}, {v['upper']}]")
             checked[name] = value
@@ -363,6 +366,8 @@ class DesignVariables:
         lower = -_UNBOUNDED if lower is None else float(lower)
         upper = _UNBOUNDED if upper is None else float(upper)
         value = float(value)
+        if not math.isfinite(value):
+            raise ValueError(f"design variable {name!r}: the value {value} is not finite")
         if not (math.isfinite(lower) and math.isfinite(upper)) or lower > upper:
             raise ValueError(f"design variable {name!r}: lower ({lower}) must not exceed upper ({upper}), both finite")
         if not (lower <= value <= upper):

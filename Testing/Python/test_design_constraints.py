@@ -198,6 +198,11 @@ if mode == 'serial':
     upper = [c for c in scipy_cons if np.allclose(c['fun'](x), 10.0 - funcs['area'])]
     check(len(upper) == 1 and np.allclose(upper[0]['jac'](x), -jacobian['area']), 'the area\'s upper bound: 10 - value, -gradient')
 
+    # two bumps whose directions are far from parallel (for the leading-edge form's refusal below)
+    held = dvs.getControlPoints()
+    bump_names = [n for n in names if n.startswith('bump_')]
+    skew_pair = next((a, b) for a in bump_names for b in bump_names
+                     if abs(np.dot(held[a][1][0], held[b][1][0])) < 0.5 * np.linalg.norm(held[a][1][0]) * np.linalg.norm(held[b][1][0]))
     # bad input: a ValueError and no constraint added
     before = cons.getConstraintNames()
     raises(lambda: cons.addThicknessConstraints1D('out', [[0.5, 0.5, 0], [0.6, 0.5, 0]], 2, [0, 0, 1], surface='sphere'),
@@ -248,6 +253,14 @@ if mode == 'serial':
         if max(z) - min(z) > 1e-9:   # not on the front or back
             polys.InsertNextCell(ids)
     sides.SetPolys(polys)
+    floor = vtkPolyData()   # the faces on the Fixed floor y = 0: points no variable moves
+    floor.SetPoints(whole.GetPoints())
+    polys = vtkCellArray()
+    for c in range(whole.GetNumberOfCells()):
+        ids = whole.GetCell(c).GetPointIds()
+        if all(abs(whole.GetPoint(ids.GetId(k))[1]) < 1e-9 for k in range(ids.GetNumberOfIds())):
+            polys.InsertNextCell(ids)
+    floor.SetPolys(polys)
     from vtkmodules.vtkCommonCore import vtkStringArray
     verdict = vtkStringArray()
     verdict.SetName('QualityVerdict')
@@ -256,7 +269,8 @@ if mode == 'serial':
     slab = vtkMultiBlockDataSet()
     slab.SetBlock(0, tets.GetOutput())
     slab.SetBlock(1, sides)
-    for block, name in enumerate(('slab', 'sides')):
+    slab.SetBlock(2, floor)
+    for block, name in enumerate(('slab', 'sides', 'floor')):
         slab.GetMetaData(block).Set(vtkMultiBlockDataSet.NAME(), name)
     writer = vtkXMLMultiBlockDataWriter()
     writer.SetFileName(os.path.join(work, 'slab.vtm'))
@@ -293,6 +307,48 @@ if mode == 'serial':
     section = np.trapz(ys, xs)   # the top is a polyline over the floor y = 0: the section's area
     check(abs(f['v2'][0] - depth * section) < 1e-15, 'deformed: the 2D volume %.15f = the section\'s area x depth %.15f'
           % (f['v2'][0], depth * section))
+    check_single_gradient(sdvs, scons, 'v2', 'the 2D form of the enclosed volume')
+    raises(lambda: scons.addSurfaceAreaConstraint('held', surface='floor'), 'no design variable influences',
+           'a constraint on points no variable moves (the Fixed floor)')
+    # the leading/trailing-edge form on two control lines of one direction (+y): p_0 + p_3 = 0, an
+    # equality (scipy 'eq'); directions that are not parallel cannot hold a midpoint
+    scons.addLeTeConstraints('edge', 'top_0', 'top_3')
+    f, sens = {}, {}
+    scons.evalFunctions(f)
+    scons.evalFunctionsSens(sens)
+    snames = sdvs.getVarNames()
+    values = sdvs.getValues()
+    check(np.allclose(f['edge'], values['top_0'] + values['top_3'], atol=1e-15) and
+          [sens['edge'][n][0] for n in snames] == [1.0 if n in ('top_0', 'top_3') else 0.0 for n in snames],
+          'addLeTeConstraints: p_0 + p_3 = %s, its row %s' % (f['edge'], [sens['edge'][n][0] for n in snames]))
+    equalities = [c for c in scons.getScipyConstraints() if c['type'] == 'eq']
+    check(len(equalities) == 1 and np.allclose(equalities[0]['fun'](np.array([values[n] for n in snames])), f['edge']),
+          'and the scipy list holds it as the one equality')
+    raises(lambda: cons.addLeTeConstraints('tilted', *skew_pair), 'not parallel', 'leading-edge variables of directions not parallel')
+    # trust-constr tries points beyond the variables' bounds: the scipy list evaluates there as at
+    # the bound (clipped), and the run ends within the bounds and the constraint
+    from scipy.optimize import Bounds, minimize
+    tcons = mlsdeform.DesignConstraints(sdvs)
+    tcons.addTriangulatedVolumeConstraint('area2d', surface='sides', axis=[0, 0, 1], lower=0.99, upper=1.01)
+    sdvs.setDesignVars(dict.fromkeys(snames, 0.0))
+    beyond = np.array([0.08] + [0.0] * (len(snames) - 1))   # top_0 beyond its upper bound 0.05
+    at_beyond = tcons.getScipyConstraints()[0]['fun'](beyond)
+    sdvs.setDesignVars(dict(zip(snames, np.clip(beyond, -0.05, 0.05))))
+    f = {}
+    tcons.evalFunctions(f)
+    check(np.allclose(at_beyond, f['area2d'] - 0.99) and sdvs.getValues()['top_0'] == 0.05,
+          'the scipy list evaluates beyond a bound (top_0 = 0.08) as at the bound: %s' % at_beyond)
+    target = np.array([0.04, 0.04, -0.04, 0.04])
+    result = minimize(lambda x: float((np.clip(x, -0.05, 0.05) - target) @ (np.clip(x, -0.05, 0.05) - target)), np.zeros(len(snames)),
+                      jac=lambda x: 2 * (np.clip(x, -0.05, 0.05) - target),
+                      method='trust-constr', bounds=Bounds([-0.05] * len(snames), [0.05] * len(snames)),
+                      constraints=tcons.getScipyConstraints(), options={'maxiter': 60})
+    tcons._set(result.x)
+    f = {}
+    tcons.evalFunctions(f)
+    check(np.all(np.abs(result.x) <= 0.05 + 1e-8) and 0.99 - 1e-6 <= f['area2d'][0] <= 1.01 + 1e-6,
+          'trust-constr runs through: x %s within the bounds, the area %.5f within [0.99, 1.01] (%s)'
+          % (np.round(result.x, 4), f['area2d'][0], result.message))
     # the FEM verdict's least scaled Jacobian as a smooth lower bound, and its gradient
     scons.addMeshQualityConstraint('sj', 'scaledJacobian', lower=0.2, rho=30.0)
     raises(lambda: scons.addMeshQualityConstraint('no', 'skewness'), "no volume mesh has checkMesh's face measures",

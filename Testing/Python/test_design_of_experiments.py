@@ -287,6 +287,16 @@ check(run.returncode == 0 and '3 variants, 3 pass the thresholds' in run.stdout 
       all(len({r['bump_%d' % i] for r in local}) == 3 for i in range(4)),
       'a design of local variables (bump_0 .. bump_3) gives 3 variants, each variable at 3 levels (exit %d: %s)'
       % (run.returncode, run.stdout[-200:] + run.stderr[-300:]))
+# ... and from Python: designOfExperiments over local variables of a deformation of their own
+local_deformed = openfoam_variant.morph(reader, handle, (0, 0, 0), fixed, slip, NumberOfSamples=500)
+local_dvs = mlsdeform.DesignVariables(local_deformed)
+bumps = local_dvs.addLocalDV('bump', local_deformed.Regions[0], count=4, lower=-0.002, upper=0.002)
+local_report = mlsdeform.designOfExperiments(local_dvs, os.path.join(work, 'lhs-local'), samples=3, seed=2, verbose=False)
+strata = np.array([[np.floor((r[b] + 0.002) / 0.004 * 3) for b in bumps] for r in local_report])
+check(len(local_report) == 3 and all(r['ok'] and os.path.exists(r['path']) for r in local_report) and
+      all(sorted(strata[:, j]) == [0, 1, 2] for j in range(4)) and local_dvs.getValues() == dict.fromkeys(bumps, 0.0),
+      'designOfExperiments over 4 local variables: 3 variants written, each variable once in each third of its range, '
+      'the values restored')
 with open(design, 'w') as f:
     json.dump({'case': 'case/case.foam', 'handles': {'a': handle, 'b': ['top']}, 'variables':
                [{'name': 'bump', 'local': {'count': 4}, 'lower': -0.002, 'upper': 0.002}]}, f)

@@ -31,10 +31,10 @@ def scene(source):
     return sphere_in_box.local_scene(globals(), source)
 
 
-def slab_scene(path, quadratic=False):
+def slab_scene(path, quadratic=False, direction='normal'):
     """A one-cell-thick slab [0, 1] x [0, 0.5] x [0, 0.1] of tetrahedra (quadratic ones: a deck's
     C3D10) deformed as a 2D case (ExtrusionAxis Z): its top face (y = 0.5) the Handle of 4 control
-    lines along z, its floor Fixed, its front and back slipping."""
+    lines along z (moving along direction), its floor Fixed, its front and back slipping."""
     from vtkmodules.vtkCommonDataModel import vtkImageData
     from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
     from vtkmodules.vtkFiltersGeometry import vtkLinearToQuadraticCellsFilter
@@ -60,7 +60,7 @@ def slab_scene(path, quadratic=False):
                box('Slip', [-0.01, 1.01, -0.01, 0.51, 0.09, 0.11])]
     deform = MLSDeform(Input=source, Regions=regions, NumberOfSamples=60, ExtrusionAxis='Z')  # noqa: F821  (a 2D case)
     dvs = mlsdeform.DesignVariables(deform)
-    lines = dvs.addLocalDV('top', top, count=4, axis=[0, 0, 1], lower=-0.05, upper=0.05)
+    lines = dvs.addLocalDV('top', top, count=4, axis=[0, 0, 1], direction=direction, lower=-0.05, upper=0.05)
     return deform, dvs, lines, top
 
 
@@ -143,6 +143,8 @@ if mode == 'serial':
     raises(lambda: dvs.addLocalDV('z', body, count=2, direction='up'), "'normal' or a 3-vector", 'an unknown direction')
     raises(lambda: dvs.addLocalDV('z', body, points=[[np.nan, 0, 0]]), 'not finite', 'NaN control points')
     raises(lambda: dvs.addLocalDV('z', body, count=2, lower=np.nan, upper=1), 'both finite', 'NaN bounds')
+    raises(lambda: dvs.addLocalDV('z', body, count=2, value=np.nan), 'not finite', 'a NaN start value')
+    raises(lambda: dvs.setDesignVars({names[0]: np.nan}), 'not finite', 'a NaN value')
     raises(lambda: dvs.addLocalDV('z', body, count=2.5), 'whole number', 'a count that is not a whole number')
     raises(lambda: dvs.addLocalDV('z', body), 'give count= or points=', 'neither count nor points')
     raises(lambda: dvs.addLocalDV('z', body, points=[x0, x0 + 1e-9]), 'both hold', 'two control points on one point')
@@ -181,6 +183,10 @@ if mode == 'serial':
     check(np.abs(d[front] - d[back][pairs]).max() <= 1e-9, 'the slab stays extruded: front and back move alike (largest difference %.2g)'
           % np.abs(d[front] - d[back][pairs]).max())
     check(np.abs(S[:, 2] - srest[:, 2]).max() <= 1e-12, 'and stays in its planes (the Slip faces; round-off apart)')
+    # a direction with a part along the line axis would move the lines along themselves (out of the
+    # 2D case's planes, which the extruded deformation leaves out): refused, not dropped
+    raises(lambda: slab_scene(os.path.join(work, 'slab-tilted.vtu'), direction=[0, 1, 1]), 'part along its line axis',
+           'a direction along the control lines\' axis')
     # quadratic elements (a CalculiX deck's): the normals from their boundary faces, which VTK's
     # geometry filter gives float points; the faces must still meet the grid's own (double) points
     qslab, qdvs, qlines, qtop = slab_scene(os.path.join(work, 'slab-quadratic.vtu'), quadratic=True)
