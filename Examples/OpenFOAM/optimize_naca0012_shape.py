@@ -6,8 +6,9 @@ gradient chained through the exact dX/dp (DesignVariables.totalSensitivity), und
 of mlsdeform.DesignConstraints with their exact gradients:
   - the thickness at the 10 stations at least the baseline's (addThicknessConstraints1D),
   - the enclosed volume (the section's area) at least the baseline's (addTriangulatedVolumeConstraint),
-  - the leading and trailing edges held: the first and the last stations' upper and lower
-    variables move the surface alike (addLeTeConstraints: their midpoint stays),
+  - the leading and trailing edges held: at the first and the last station the upper and lower
+    control points move by the same amount opposite ways (addLeTeConstraints: their midpoint
+    stays, p_upper + p_lower = 0 with both directions +y),
   - the mesh quality: the KS-aggregated non-orthogonality at most 65 degrees (addMeshQualityConstraint;
     checkMesh's limit is 70).
 Every variant's mesh gets checkMesh's verdict; a variant that fails it is not run.
@@ -15,9 +16,11 @@ Every variant's mesh gets checkMesh's verdict; a variant that fails it is not ru
 Usage: pvpython optimize_naca0012_shape.py PLUGIN WORK [--iterations 15] [--primal 3000] [--adjoint 3000] [--cold]
 
 Prints one line per adjoint run (J, the constraints, the verdict) and the answer: which
-constraints end active (bounds on the variables too) and the KKT residual (the projected gradient
-of the Lagrangian), and writes WORK/history.csv and WORK/naca0012_shape.png (the baseline and the
-optimized sections, the surface sensitivity dJ/dn along them, and J's history). A run starts from
+constraints end active (bounds on the variables too), the KKT residual (the projected gradient
+of the Lagrangian) and how far the nose and the tail themselves moved, and writes
+WORK/history.csv (per run: J and every constraint's value) and WORK/naca0012_shape.png (the
+baseline and the optimized sections, the surface sensitivity dJ/dy along them, J's history and
+the constraints' history against their bounds). A run starts from
 the previous run's fields unless --cold (then J after a fixed number of iterations depends on the
 shape alone, as the suite's reduced run needs).
 """
@@ -81,19 +84,22 @@ def run(p):
         last['case'] = result['case']
         history.append(dict(run=len(history) + 1, J=result['J'], seconds=round(time.perf_counter() - began),
                             thickness_min=float(np.min(funcs['thickness'])), volume=float(funcs['volume'][0]),
+                            leading_edge=float(funcs['leadingEdge'][0]), trailing_edge=float(funcs['trailingEdge'][0]),
                             quality=float(funcs['quality'][0]), max_non_orthogonality=result['quality']['MaxNonOrthogonality'],
                             checkMesh=naca0012.checkmesh(result['case'])[0], **dict(zip(names, map(float, p)))))
         h = history[-1]
-        print('run %2d: J %.8f, thickness/baseline >= %.4f, volume/baseline %.4f, non-orthogonality %.2f (KS %.2f), '
-              'checkMesh %s, %.0f s' % (h['run'], h['J'], h['thickness_min'], h['volume'], h['max_non_orthogonality'],
-                                        h['quality'], 'OK' if h['checkMesh'] else 'FAILED', h['seconds']), flush=True)
+        print('run %2d: J %.8f, thickness/baseline >= %.4f, volume/baseline %.4f, LE/TE relations %.1e %.1e, '
+              'non-orthogonality %.2f (KS %.2f), checkMesh %s, %.0f s'
+              % (h['run'], h['J'], h['thickness_min'], h['volume'], h['leading_edge'], h['trailing_edge'],
+                 h['max_non_orthogonality'], h['quality'], 'OK' if h['checkMesh'] else 'FAILED', h['seconds']), flush=True)
         cache[key] = (result['J'], np.array([result['gradient'][n] for n in names]), result['case'])
     return cache[key]
 
 
 def picture(x, case, J0):
     """WORK/naca0012_shape.png: the baseline and the design x, coloured by the case's dJ/dy, the
-    surfaces' motion along the chord with the control points', and J's history."""
+    surfaces' motion along the chord with the control points', J's history and the constraints'
+    (each over its bound: at most 1 holds it)."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -105,7 +111,7 @@ def picture(x, case, J0):
     X0 = dvs.update()
     section = (np.linalg.norm(dJdX, axis=1) > 0) & (X0[:, 2] < 0.5)   # the wall's points at z = 0
     order = np.argsort(np.arctan2(X0[section, 1], X0[section, 0] - 0.5))
-    figure, (shape, motion, runs) = plt.subplots(1, 3, figsize=(14, 3.8), gridspec_kw={'width_ratios': [1.6, 1.6, 1]})
+    figure, (shape, motion, runs, bounds_held) = plt.subplots(1, 4, figsize=(17, 3.8), gridspec_kw={'width_ratios': [1.6, 1.6, 1, 1]})
     shape.plot(X0[section, 0][order], X0[section, 1][order], '--', color='gray', label='NACA 0012 (baseline)')
     colours = shape.scatter(X[section, 0], X[section, 1], c=dJdX[section, 1], s=3, cmap='coolwarm', label='optimized')
     figure.colorbar(colours, ax=shape, label='dJ/dy (the last run)')
@@ -128,6 +134,15 @@ def picture(x, case, J0):
     runs.set_xlabel('adjoint run')
     runs.set_ylabel('J / J baseline')
     runs.set_title('drag history (SLSQP)', fontsize=10)
+    number = [h['run'] for h in history]
+    for key, label in (('thickness_min', 'least thickness: 1 / (t / t0)'), ('volume', 'volume: 1 / (V / V0)'),
+                       ('quality', 'KS non-orthogonality / %g' % MAX_NON_ORTHOGONALITY)):
+        ratio = [(h[key] / MAX_NON_ORTHOGONALITY) if key == 'quality' else 1 / h[key] for h in history]
+        bounds_held.plot(number, ratio, 'o-', markersize=3, label=label)
+    bounds_held.axhline(1, color='gray', linestyle='--', linewidth=0.8)
+    bounds_held.set_xlabel('adjoint run')
+    bounds_held.set_title('constraints / bounds (<= 1 holds)', fontsize=10)
+    bounds_held.legend(fontsize=6)
     figure.suptitle('NACA 0012, 20 local variables, thickness/volume/LE-TE/mesh-quality constraints: MLS Deform + OpenFOAM adjoint',
                     fontsize=9)
     figure.tight_layout()
@@ -180,6 +195,14 @@ print('active constraints: %s' % ('; '.join(active) or 'none'))
 print('variables at a bound: %s' % (', '.join(at_bound) or 'none'))
 print('KKT: |dJ/dp| %.3g over the free variables, |dJ/dp - sum lambda dc/dp| %.3g (multipliers %s)' % (
     np.linalg.norm(gradient[free]), np.linalg.norm(residual), ', '.join('%.3g' % m for m in multipliers)))
+X = dvs.update().copy()
+dvs.setDesignVars(dict.fromkeys(names, 0.0))
+X0 = dvs.update()
+dvs.setDesignVars(dict(zip(names, map(float, result.x))))
+wall = np.linalg.norm(mlsdeform.readFoamSensitivity(deformed, field=naca0012.FIELD, case=case), axis=1) > 0   # the wall's points
+for end, at in (('nose (x = 0)', np.argmin(np.where(wall, X0[:, 0], np.inf))), ('tail (x = 1)', np.argmax(np.where(wall, X0[:, 0], -np.inf)))):
+    print('the %s moved by (%.2g, %.2g) chords (the edge relations hold the control points\' midpoints at x/c %.3f, %.3f)'
+          % (end, *(X - X0)[at, :2], STATIONS[0], STATIONS[-1]))
 
 with open(os.path.join(work, 'history.csv'), 'w', newline='') as f:
     writer = csv.DictWriter(f, fieldnames=list(history[0]))

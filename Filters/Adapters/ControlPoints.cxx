@@ -200,6 +200,14 @@ HeldPositions holdControlPoints(const std::vector<ControlPoint>& controls, const
   {
     const Vec3 q = all[static_cast<std::size_t>(tree.nearest(controls[c].position))];
     const Vec3 axis = unit(controls[c].lineAxis);
+    // a given point far from the region is a mistake (another region's, other units), not a snap
+    const double off = (axis == Vec3::Zero() ? Vec3(q - controls[c].position) : across(q - controls[c].position, axis)).norm();
+    if (off > 0.1 * (box.upper - box.lower).norm())
+    {
+      throw InvalidInputException("the control point of '" + controls[c].variable + "' at " + text(controls[c].position) + " is " +
+        std::to_string(off) + " from the region's nearest point " + text(q) + ", more than a tenth of the region's size " +
+        std::to_string((box.upper - box.lower).norm()) + ": give points on or near the region");
+    }
     held.snapped.push_back(q);
     for (const Vec3& x : all)
     {

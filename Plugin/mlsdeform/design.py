@@ -99,9 +99,10 @@ class DesignVariables:
 
         ``count``: that many control points spread evenly over the region's points
         (farthest-point sampling, deterministic); or ``points``: an (n, 3) array of positions,
-        each snapped to the region's nearest point. ``direction``: ``'normal'`` (the surface's
-        unit normal there, pointing out of the mesh: on a CFD case's wall into the body, on a
-        solid out of it) or a 3-vector (model units per unit of p). ``axis``: a line axis: each
+        each snapped to the region's nearest point (within a tenth of the region's size).
+        ``direction``: ``'normal'`` (the surface's unit normal there, pointing out of the mesh: on
+        a CFD case's wall into the body, on a solid out of it) or a 3-vector (model units per unit
+        of p; normal to ``axis`` when that is given). ``axis``: a line axis: each
         control point then holds every region point on the line through it along the axis (the
         depth of a one-cell-thick 2D case, a plate's thickness), so an extruded shape stays
         extruded. ``mirror``: ``(origin, normal)`` of a plane: each control point gets its mirror

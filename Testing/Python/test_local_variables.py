@@ -92,6 +92,13 @@ if mode == 'serial':
     check(abs(np.linalg.norm(x0) - 0.3) < 1e-6 and np.dot(n0, x0 / 0.3) > 0.99 and abs(np.linalg.norm(n0) - 1) < 1e-12,
           'a control point lies on the sphere with the outward unit normal (n . x/|x| = %.4f); spacing %.3f'
           % (np.dot(n0, x0 / 0.3), spacing))
+    # spread evenly: farthest-point sampling takes each control point farthest from those before
+    # it, so they are at least as far apart as any sphere point is from its nearest one
+    held = np.array([controls[b][0][0] for b in bumps])
+    covering = np.linalg.norm(rest[on_sphere][:, None] - held[None], axis=2).min(axis=1).max()
+    apart = min(np.linalg.norm(held[i] - held[j]) for i in range(len(held)) for j in range(i))
+    check(apart >= covering - 1e-12 and covering < 0.3, 'the 12 control points are %.3f apart at least, every sphere point within '
+          '%.3f of one (the covering radius, below the sphere\'s 0.3)' % (apart, covering))
     p = 0.02
     dvs.setDesignVars({'bump_0': p})
     X = dvs.update()
@@ -148,6 +155,7 @@ if mode == 'serial':
     raises(lambda: dvs.addLocalDV('z', body, count=2.5), 'whole number', 'a count that is not a whole number')
     raises(lambda: dvs.addLocalDV('z', body), 'give count= or points=', 'neither count nor points')
     raises(lambda: dvs.addLocalDV('z', body, points=[x0, x0 + 1e-9]), 'both hold', 'two control points on one point')
+    raises(lambda: dvs.addLocalDV('z', body, points=[[0.3, 0, 2.5]]), 'more than a tenth of the region', 'a given point far off the region')
     raises(lambda: dvs.addLocalDV('z', fixed, count=2), 'not on a region of role Fixed', 'a Fixed region')
     raises(lambda: dvs.addHandleDV('lift', body, translate=[0, 0, 1]), 'holds the control points', 'a body variable on a region of control points')
     raises(lambda: dvs.addLocalDV('bump', body, count=2), 'are defined already', 'names defined already')
