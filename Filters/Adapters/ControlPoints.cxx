@@ -200,13 +200,18 @@ HeldPositions holdControlPoints(const std::vector<ControlPoint>& controls, const
   {
     const Vec3 q = all[static_cast<std::size_t>(tree.nearest(controls[c].position))];
     const Vec3 axis = unit(controls[c].lineAxis);
-    // a given point far from the region is a mistake (another region's, other units), not a snap
+    // a given point far from the region is a mistake (another region's, other units), not a snap:
+    // near is within a tenth of the region's size or two point spacings there (a coarse mesh's)
     const double off = (axis == Vec3::Zero() ? Vec3(q - controls[c].position) : across(q - controls[c].position, axis)).norm();
-    if (off > 0.1 * (box.upper - box.lower).norm())
+    std::vector<int> neighbours;
+    std::vector<double> squared;
+    tree.kNearest(q, 2, neighbours, squared);
+    const double near = std::max(0.1 * (box.upper - box.lower).norm(), squared.size() > 1 ? 2 * std::sqrt(squared[1]) : 0.0);
+    if (off > near)
     {
       throw InvalidInputException("the control point of '" + controls[c].variable + "' at " + text(controls[c].position) + " is " +
-        std::to_string(off) + " from the region's nearest point " + text(q) + ", more than a tenth of the region's size " +
-        std::to_string((box.upper - box.lower).norm()) + ": give points on or near the region");
+        std::to_string(off) + " from the region's nearest point " + text(q) + ", farther than a tenth of the region's size and " +
+        "two point spacings there (" + std::to_string(near) + "): give points on or near the region");
     }
     held.snapped.push_back(q);
     for (const Vec3& x : all)

@@ -374,18 +374,22 @@ class DesignConstraints:
         """{name: (lower, upper)} in the units evalFunctions gives (None: unbounded)."""
         return {n: (c.lower, c.upper) for n, c in self._constraints.items()}
 
-    def evalFunctions(self, funcs):
-        """funcs[name] = the constraint's values (an array) at the current design variables."""
+    def evalFunctions(self, funcs, includeLinear=True):
+        """funcs[name] = the constraint's values (an array) at the current design variables.
+        includeLinear=False leaves out the linear relations (pyGeo's default: an optimizer that
+        takes them once as linear constraints, their constant rows from evalFunctionsSens)."""
         for name, values in self._state(gradients=False)['values'].items():
-            funcs[name] = values
+            if includeLinear or self._constraints[name].linear is None:
+                funcs[name] = values
 
-    def evalFunctionsSens(self, funcsSens):
+    def evalFunctionsSens(self, funcsSens, includeLinear=True):
         """funcsSens[name] = {design variable: d(values)/dp (an array)}: every gradient chained
         through the reverse mode at once (one gathering of their points, one back-substitution
-        per value, whatever the number of variables)."""
+        per value, whatever the number of variables); includeLinear as for evalFunctions."""
         names = self.dvs.getVarNames()
         for name, J in self._state(gradients=True)['jacobians'].items():
-            funcsSens[name] = {v: column for v, column in zip(names, J.T)}
+            if includeLinear or self._constraints[name].linear is None:
+                funcsSens[name] = {v: column for v, column in zip(names, J.T)}
 
     def getScipyConstraints(self):
         """Constraint dicts for scipy.optimize.minimize (SLSQP, trust-constr's old form) over the

@@ -99,7 +99,8 @@ class DesignVariables:
 
         ``count``: that many control points spread evenly over the region's points
         (farthest-point sampling, deterministic); or ``points``: an (n, 3) array of positions,
-        each snapped to the region's nearest point (within a tenth of the region's size).
+        each snapped to the region's nearest point (within a tenth of the region's size or two
+        point spacings there).
         ``direction``: ``'normal'`` (the surface's unit normal there, pointing out of the mesh: on
         a CFD case's wall into the body, on a solid out of it) or a 3-vector (model units per unit
         of p; normal to ``axis`` when that is given). ``axis``: a line axis: each

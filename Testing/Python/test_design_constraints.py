@@ -141,6 +141,10 @@ if mode == 'serial':
     names = dvs.getVarNames()
     check(np.allclose(jacobian['linear'][:, :4], [[1, 0, -1, 0], [0, 1, 0, 2]]) and funcs['linear'][1] == 2 * -0.03,
           'the linear constraints: their values and constant rows')
+    nonlinear, nonlinear_sens = {}, {}
+    cons.evalFunctions(nonlinear, includeLinear=False)
+    cons.evalFunctionsSens(nonlinear_sens, includeLinear=False)
+    check(set(nonlinear) == set(nonlinear_sens) == set(funcs) - {'linear'}, 'includeLinear=False leaves the linear relations out (pyGeo\'s form)')
     # central differences of every value along every variable with h and h/2: the functions are
     # smooth in X (X linear in p), so FD(h) = exact + c h^2 + O(h^4) + eps |f| / h; the
     # extrapolation (4 FD(h/2) - FD(h)) / 3 removes the h^2 term (the mesh measures' is large:

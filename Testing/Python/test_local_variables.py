@@ -155,7 +155,7 @@ if mode == 'serial':
     raises(lambda: dvs.addLocalDV('z', body, count=2.5), 'whole number', 'a count that is not a whole number')
     raises(lambda: dvs.addLocalDV('z', body), 'give count= or points=', 'neither count nor points')
     raises(lambda: dvs.addLocalDV('z', body, points=[x0, x0 + 1e-9]), 'both hold', 'two control points on one point')
-    raises(lambda: dvs.addLocalDV('z', body, points=[[0.3, 0, 2.5]]), 'more than a tenth of the region', 'a given point far off the region')
+    raises(lambda: dvs.addLocalDV('z', body, points=[[0.3, 0, 2.5]]), 'farther than a tenth of the region', 'a given point far off the region')
     raises(lambda: dvs.addLocalDV('z', fixed, count=2), 'not on a region of role Fixed', 'a Fixed region')
     raises(lambda: dvs.addHandleDV('lift', body, translate=[0, 0, 1]), 'holds the control points', 'a body variable on a region of control points')
     raises(lambda: dvs.addLocalDV('bump', body, count=2), 'are defined already', 'names defined already')
