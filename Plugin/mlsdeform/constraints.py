@@ -140,6 +140,18 @@ def _polygons(block):
     return offsets, connectivity
 
 
+def _position_ids(P):
+    """A number per row of P (n, 3), equal for equal positions (-0 and 0 alike): by one lexsort."""
+    P = np.asarray(P, dtype=float) + 0.0
+    order = np.lexsort((P[:, 2], P[:, 1], P[:, 0]))
+    ordered = P[order]
+    new = np.ones(len(P), dtype=bool)
+    new[1:] = np.any(ordered[1:] != ordered[:-1], axis=1)
+    ids = np.empty(len(P), dtype=np.int64)
+    ids[order] = np.cumsum(new) - 1
+    return ids
+
+
 class _Constraint:
     """One constraint function (an array of m values): bounds, scaling, how to evaluate it."""
 
@@ -588,10 +600,16 @@ class DesignConstraints:
             cap = ((np.abs(a - low) <= tol) & (np.abs(b - low) <= tol)) | ((np.abs(a - high) <= tol) & (np.abs(b - high) <= tol))
             ends = ends[~cap]
         # closed as a chain: each edge run as often one way as the other (a pinched, non-manifold
-        # spot of a snapped surface, where four triangles meet at an edge, is closed too)
-        from collections import Counter
-        runs = Counter(map(tuple, ends.tolist()))
-        unmatched = sum(abs(n - runs.get(e[3:] + e[:3], 0)) for e, n in runs.items())
+        # spot of a snapped surface, where four triangles meet at an edge, is closed too): per
+        # distinct edge, its runs against its reverse's (+ 0.0: -0 and 0 are one coordinate)
+        position = _position_ids(np.concatenate([ends[:, :3], ends[:, 3:]]))
+        a, b = position[:len(ends)], position[len(ends):]
+        count = int(position.max(initial=-1)) + 1
+        _, inverse = np.unique(np.concatenate([a * count + b, b * count + a]), return_inverse=True)
+        inverse = inverse.reshape(-1)
+        runs = np.bincount(inverse[:len(ends)], minlength=int(inverse.max(initial=-1)) + 1)
+        back = np.bincount(inverse[len(ends):], minlength=len(runs))
+        unmatched = int(np.abs(runs - back)[runs > 0].sum())
         if unmatched:
             raise ValueError(f"{what}: the surface is not closed ({unmatched} of its {len(ends)} triangle edges have no "
                              "partner run the other way): an enclosed volume needs a closed surface"
