@@ -230,30 +230,25 @@ GatheredGradients gatherGradients(const PointList& points, const PositionOrder& 
   const GatheredPositions gathered = gatherPositions(local, {}, group);
   GatheredGradients out;
   out.positions = gathered.positions;
-  // both lists sorted by position (gatherPositions sorts as positionOrder does): one merge
+  // both lists sorted by position (gatherPositions sorts as positionOrder does): one merge gives
+  // each gathered position's point here (among) and each local position's gathered index where
+  // this process's copy is the one gathered (the first process's; the others' sums are dropped)
+  const std::vector<std::int64_t> sizes = group.gather(std::vector<std::int64_t>{ static_cast<std::int64_t>(local.size()) });
+  const long offset = std::accumulate(sizes.begin(), sizes.begin() + group.rank(), 0L);
+  std::vector<long> gatheredOf(local.size(), -1);
   const auto less = [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); };
   std::size_t j = 0;
-  for (const Vec3& x : out.positions)
+  for (std::size_t i = 0; i < out.positions.size(); ++i)
   {
-    while (j < local.size() && less(local[j], x))
+    while (j < local.size() && less(local[j], out.positions[i]))
     {
       ++j;
     }
-    out.among.push_back(j < local.size() && local[j] == x ? first[j] : -1);
-  }
-  // this process's position of each gathered one, where it is the copy gathered (the first
-  // process's): both in position order
-  std::vector<long> gatheredOf(local.size(), -1);
-  {
-    const std::vector<std::int64_t> sizes = group.gather(std::vector<std::int64_t>{ static_cast<std::int64_t>(local.size()) });
-    const long offset = std::accumulate(sizes.begin(), sizes.begin() + group.rank(), 0L);
-    for (std::size_t i = 0; i < gathered.source.size(); ++i)
+    const bool here = j < local.size() && local[j] == out.positions[i];
+    out.among.push_back(here ? first[j] : -1);
+    if (here && gathered.source[i] == offset + static_cast<long>(j))
     {
-      const long s = gathered.source[i] - offset;
-      if (s >= 0 && s < static_cast<long>(local.size()))
-      {
-        gatheredOf[static_cast<std::size_t>(s)] = static_cast<long>(i);
-      }
+      gatheredOf[j] = static_cast<long>(i);
     }
   }
   // per function, the sum of its entries at each of its positions, in the entries' order; its

@@ -443,8 +443,8 @@ class DesignConstraints:
         if not np.all(np.isfinite(x)):
             raise ValueError("x has values that are not finite")
         bounds = self.dvs.getBounds()
-        x = [min(max(v, -math.inf if bounds[n][0] is None else bounds[n][0]), math.inf if bounds[n][1] is None else bounds[n][1])
-             for n, v in zip(names, x)]
+        x = np.clip(x, [-math.inf if bounds[n][0] is None else bounds[n][0] for n in names],
+                    [math.inf if bounds[n][1] is None else bounds[n][1] for n in names])
         current = self.dvs.getValues()
         changed = {n: v for n, v in zip(names, x) if current[n] != v}
         if changed:
@@ -503,19 +503,14 @@ class DesignConstraints:
         rows, values = g
         positions = all_gather(X[rows].reshape(-1)).reshape(-1, 3)
         values = all_gather(np.asarray(values).reshape(-1)).reshape(-1, 3)
-        keys = np.ascontiguousarray(positions).view([('', positions.dtype)] * 3).reshape(-1)
-        unique, inverse = np.unique(keys, return_inverse=True)
-        total = np.zeros((len(unique), 3))
-        np.add.at(total, inverse.reshape(-1), values)
-        if not len(unique):
-            return np.zeros(0, dtype=np.int64), np.zeros((0, 3))
-        mine = np.ascontiguousarray(X).view([('', X.dtype)] * 3).reshape(-1)
-        at = np.minimum(np.searchsorted(unique, mine), len(unique) - 1)
-        first = {}
-        for i in np.flatnonzero(unique[at] == mine):
-            first.setdefault(at[i], i)   # one copy of a position on this process carries its total
-        out_rows = np.array(sorted(first.values()), dtype=np.int64)
-        return out_rows, total[at[out_rows]] if len(out_rows) else np.zeros((0, 3))
+        ids = _position_ids(np.concatenate([positions, X]))
+        theirs, mine = ids[:len(positions)], ids[len(positions):]
+        total = np.zeros((int(ids.max(initial=-1)) + 1, 3))
+        np.add.at(total, theirs, values)
+        # one copy of a position on this process carries its total: its first point there
+        held, first = np.unique(mine, return_index=True)
+        out_rows = np.sort(first[np.isin(held, theirs)]).astype(np.int64)
+        return out_rows, total[mine[out_rows]]
 
     def _thickness(self, name, at, directions, surface, lower, upper, scaled):
         what = f"thickness constraints {name!r}"

@@ -33,6 +33,11 @@ def _vector(value, what, zero=False):
     return v
 
 
+def _check_finite(name, value):
+    if not math.isfinite(value):
+        raise ValueError(f"design variable {name!r}: the value {value} is not finite")
+
+
 class DesignVariables:
     """The design variables of one MLS Deform filter: a paraview.simple proxy, or a
     vtkMLSDeformFilter on a plain VTK pipeline (mlsdeform.vtkfoam) with vtkConstraintRegions.
@@ -232,8 +237,7 @@ class DesignVariables:
                 raise ValueError(f"unknown design variable {name!r} (known: {', '.join(self._variables) or 'none'})")
             value = float(np.asarray(value).reshape(-1)[0]) if np.ndim(value) else float(value)
             v = self._variables[name]
-            if not math.isfinite(value):
-                raise ValueError(f"design variable {name!r}: the value {value} is not finite")
+            _check_finite(name, value)
             if not (v["lower"] <= value <= v["upper"]):
                 raise ValueError(f"design variable {name!r}: {value} is outside its bounds [{v['lower']}, {v['upper']}]")
             checked[name] = value
@@ -368,8 +372,7 @@ class DesignVariables:
         lower = -_UNBOUNDED if lower is None else float(lower)
         upper = _UNBOUNDED if upper is None else float(upper)
         value = float(value)
-        if not math.isfinite(value):
-            raise ValueError(f"design variable {name!r}: the value {value} is not finite")
+        _check_finite(name, value)
         if not (math.isfinite(lower) and math.isfinite(upper)) or lower > upper:
             raise ValueError(f"design variable {name!r}: lower ({lower}) must not exceed upper ({upper}), both finite")
         if not (lower <= value <= upper):
