@@ -76,16 +76,19 @@ struct Measures
 {
   std::vector<double> scaledJacobian;
   FaceMeasures faces;
-  std::vector<double> maxNonOrthogonality, maxSkewness; // per cell, over its interior faces
+  std::vector<double> maxNonOrthogonality; // per cell, over its interior faces
+  std::vector<double> maxSkewness;         // per cell, over its interior and boundary faces
+  std::vector<double> skewness;            // per interior face, then per boundary face
   long inverted = 0;
 };
 
-Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellFaceList& cells,
-  const InteriorFaces& faces, const std::vector<int>& orientation)
+Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const mlsdeform::MeshFaces& mesh, const std::vector<int>& orientation)
 {
+  const CellFaceList& cells = mesh.cells;
+  const InteriorFaces& faces = mesh.interior;
   Measures m;
   m.scaledJacobian = mlsvtk::scaledJacobians(grid);
-  m.faces = mlsdeform::faceMeasures(points, cells, faces, orientation);
+  m.faces = mlsdeform::faceMeasures(points, mesh, orientation);
   // the faces' inverted cells and the quadratic elements folded between their corners
   std::vector<unsigned char> inverted = m.faces.inverted;
   mlsvtk::Elements(grid, mlsvtk::ElementSet::Quadratic).measure(points, inverted);
@@ -100,6 +103,13 @@ Measures measure(vtkUnstructuredGrid* grid, const PointList& points, const CellF
       m.maxSkewness[c] = std::max(m.maxSkewness[c], m.faces.skewness[i]);
     }
   }
+  for (std::size_t b = 0; b < mesh.boundary.size(); ++b)
+  {
+    const int c = mesh.boundary[b].owner;
+    m.maxSkewness[c] = std::max(m.maxSkewness[c], m.faces.boundarySkewness[b]);
+  }
+  m.skewness = m.faces.skewness;
+  m.skewness.insert(m.skewness.end(), m.faces.boundarySkewness.begin(), m.faces.boundarySkewness.end());
   return m;
 }
 
@@ -150,7 +160,7 @@ void addSummaryColumns(vtkTable* table, const Measures& m, const std::string& pr
 {
   const double inverted = m.inverted;
   const std::array<std::array<double, 3>, 4> rows = { summarize(m.scaledJacobian),
-    summarize(m.faces.nonOrthogonality), summarize(m.faces.skewness),
+    summarize(m.faces.nonOrthogonality), summarize(m.skewness),
     std::array<double, 3>{ inverted, inverted, inverted } };
   const char* statistics[3] = { "Min", "Mean", "Max" };
   for (int s = 0; s < 3; ++s)
@@ -195,12 +205,12 @@ namespace
 // The interior faces as polygons on the mesh's points, with their owner and neighbour cells.
 void writeFaces(vtkPolyData* faceOutput, vtkPoints* points, const mlsvtk::VolumeMeshQuality& topology)
 {
-  const CellFaceList& cells = topology.cells();
+  const CellFaceList& cells = topology.mesh().cells;
   vtkNew<vtkCellArray> polygons;
   vtkNew<vtkIdTypeArray> owners, neighbours;
   owners->SetName("Owner");
   neighbours->SetName("Neighbour");
-  for (const InteriorFace& f : topology.faces())
+  for (const InteriorFace& f : topology.mesh().interior)
   {
     polygons->InsertNextCell(static_cast<vtkIdType>(cells.faceSize(f.face)));
     for (std::size_t i = 0; i < cells.faceSize(f.face); ++i)
@@ -260,14 +270,14 @@ int vtkDeformationQuality::RequestData(
     mlsvtk::checkAbort(this);
     writeFaces(faceOutput, input->GetPoints(), topology);
     addMeasureNames(summary);
-    const Measures after = measure(input, points, topology.cells(), topology.faces(), topology.orientation());
+    const Measures after = measure(input, points, topology.mesh(), topology.orientation());
     addMeasures(output, faceOutput, after, "");
     addSummaryColumns(summary, after, "");
     this->UpdateProgress(0.7);
     mlsvtk::checkAbort(this);
     if (original)
     {
-      const Measures before = measure(original, originalPoints, topology.cells(), topology.faces(), topology.orientation());
+      const Measures before = measure(original, originalPoints, topology.mesh(), topology.orientation());
       addMeasures(output, faceOutput, before, "Original");
       addSummaryColumns(summary, before, "Original");
     }

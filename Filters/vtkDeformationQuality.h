@@ -11,7 +11,9 @@
  *   non-orthogonality (degrees) and skewness exactly as OpenFOAM's checkMesh defines them. A
  *   face's orientation (out of its owner, the lower cell id) is taken from the original mesh and
  *   kept, as OpenFOAM keeps its face order: a neighbour folded over its owner shows above 90.
- *
+ *   A boundary face (of one cell) has checkMesh's skewness too, its owner mirrored across it;
+ *   where two pieces of the mesh touch without sharing points, their faces are on no boundary
+ *   and get no measure.
  * - per cell whether it is inverted: a face pyramid (apex the cell centre, base a face as the
  *   cell lists it, VTK's outward order) of negative volume, OpenFOAM's face-pyramid check. The
  *   scaled Jacobian is not that test: some warped cells that checkMesh accepts have a negative one.
@@ -19,14 +21,16 @@
  *
  * Input port 0: the mesh to measure (the deformed one). Input port 1 (optional): the original mesh
  * with the same cells, whose measures are reported alongside.
- * Output port 0: the input with cell arrays ScaledJacobian, MaxNonOrthogonality and MaxSkewness
- * (over the cell's interior faces; 0 for a cell without any) and, with an original, the same
- * arrays prefixed "Original"; field data InvertedCells (and OriginalInvertedCells).
+ * Output port 0: the input with cell arrays ScaledJacobian, MaxNonOrthogonality (over the cell's
+ * interior faces; 0 for a cell without any) and MaxSkewness (over its interior and boundary
+ * faces) and, with an original, the same arrays prefixed "Original"; field data InvertedCells
+ * (and OriginalInvertedCells).
  * Output port 1: the interior faces as polygons, cell arrays NonOrthogonality, Skewness, Owner,
  * Neighbour (and the Original measures).
  * Output port 2: a summary table, one row per measure (ScaledJacobian, NonOrthogonality,
- * Skewness, InvertedCells) with columns Min, Mean, Max and, with an original, OriginalMin,
- * OriginalMean, OriginalMax. The InvertedCells row holds the number of inverted cells in all
+ * Skewness over the interior and boundary faces, InvertedCells) with columns Min, Mean, Max and,
+ * with an original, OriginalMin, OriginalMean, OriginalMax. The InvertedCells row holds the
+ * number of inverted cells in all
  * three columns.
  */
 #ifndef vtkDeformationQuality_h

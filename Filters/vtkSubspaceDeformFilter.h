@@ -248,7 +248,8 @@ public:
   bool ComputeObjectiveSensitivities(vtkIdTypeArray* rows, vtkDoubleArray* values, vtkIdTypeArray* starts, vtkDoubleArray* out);
   /// The mesh's quality as one smooth function and its gradient (an optimizer's constraint): the
   /// KS aggregate (max-shifted, weight rho > 0) of checkMesh's non-orthogonality in degrees
-  /// (measure 0) or skewness (1) over the interior faces of the deformed volume meshes, or of
+  /// (measure 0) over the interior faces or skewness (1) over the interior and boundary faces
+  /// of the deformed volume meshes, or of
   /// the least scaled Jacobian (2: -KS of -sj over an FEM mesh's elements' points, least -
   /// ln(N) / rho <= value <= least) (needs MeshQuality on;
   /// Filters/Core/Quality/FaceQualityAggregate.h). value gets the aggregate and the number of

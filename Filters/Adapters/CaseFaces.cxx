@@ -69,7 +69,7 @@ CaseMesh readCaseFaces(const std::string& folder)
   const std::vector<int> neighbour = mlsfoam::readFoamIndices(polyMesh, "neighbour");
   mesh.faces = mlsdeform::ownerNeighbourFaces(faces.start, faces.points, owner, neighbour, static_cast<int>(mesh.points.size()));
   mesh.measures.perFace = false;
-  mesh.orientation = mlsdeform::faceOrientation(mesh.points, mesh.faces.cells, mesh.faces.interior, mesh.work, mesh.measures);
+  mesh.orientation = mlsdeform::faceOrientation(mesh.points, mesh.faces, mesh.work, mesh.measures);
   return mesh;
 }
 

@@ -250,27 +250,27 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::strin
     return;
   }
   std::optional<CaseMesh> own = casePath.empty() ? std::nullopt : caseFaces(casePath, rest);
+  mlsdeform::CellFaceList cells;
   if (own)
   {
-    Cells = std::move(own->faces.cells);
-    Faces = std::move(own->faces.interior);
+    Mesh = std::move(own->faces);
   }
   else
   {
     vtkLogScopeF(TRACE, "mesh quality: the cells' faces");
-    Cells = cellFaces(rest);
+    cells = cellFaces(rest);
   }
-  Has3DCells = Cells.faces() > 0;
+  Has3DCells = (own ? Mesh.cells : cells).faces() > 0;
   Measures.perFace = false; // the summary's maxima only
   if (Has3DCells)
   {
+    gridPoints(rest, "the mesh's points", Points);
     if (!own)
     {
-      vtkLogScopeF(TRACE, "mesh quality: interior faces");
-      Faces = mlsdeform::interiorFaces(Cells);
+      vtkLogScopeF(TRACE, "mesh quality: interior and boundary faces");
+      Mesh = mlsdeform::meshFaces(std::move(cells), Points);
     }
     vtkLogScopeF(TRACE, "mesh quality: the undeformed mesh's figures");
-    gridPoints(rest, "the mesh's points", Points);
     if (own && own->points == Points)
     {
       vtkLogF(TRACE, "mesh quality: the case's points are the grid's, their figures read with the faces");
@@ -280,7 +280,7 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::strin
     }
     else
     {
-      Orientation = mlsdeform::faceOrientation(Points, Cells, Faces, Work, Measures);
+      Orientation = mlsdeform::faceOrientation(Points, Mesh, Work, Measures);
     }
     Original = summarizeMeasures();
   }
@@ -291,7 +291,7 @@ QualitySummary VolumeMeshQuality::summary(vtkUnstructuredGrid* grid)
   gridPoints(grid, "the mesh's points", Points);
   if (Verdict == QualityVerdict::CheckMesh)
   {
-    mlsdeform::faceMeasures(Points, Cells, Faces, Orientation, Work, Measures);
+    mlsdeform::faceMeasures(Points, Mesh, Orientation, Work, Measures);
   }
   return summarizeMeasures();
 }
@@ -301,7 +301,7 @@ mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(
 {
   if (pointsKey != TailKey || measure != TailMeasure || rho != TailRho)
   {
-    Tail = mlsdeform::aggregateFaces(points, Cells, Faces, Orientation, measure, rho, TailWork);
+    Tail = mlsdeform::aggregateFaces(points, Mesh, Orientation, measure, rho, TailWork);
     TailKey = pointsKey;
     TailMeasure = measure;
     TailRho = rho;
@@ -312,7 +312,23 @@ mlsdeform::AggregatePart VolumeMeshQuality::aggregatePart(
 void VolumeMeshQuality::addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho,
   const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const
 {
-  mlsdeform::addAggregateGradient(points, Cells, Faces, Orientation, TailWork, Tail.tail, measure, rho, whole, gradient);
+  mlsdeform::addAggregateGradient(points, Mesh, Orientation, TailWork, Tail.tail, measure, rho, whole, gradient);
+}
+
+std::vector<std::uint64_t> VolumeMeshQuality::boundaryKeys() const
+{
+  // the rest points: Points until the first summary of another grid, which comes after this
+  return hasFaceMeasures() ? mlsdeform::boundaryKeys(Points, Mesh.cells, Mesh.boundary) : std::vector<std::uint64_t>();
+}
+
+void VolumeMeshQuality::leaveOutBoundaryFaces(const std::vector<std::uint64_t>& between)
+{
+  if (hasFaceMeasures() && mlsdeform::leaveOutFaces(Mesh.boundary, boundaryKeys(), between) > 0)
+  {
+    mlsdeform::faceMeasures(Points, Mesh, Orientation, Work, Measures);
+    Original = summarizeMeasures();
+    TailKey = -1;
+  }
 }
 
 QualitySummary VolumeMeshQuality::summarizeMeasures()

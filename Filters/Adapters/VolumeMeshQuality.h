@@ -11,6 +11,7 @@
 #include "Quality/FaceQuality.h"
 #include "Quality/FaceQualityAggregate.h"
 
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -68,8 +69,8 @@ private:
 void gridPoints(vtkUnstructuredGrid* grid, const char* what, mlsdeform::PointList& out);
 mlsdeform::PointList gridPoints(vtkUnstructuredGrid* grid, const char* what);
 
-/// Inverted cells (a face pyramid of negative volume), and the largest non-orthogonality (degrees) and skewness
-/// over the interior faces.
+/// Inverted cells (a face pyramid of negative volume), the largest non-orthogonality (degrees) over
+/// the interior faces and skewness over the interior and boundary faces.
 struct QualitySummary
 {
   long inverted = 0;
@@ -99,18 +100,27 @@ enum class QualityVerdict
 };
 
 /// A grid's interior faces, oriented out of their owner on the rest points (OpenFOAM's face
-/// order), and its elements, measured again for every new set of points of the same cells.
+/// order), its boundary faces, and its elements, measured again for every new set of points of
+/// the same cells.
 class VolumeMeshQuality
 {
 public:
-  /// The faces of rest's cells, matched by their points; or, when rest is the mesh of the
-  /// OpenFOAM case folder casePath as it numbers it, the case's own (caseFaces), with the
-  /// figures of the case's points when those are rest's. The FEM solver's verdict needs no faces.
+  /// The faces of rest's cells, matched by their points (meshFaces: faces between pieces of
+  /// unmerged points are on no boundary); or, when rest is the mesh of the OpenFOAM case folder
+  /// casePath as it numbers it, the case's own (caseFaces), with the figures of the case's points
+  /// when those are rest's. The FEM solver's verdict needs no faces.
   explicit VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath = std::string(),
     QualityVerdict verdict = QualityVerdict::CheckMesh);
 
   /// Whether the grid has 3D cells to measure.
   bool hasCells() const { return Has3DCells; }
+
+  /// The position keys of the boundary faces on the rest points (boundaryKeys); and leaving out
+  /// those in `between` (sorted: the faces where this grid touches another piece of the mesh, a
+  /// block or a process's), with the rest grid's summary measured again when there were some.
+  /// Both before the first summary (they use the rest points).
+  std::vector<std::uint64_t> boundaryKeys() const;
+  void leaveOutBoundaryFaces(const std::vector<std::uint64_t>& between);
 
   /// The summary of the rest grid, measured with its faces' orientation.
   const QualitySummary& original() const { return Original; }
@@ -125,8 +135,8 @@ public:
   bool hasElementMeasures() const { return Verdict == QualityVerdict::FemSolver && Has3DCells; }
   Elements& elements() { return JacobianElements; }
 
-  /// The KS aggregate's part of a face measure over the interior faces on these points (the
-  /// rest grid's cells, FaceQualityAggregate.h); the faces that weigh in it are kept for the
+  /// The KS aggregate's part of a face measure over the faces on these points (the rest grid's
+  /// cells, FaceQualityAggregate.h); the faces that weigh in it are kept for the
   /// gradient and for the next call with the same pointsKey (the deformation's number of these
   /// points), measure and rho (a value, then its gradient: one pass over the cells).
   mlsdeform::AggregatePart aggregatePart(const mlsdeform::PointList& points, long pointsKey, mlsdeform::QualityMeasure measure, double rho);
@@ -135,15 +145,13 @@ public:
   void addAggregateGradient(const mlsdeform::PointList& points, mlsdeform::QualityMeasure measure, double rho,
     const mlsdeform::AggregatePart& whole, mlsdeform::PointList& gradient) const;
 
-  const mlsdeform::CellFaceList& cells() const { return Cells; }
-  const mlsdeform::InteriorFaces& faces() const { return Faces; }
+  const mlsdeform::MeshFaces& mesh() const { return Mesh; }
   const std::vector<int>& orientation() const { return Orientation; }
 
 private:
   QualitySummary summarizeMeasures();
 
-  mlsdeform::CellFaceList Cells;
-  mlsdeform::InteriorFaces Faces;
+  mlsdeform::MeshFaces Mesh;
   std::vector<int> Orientation;
   bool Has3DCells = false;
   mlsdeform::PointList Points;

@@ -36,6 +36,39 @@ bool samePoints(vtkPointSet* a, vtkPointSet* b)
   return x == y ||
     std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0), static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0;
 }
+
+// The boundary faces where one set's grid touches another's, or another process's (faces of the
+// same positions, boundaryKeys), are between pieces of one mesh: left out of every set's
+// skewness, as a boundary face is measured with its owner mirrored across it. (A set's own
+// pieces, unmerged points, VolumeMeshQuality leaves out itself: one process with one set has no
+// other piece.)
+void leaveOutFacesBetweenPieces(const std::vector<std::unique_ptr<VolumeMeshQuality>>& quality, const Collective& group)
+{
+  if (group.size() == 1 && quality.size() <= 1)
+  {
+    return;
+  }
+  std::vector<std::int64_t> local;
+  for (const auto& q : quality)
+  {
+    if (q)
+    {
+      for (std::uint64_t key : q->boundaryKeys())
+      {
+        local.push_back(static_cast<std::int64_t>(key));
+      }
+    }
+  }
+  const std::vector<std::int64_t> every = group.gather(local);
+  const std::vector<std::uint64_t> between = repeatedKeys(std::vector<std::uint64_t>(every.begin(), every.end()));
+  for (const auto& q : quality)
+  {
+    if (q)
+    {
+      q->leaveOutBoundaryFaces(between);
+    }
+  }
+}
 }
 
 Stamp MeshQualityReport::stampOf(const std::vector<vtkPointSet*>& inSets)
@@ -75,10 +108,6 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
         // a finite-volume solver's mesh checkMesh's
         const QualityVerdict verdict = femSource || femVerdictOf(set) ? QualityVerdict::FemSolver : QualityVerdict::CheckMesh;
         Quality.push_back(grid ? std::make_unique<VolumeMeshQuality>(grid, casePath, verdict) : nullptr);
-        if (Quality.back() && Quality.back()->hasCells())
-        {
-          Original.add(Quality.back()->original());
-        }
       }
     }
     catch (const std::exception& e)
@@ -97,6 +126,14 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
     else
     {
       Problem.clear();
+      leaveOutFacesBetweenPieces(Quality, group);
+      for (const auto& quality : Quality)
+      {
+        if (quality && quality->hasCells())
+        {
+          Original.add(quality->original());
+        }
+      }
     }
     Quality.resize(inSets.size());
     Measured = std::move(stamp);

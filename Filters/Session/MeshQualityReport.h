@@ -40,8 +40,9 @@ public:
   /// thread while the deformation is set up.
   void readAhead(const std::vector<vtkPointSet*>& inSets, const std::string& casePath) const;
 
-  /// The KS aggregate of a face measure over the interior faces of every volume mesh on every
-  /// process (FaceQualityAggregate.h; the faces between pieces are not among them, as in the
+  /// The KS aggregate of a face measure over the faces of every volume mesh on every process
+  /// (FaceQualityAggregate.h: the non-orthogonality over the interior faces, the skewness over
+  /// the interior and boundary faces; the faces between pieces are not among them, as in the
   /// report), on `points` (this process's output points, the sets in order, as the last report's
   /// sets), and its gradient there (3 per point) when gradient is given: the aggregate's value
   /// and its number of faces, the same on every process. Throws InvalidInputException when no

@@ -343,8 +343,10 @@ class DesignConstraints:
 
     def addMeshQualityConstraint(self, name, measure='nonOrthogonality', upper=None, lower=None, rho=None, scaled=False):
         """The mesh's quality as one smooth function (DAFoam's KS-aggregated mesh quality): the
-        KS aggregate of a measure over every interior face of the CFD volume meshes (checkMesh's
-        definitions: 'nonOrthogonality' in degrees, 'skewness'), in the max-shifted form
+        KS aggregate of a measure over the faces of the CFD volume meshes (checkMesh's
+        definitions: 'nonOrthogonality' in degrees over every interior face, 'skewness' over every
+        interior and boundary face, a boundary face's with its owner mirrored across it), in the
+        max-shifted form
         KS = m + ln(sum_f exp(rho (q_f - m))) / rho, m the largest q_f, so that
         m <= KS <= m + ln(N) / rho (N faces); or of the least scaled Jacobian of an FEM mesh's
         elements at their corners and integration points ('scaledJacobian', the FEM verdict's:

@@ -124,13 +124,14 @@ TEST(InteriorFacesAreMatchedAndOriented)
   std::vector<CellFaces> nested = cubeRow(points, 2);
   auto v = [](int i, int j, int k) { return i + 3 * j + 6 * k; };
   std::reverse(nested[0][1].begin(), nested[0][1].end());
-  const CellFaceList cells(nested);
-  const InteriorFaces faces = interiorFaces(cells);
+  const MeshFaces mesh = meshFaces(CellFaceList(nested), points);
+  const InteriorFaces& faces = mesh.interior;
   CHECK(faces.size() == 1);
   CHECK(faces[0].owner == 0 && faces[0].neighbour == 1 && faces[0].face == 1);
-  const std::vector<int> orientation = faceOrientation(points, cells, faces);
+  CHECK(mesh.boundary.size() == 10 && mesh.boundary[0].owner == 0 && mesh.boundary[0].face == 0 && mesh.boundary[5].owner == 1);
+  const std::vector<int> orientation = faceOrientation(points, mesh);
   CHECK(orientation[0] == -1);
-  const FaceMeasures before = faceMeasures(points, cells, faces, orientation);
+  const FaceMeasures before = faceMeasures(points, mesh, orientation);
   CHECK(before.nonOrthogonality[0] < 2e-6 && before.skewness[0] < 1e-14); // as in NonOrthogonalityAndSkewness
   // the face pyramids: the owner lists its shared face inward, which checkMesh reports too (an
   // incorrectly oriented face), so it counts as inverted; the neighbour is a sound cube
@@ -141,7 +142,7 @@ TEST(InteriorFacesAreMatchedAndOriented)
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
       folded[v(2, j, k)].x() = -1;
-  const FaceMeasures after = faceMeasures(folded, cells, faces, orientation);
+  const FaceMeasures after = faceMeasures(folded, mesh, orientation);
   std::printf("folded neighbour: non-orthogonality %.6g degrees\n", after.nonOrthogonality[0]);
   CHECK(after.nonOrthogonality[0] > 90); // the definition of a folded face: d . S < 0
   // the folded neighbour is inside out: its moved face's pyramid has negative volume
@@ -156,6 +157,57 @@ TEST(InteriorFacesAreMatchedAndOriented)
   const std::vector<int> reversed(repeated.rbegin(), repeated.rend());
   const InteriorFaces degenerate = interiorFaces(CellFaceList(std::vector<CellFaces>{ { repeated }, { reversed } }));
   CHECK(degenerate.size() == 1 && degenerate[0].owner == 0 && degenerate[0].neighbour == 1);
+}
+
+TEST(BoundaryFaceSkewness)
+{
+  // A unit cube sheared along x by s per unit of z (a parallelepiped): its centre is (0.5 + s/2,
+  // 0.5, 0.5), and OpenFOAM's boundary skewness of its bottom face (centre (0.5, 0.5, 0), normal
+  // -z) is the tangential offset |sv| = s/2 over the face's extent along x, 0.5 (more than
+  // 0.4 |d| = 0.2): s, whatever the face's orientation. Its side face x = s z (normal
+  // (1, 0, -s) / sqrt(1 + s^2)) has Cpf = (-1/2, 0, 0), whose part in the face's plane is
+  // s / (2 sqrt(1 + s^2)) long, over the face's extent sqrt(1 + s^2) / 2 that way: s / (1 + s^2).
+  const double s = 0.3;
+  PointList points;
+  std::vector<CellFaces> cube = cubeRow(points, 1);
+  for (Vec3& p : points)
+    p.x() += s * p.z();
+  const CellGeometry cell = cellGeometry(points, cube[0]);
+  // dyadic but for s: ~30 operations of size <= 2: 1e-14
+  CHECK((cell.centre - Vec3(0.5 + s / 2, 0.5, 0.5)).norm() < 1e-14);
+  const FaceGeometry bottom = faceGeometry(points, cube[0][4]);
+  const double skew = boundarySkewness(cell.centre, bottom, points, cube[0][4].data(), 4);
+  std::vector<int> reversed(cube[0][4].rbegin(), cube[0][4].rend());
+  const FaceGeometry flipped = faceGeometry(points, reversed);
+  std::printf("sheared cube: bottom face's skewness %.15g (s = %g)\n", skew, s);
+  CHECK(std::abs(skew - s) < 1e-13);
+  CHECK(std::abs(boundarySkewness(cell.centre, flipped, points, reversed.data(), 4) - skew) < 1e-15);
+  CHECK(std::abs(boundarySkewness(cell.centre, faceGeometry(points, cube[0][0]), points, cube[0][0].data(), 4) - s / (1 + s * s)) < 1e-14);
+  // a thin cell (height 0.1) offset by 0.01 along y: 0.4 |d| = 0.02 < the extent 0.5, so 0.01 / 2 / 0.5
+  const FaceGeometry thin{ Vec3(0.5, 0.5, 0), Vec3(0, 0, -1) };
+  CHECK(std::abs(boundarySkewness(Vec3(0.5, 0.51, 0.05), thin, points, cube[0][4].data(), 4) - 0.02) < 1e-14);
+  // the mesh: one cell, six boundary faces, the largest skewness the bottom's (and the top's)
+  const MeshFaces mesh = meshFaces(CellFaceList(cube), points);
+  CHECK(mesh.interior.empty() && mesh.boundary.size() == 6);
+  const FaceMeasures m = faceMeasures(points, mesh, faceOrientation(points, mesh));
+  CHECK(m.boundarySkewness.size() == 6 && std::abs(m.maxSkewness - skew) < 1e-15 && m.maxNonOrthogonality == 0);
+  // two copies of the cube side by side whose points were not merged (two pieces of one mesh):
+  // the faces where they touch are on no boundary, and not measured
+  PointList two = points;
+  std::vector<CellFaces> cells = cube;
+  for (const Vec3& p : points)
+    two.push_back(p + Vec3(1, 0, 0));
+  CellFaces right = cube[0];
+  for (auto& face : right)
+    for (int& i : face)
+      i += static_cast<int>(points.size());
+  cells.push_back(right);
+  const MeshFaces pieces = meshFaces(CellFaceList(cells), two);
+  CHECK(pieces.interior.empty() && pieces.boundary.size() == 10);
+  CHECK(std::none_of(pieces.boundary.begin(), pieces.boundary.end(),
+    [](const BoundaryFace& f) { return f.face == 1 || f.face == 6; })); // the left's +x, the right's -x face
+  const std::vector<std::uint64_t> keys = boundaryKeys(two, CellFaceList(cells), boundaryFaces(CellFaceList(cells), {}));
+  CHECK(keys[1] == keys[6] && repeatedKeys(keys) == std::vector<std::uint64_t>{ keys[1] });
 }
 
 TEST(OwnerNeighbourFacesAreOpenFOAMs)
@@ -196,8 +248,9 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
     CHECK(faceGeometry(points, mesh.cells.face(copy), 4).area.isApprox(Vec3(-1, 0, 0)));
   }
   // every cell's faces point out of it: no negative pyramid, orientation +1, as matched
-  const CellFaceList matchedCells(cube);
-  const InteriorFaces matched = interiorFaces(matchedCells);
+  const MeshFaces matchedMesh = meshFaces(CellFaceList(cube), points);
+  const InteriorFaces& matched = matchedMesh.interior;
+  CHECK(mesh.boundary.size() == 14 && matchedMesh.boundary.size() == 14);
   CHECK(matched.size() == 2 && matched[0].owner == 0 && matched[1].owner == 1);
   CHECK(matched[0].face == 1 && matched[0].neighbourFace == 6 && matched[1].face == 7 && matched[1].neighbourFace == 12);
   // a sheared, non-dyadic point set: both forms sum the same face terms in another order, so
@@ -205,9 +258,9 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
   PointList sheared = points;
   for (Vec3& p : sheared)
     p += Vec3(0.1 * p.y() + 0.03 * p.z() * p.x(), 0.07 * p.x() * p.z(), 0.01 * p.x() * p.y());
-  const FaceMeasures own = faceMeasures(sheared, mesh.cells, mesh.interior, faceOrientation(sheared, mesh.cells, mesh.interior));
-  const FaceMeasures byPoints = faceMeasures(sheared, matchedCells, matched, faceOrientation(sheared, matchedCells, matched));
-  CHECK(faceOrientation(sheared, mesh.cells, mesh.interior) == std::vector<int>({ 1, 1 }));
+  const FaceMeasures own = faceMeasures(sheared, mesh, faceOrientation(sheared, mesh));
+  const FaceMeasures byPoints = faceMeasures(sheared, matchedMesh, faceOrientation(sheared, matchedMesh));
+  CHECK(faceOrientation(sheared, mesh) == std::vector<int>({ 1, 1 }));
   CHECK(own.invertedCells == 0 && byPoints.invertedCells == 0);
   std::printf("sheared row: non-orthogonality %.17g and %.17g, skewness %.17g and %.17g\n", own.maxNonOrthogonality,
     byPoints.maxNonOrthogonality, own.maxSkewness, byPoints.maxSkewness);

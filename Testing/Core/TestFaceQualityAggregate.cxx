@@ -3,6 +3,7 @@
 #include "../TestHarness.h"
 #include "Quality/FaceQualityAggregate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -15,12 +16,13 @@ namespace
 struct Block
 {
   PointList points;
-  CellFaceList cells;
-  InteriorFaces faces;
+  MeshFaces mesh;
   std::vector<int> orientation;
 };
 
-Block distortedBlock(int nx, int ny, int nz)
+// With shear, x also moves by shear z: the layers slide, which skews the top and bottom faces
+// (a boundary face's skewness) far more than the faces between the layers.
+Block distortedBlock(int nx, int ny, int nz, double shear = 0)
 {
   Block b;
   auto v = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
@@ -29,7 +31,7 @@ Block distortedBlock(int nx, int ny, int nz)
       for (int i = 0; i <= nx; ++i)
       {
         const double r = std::sin(12.9898 * i + 78.233 * j + 37.719 * k); // in [-1, 1], no pattern
-        b.points.push_back(Vec3(i + 0.15 * j + 0.12 * r, j + 0.1 * std::sin(i + k) - 0.08 * r, k + 0.05 * i * j + 0.1 * r * r));
+        b.points.push_back(Vec3(i + 0.15 * j + 0.12 * r + shear * k, j + 0.1 * std::sin(i + k) - 0.08 * r, k + 0.05 * i * j + 0.1 * r * r));
       }
   std::vector<CellFaces> cells;
   for (int z = 0; z < nz; ++z)
@@ -41,9 +43,8 @@ Block distortedBlock(int nx, int ny, int nz)
           { v(x, y + 1, z), v(x, y + 1, z + 1), v(x + 1, y + 1, z + 1), v(x + 1, y + 1, z) },
           { v(x, y, z), v(x, y + 1, z), v(x + 1, y + 1, z), v(x + 1, y, z) },
           { v(x, y, z + 1), v(x + 1, y, z + 1), v(x + 1, y + 1, z + 1), v(x, y + 1, z + 1) } });
-  b.cells = CellFaceList(cells);
-  b.faces = interiorFaces(b.cells);
-  b.orientation = faceOrientation(b.points, b.cells, b.faces);
+  b.mesh = meshFaces(CellFaceList(cells), b.points);
+  b.orientation = faceOrientation(b.points, b.mesh);
   return b;
 }
 
@@ -51,7 +52,7 @@ Block distortedBlock(int nx, int ny, int nz)
 double aggregate(const Block& b, const PointList& points, QualityMeasure measure, double rho, PointList* gradient, AggregatePart* part = nullptr)
 {
   FaceWorkspace work;
-  const FaceAggregate a = aggregateFaces(points, b.cells, b.faces, b.orientation, measure, rho, work);
+  const FaceAggregate a = aggregateFaces(points, b.mesh, b.orientation, measure, rho, work);
   if (part)
   {
     *part = a.part;
@@ -59,7 +60,7 @@ double aggregate(const Block& b, const PointList& points, QualityMeasure measure
   if (gradient)
   {
     gradient->assign(points.size(), Vec3::Zero());
-    addAggregateGradient(points, b.cells, b.faces, b.orientation, work, a.tail, measure, rho, a.part, *gradient);
+    addAggregateGradient(points, b.mesh, b.orientation, work, a.tail, measure, rho, a.part, *gradient);
   }
   return a.part.value(rho);
 }
@@ -70,7 +71,12 @@ TEST(AggregateBounds)
   const Block b = distortedBlock(3, 3, 2);
   for (QualityMeasure measure : { QualityMeasure::NonOrthogonality, QualityMeasure::Skewness })
   {
-    FaceMeasures m = faceMeasures(b.points, b.cells, b.faces, b.orientation);
+    FaceMeasures m = faceMeasures(b.points, b.mesh, b.orientation);
+    const bool skewness = measure == QualityMeasure::Skewness;
+    // the skewness over the interior faces, then the boundary faces'; the non-orthogonality over the interior faces
+    std::vector<double> every = skewness ? m.skewness : m.nonOrthogonality;
+    if (skewness)
+      every.insert(every.end(), m.boundarySkewness.begin(), m.boundarySkewness.end());
     const double largest = measure == QualityMeasure::NonOrthogonality ? m.maxNonOrthogonality : m.maxSkewness;
     for (double rho : { 0.1, 1.0, 10.0, 1000.0 })
     {
@@ -78,18 +84,17 @@ TEST(AggregateBounds)
       const double ks = aggregate(b, b.points, measure, rho, nullptr, &part);
       // m <= KS <= m + ln(N) / rho (the sum's terms are at most 1, one of them 1); the largest
       // face is the verdict's to round-off (both the same operations)
-      CHECK(part.count == static_cast<long>(b.faces.size()));
+      CHECK(part.count == static_cast<long>(every.size()));
       CHECK_NEAR(part.largest, largest, 1e-14 * largest);
       CHECK(ks >= part.largest && ks <= part.largest + std::log(static_cast<double>(part.count)) / rho + 1e-14 * largest);
       // the faces left out (below the largest by (ln N + 46) / rho) change nothing: the sum over
       // every face's measure is the same to round-off (a few ulps of the sum, which is >= 1)
-      const std::vector<double>& every = measure == QualityMeasure::NonOrthogonality ? m.nonOrthogonality : m.skewness;
       const AggregatePart all = aggregatePart(every, rho);
       CHECK_NEAR(part.sum, all.sum, 1e-14 * all.sum);
       CHECK_NEAR(part.largest, all.largest, 1e-14 * all.largest);
     }
     // parts combine into the whole: two halves of the faces give the whole's value
-    const std::vector<double>& q = measure == QualityMeasure::NonOrthogonality ? m.nonOrthogonality : m.skewness;
+    const std::vector<double>& q = every;
     const std::size_t half = q.size() / 2;
     AggregatePart a = aggregatePart(std::vector<double>(q.begin(), q.begin() + half), 3.0);
     a.add(aggregatePart(std::vector<double>(q.begin() + half, q.end()), 3.0), 3.0);
@@ -103,10 +108,20 @@ TEST(AggregateGradientAgainstCentralDifferences)
   // measures' third derivatives on cells of size 1 are O(100) degrees: 2e-8 at h = 1e-5) plus
   // round-off eps |KS| / h (2e-10); both steps must agree with the exact gradient to 1e-6 of its
   // largest entry, and the smaller step no worse than the larger (up to round-off).
-  const Block b = distortedBlock(3, 3, 2);
+  // The sheared block's most skewed faces are on its top and bottom (checked): the boundary
+  // faces' derivatives through their mirrored owner.
+  for (const double shear : { 0.0, 0.6 })
   for (QualityMeasure measure : { QualityMeasure::NonOrthogonality, QualityMeasure::Skewness })
   {
+    const Block b = distortedBlock(3, 3, 2, shear);
     const double rho = measure == QualityMeasure::NonOrthogonality ? 0.5 : 20.0; // several faces weigh in
+    if (shear > 0 && measure == QualityMeasure::Skewness)
+    {
+      const FaceMeasures m = faceMeasures(b.points, b.mesh, b.orientation);
+      const double inside = *std::max_element(m.skewness.begin(), m.skewness.end());
+      std::printf("sheared block: largest skewness %.4g on the boundary, %.4g inside\n", m.maxSkewness, inside);
+      CHECK(m.maxSkewness > 1.5 * inside);
+    }
     PointList exact;
     aggregate(b, b.points, measure, rho, &exact);
     double scale = 0;
@@ -127,8 +142,8 @@ TEST(AggregateGradientAgainstCentralDifferences)
           worst[s] = std::max(worst[s], std::abs(fd - exact[p][c]));
         }
     }
-    std::printf("%s: largest |dKS/dX| %.3g, central differences off by %.2g (h = 1e-5) and %.2g (h = 5e-6)\n",
-      measure == QualityMeasure::NonOrthogonality ? "non-orthogonality" : "skewness", scale, worst[0], worst[1]);
+    std::printf("%s (shear %g): largest |dKS/dX| %.3g, central differences off by %.2g (h = 1e-5) and %.2g (h = 5e-6)\n",
+      measure == QualityMeasure::NonOrthogonality ? "non-orthogonality" : "skewness", shear, scale, worst[0], worst[1]);
     CHECK(worst[0] <= 1e-6 * scale && worst[1] <= 1e-6 * scale);
     CHECK(worst[1] <= worst[0] + 1e-9 * scale);
   }

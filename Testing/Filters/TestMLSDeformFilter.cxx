@@ -5,6 +5,7 @@
 #include "vtkDeformationQuality.h"
 #include "vtkMLSSampler.h"
 
+#include <vtkBox.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
@@ -806,6 +807,81 @@ TEST(MeshQualityBeforeAndAfter)
   PlaneScene surface(plane);
   surface.deform->Update();
   CHECK(fieldValue(surface.deform->GetOutputDataObject(0), "InvertedCells") == -1);
+}
+
+namespace
+{
+// Layers k0 .. k1 - 1 of a 2n x n x n box of hexahedra sheared by 0.6 along x per unit of z, their
+// points its own (a piece of the box that shares no point with the others), appended to grid.
+void addShearedLayers(vtkUnstructuredGrid* grid, int n, int k0, int k1)
+{
+  const int nx = 2 * n, ny = n;
+  if (!grid->GetPoints())
+  {
+    vtkNew<vtkPoints> points;
+    grid->SetPoints(points);
+  }
+  const vtkIdType first = grid->GetNumberOfPoints();
+  auto id = [&](int i, int j, int k) { return first + static_cast<vtkIdType>(((k - k0) * (ny + 1) + j) * (nx + 1) + i); };
+  for (int k = k0; k <= k1; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i)
+        grid->GetPoints()->InsertNextPoint(double(i) / n + 0.6 * k / n, double(j) / n, double(k) / n);
+  for (int k = k0; k < k1; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const vtkIdType hex[8] = { id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+          id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1) };
+        grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex);
+      }
+}
+}
+
+TEST(FacesBetweenPiecesAreOnNoBoundary)
+{
+  // The skewness is measured on boundary faces too (the owner mirrored across the face), so the
+  // faces where two pieces of one mesh touch without sharing points (two blocks, or one grid whose
+  // points were not merged) must not count as boundary faces. A 4 x 2 x 2 box of hexahedra has
+  // 28 interior and 40 boundary faces: the skewness aggregate's N is 68 whole, and 68 - 8 = 60
+  // split between its layers (the 8 faces between them measured by neither piece; 76 if they
+  // counted as the pieces' boundary).
+  const int n = 2;
+  auto whole = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  addShearedLayers(whole, n, 0, n);
+  auto unmerged = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  addShearedLayers(unmerged, n, 0, 1);
+  addShearedLayers(unmerged, n, 1, n);
+  auto lower = vtkSmartPointer<vtkUnstructuredGrid>::New(), upper = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  addShearedLayers(lower, n, 0, 1);
+  addShearedLayers(upper, n, 1, n);
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, lower);
+  blocks->SetBlock(1, upper);
+  const double bottom[6] = { -1, 4, -1, 2, -0.01, 0.01 }, top[6] = { -1, 4, -1, 2, 0.99, 1.01 };
+  double original = 0;
+  for (vtkDataObject* mesh : { static_cast<vtkDataObject*>(whole), static_cast<vtkDataObject*>(unmerged), static_cast<vtkDataObject*>(blocks.Get()) })
+  {
+    PlaneScene scene(mesh);
+    vtkNew<vtkBox> b, t;
+    b->SetBounds(bottom);
+    t->SetBounds(top);
+    scene.fixed->SetRegion(b);
+    scene.handle->SetRegion(t);
+    scene.handle->SetTranslation(0.1, 0, 0.05);
+    scene.deform->SetNumberOfSamples(100);
+    scene.deform->Update();
+    vtkNew<vtkDoubleArray> value;
+    CHECK(scene.deform->ComputeMeshQualityAggregate(1, 10.0, value, nullptr, nullptr));
+    const double count = value->GetNumberOfValues() == 2 ? value->GetValue(1) : -1;
+    std::printf("%s: skewness aggregate over %g faces, largest before %.6g\n", mesh == whole ? "whole" : mesh == unmerged ? "unmerged" : "two blocks",
+      count, fieldValue(scene.deform->GetOutputDataObject(0), "OriginalMaxSkewness"));
+    CHECK(count == (mesh == whole ? 68 : 60));
+    // the undeformed pieces' largest is the whole's (the top and bottom faces': 0.6 of their extent)
+    const double largest = fieldValue(scene.deform->GetOutputDataObject(0), "OriginalMaxSkewness");
+    original = mesh == whole ? largest : original;
+    CHECK(largest > 0.5 && std::abs(largest - original) <= 1e-15 * largest);
+  }
 }
 
 TEST(ExternalSamplesMatchInternalSampling)

@@ -23,7 +23,7 @@ FIGURES = ('InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness', 'OriginalInver
            'OriginalMaxSkewness')
 READ = "mesh quality: the case's faces, owner and neighbour"   # the case's faces read
 TAKEN = "mesh quality: the case's cells against the grid's"    # ... and found to be the grid's cells
-MATCHED = 'mesh quality: interior faces'                       # the grid's faces matched by their points
+MATCHED = 'mesh quality: interior and boundary faces'                       # the grid's faces matched by their points
 FIGURES_AHEAD = "the case's points are the grid's"             # the undeformed figures read with the faces
 AHEAD = "{ mesh quality: the case's faces read ahead"           # a read ahead started
 handle, fixed, slip = ['body'], ['inlet', 'outlet'], ['ground', 'top', 'front', 'back']

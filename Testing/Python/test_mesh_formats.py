@@ -18,6 +18,7 @@ from paraview.simple import LoadPlugin, OpenDataFile, SaveData
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from checks import check, finish
+from foam_box import FOAM, box_case
 
 plugin, work = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -196,30 +197,10 @@ for source, opener, ids_name, tolerance in ((exodus, IOSSReader, 'ids', 6e-8), (
 # Fluent (OpenFOAM's foamMeshToFluent on a blockMesh box; zones), converted back by
 # fluentMeshToFoam and checked by checkMesh: the points are the deformed ones (OpenFOAM's own
 # parsing of a number may differ from the nearest double by 1 ulp).
-FOAM = 'source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; set -e; '
-HEADER = 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n'
-CONTROL = HEADER % 'controlDict' + 'application icoFoam; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;\n' \
-    'writeControl timeStep; writeInterval 1; writeFormat ascii; writePrecision 17;\n'
-BLOCKS = HEADER % 'blockMeshDict' + '''convertToMeters 1;
-vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 1) (2 0 1) (2 1 1) (0 1 1));
-blocks (hex (0 1 2 3 4 5 6 7) (8 4 4) simpleGrading (1 1 1));
-boundary
-(
-    lid { type wall; faces ((4 5 6 7)); }
-    base { type wall; faces ((0 3 2 1)); }
-    sides { type patch; faces ((0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }
-);
-'''
-SCHEMES = HEADER % 'fvSchemes' + 'ddtSchemes { default Euler; } gradSchemes { default Gauss linear; } divSchemes { default none; } ' \
-    'laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default linear; } snGradSchemes { default corrected; }\n'
-SOLUTION = HEADER % 'fvSolution' + 'solvers { }\n'
 if os.path.exists('/usr/share/openfoam/etc/bashrc'):
     case = os.path.join(work, 'fluent', 'box')
-    for name, text in (('controlDict', CONTROL), ('blockMeshDict', BLOCKS), ('fvSchemes', SCHEMES), ('fvSolution', SOLUTION)):
-        os.makedirs(os.path.join(case, 'system'), exist_ok=True)
-        with open(os.path.join(case, 'system', name), 'w') as f:
-            f.write(text)
-    subprocess.run(['bash', '-c', FOAM + 'cd "%s" && blockMesh > log.blockMesh && foamMeshToFluent > log.foamMeshToFluent' % case], check=True)
+    box_case(case)
+    subprocess.run(['bash', '-c', FOAM + 'cd "%s" && foamMeshToFluent > log.foamMeshToFluent' % case], check=True)
     source = os.path.join(case, 'fluentInterface', 'box.msh')
     reader, deform, ids, moved = morph(source, 'lid', ['base'])
     variant = os.path.join(work, 'fluent', 'variant', 'box.msh')

@@ -16,6 +16,7 @@ plugin, examples, work = sys.argv[1:4]
 LoadPlugin(plugin, remote=False)
 sys.path.insert(0, examples)
 import openfoam_variant  # noqa: E402
+import foam_box  # noqa: E402  (beside this script)
 
 failures = []
 
@@ -122,6 +123,24 @@ for decompose in (True, False):
             # perturb the geometry by eps_f |x|: allow 1e-5 relative
             check(abs(reported[name] - expected) <= 1e-5 * expected,
                   '%s %.9g matches checkMesh\'s %.9g' % (name, reported[name], expected))
+
+# A parallelepiped (a box sheared by 0.6 along x per unit of z): its cells are equal, so its
+# interior faces have no skewness (0 to round-off) and its largest is a boundary face's, which
+# checkMesh measures with the owner mirrored across the face. The reported skewness before and
+# after a morph must be checkMesh's (interior faces alone would report 0 for the source).
+sheared = os.path.join(work, 'sheared')
+foam_box.box_case(sheared, [(x + 0.6 * z, y, z) for x, y, z in foam_box.BOX])
+reader = openfoam_variant.open_case(os.path.join(sheared, 'case.foam'), ['lid', 'base', 'sides'], False)
+deformed = openfoam_variant.morph(reader, ['lid'], [0.15, 0.05, 0.1], fixed=['base'])
+openfoam_variant.save_variant(deformed, os.path.join(work, 'sheared-variant', 'case.foam'), overwrite=True)
+field = deformed.GetDataInformation().GetFieldDataInformation()
+for name, folder in (('OriginalMaxSkewness', sheared), ('MaxSkewness', os.path.join(work, 'sheared-variant'))):
+    line = [x for x in openfoam('checkMesh', folder).splitlines() if 'Max skewness =' in x][0]
+    expected = float(line.split('Max skewness =')[1].split()[0])
+    reported = field.GetArrayInformation(name).GetComponentRange(0)[0]
+    # the 1e-5 of the case above (float32 points)
+    check(expected > 0.1 and abs(reported - expected) <= 1e-5 * expected,
+          'sheared box: %s %.9g matches checkMesh\'s %.9g (a boundary face\'s)' % (name, reported, expected))
 
 # Samples follow the mesh's grading (the default): the sphere is 3% of the domain's length, but
 # the refined cells around it hold about a third of the mesh, and so should the MLS samples. A

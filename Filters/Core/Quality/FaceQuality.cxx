@@ -1,7 +1,9 @@
 #include "Quality/FaceQuality.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <iterator>
 #include <numeric>
 #include <omp.h>
@@ -95,10 +97,18 @@ bool hasNegativePyramid(const std::vector<FaceGeometry>& faces, const Vec3& cent
   return std::any_of(faces.begin(), faces.end(), [&](const FaceGeometry& face) { return face.area.dot(face.centre - centre) < 0; });
 }
 
+namespace
+{
+// The cosine of the angle between d and a face's area vector.
+double cosineOf(const Vec3& d, const Vec3& area)
+{
+  return std::clamp(area.dot(d) / (area.norm() * d.norm() + RootVerySmall), -1.0, 1.0);
+}
+}
+
 double faceCosine(const Vec3& ownerCentre, const Vec3& neighbourCentre, const Vec3& area)
 {
-  const Vec3 d = neighbourCentre - ownerCentre;
-  return std::clamp(area.dot(d) / (area.norm() * d.norm() + RootVerySmall), -1.0, 1.0);
+  return cosineOf(neighbourCentre - ownerCentre, area);
 }
 
 double nonOrthogonalityOf(double cosine)
@@ -108,7 +118,36 @@ double nonOrthogonalityOf(double cosine)
 
 namespace
 {
-// Skewness's offset sv of the face centre and its least extent fd = 0.2 |d|: |sv| / fd bounds
+// What a face's skewness is defined by: Cpf = C_f - P, the line d it is measured against and the
+// least extent fd's share of |d|. An interior face: d = N - P, 0.2; a boundary face (OpenFOAM's
+// boundaryFaceSkewness): d = n (n . Cpf), the normal part of Cpf, 0.4 (0.2 of the mirrored cell's).
+struct SkewFrame
+{
+  Vec3 Cpf;
+  Vec3 d;
+  double extentShare;
+};
+
+SkewFrame interiorFrame(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face)
+{
+  return { face.centre - ownerCentre, neighbourCentre - ownerCentre, 0.2 };
+}
+
+// OpenFOAM's normalised(): zero for a vector of length at most ROOTVSMALL.
+Vec3 normalised(const Vec3& v)
+{
+  const double length = v.norm();
+  return length > RootVerySmall ? Vec3(v / length) : Vec3::Zero();
+}
+
+SkewFrame boundaryFrame(const Vec3& ownerCentre, const FaceGeometry& face)
+{
+  const Vec3 Cpf = face.centre - ownerCentre;
+  const Vec3 n = normalised(face.area);
+  return { Cpf, n * n.dot(Cpf), 0.4 };
+}
+
+// Skewness's offset sv of the face centre and its least extent fd = share |d|: |sv| / fd bounds
 // the skewness from above without the face's points.
 struct SkewOffset
 {
@@ -117,11 +156,9 @@ struct SkewOffset
   double bound() const { return sv.norm() / leastExtent; }
 };
 
-SkewOffset skewOffset(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face)
+SkewOffset skewOffset(const SkewFrame& f, const FaceGeometry& face)
 {
-  const Vec3 Cpf = face.centre - ownerCentre;
-  const Vec3 d = neighbourCentre - ownerCentre;
-  return { Cpf - (face.area.dot(Cpf) / (face.area.dot(d) + RootVerySmall)) * d, 0.2 * d.norm() + RootVerySmall };
+  return { f.Cpf - (face.area.dot(f.Cpf) / (face.area.dot(f.d) + RootVerySmall)) * f.d, f.extentShare * f.d.norm() + RootVerySmall };
 }
 
 double skewnessOf(const SkewOffset& o, const FaceGeometry& face, const PointList& points, const int* faceIndices, std::size_t n)
@@ -139,7 +176,12 @@ double skewnessOf(const SkewOffset& o, const FaceGeometry& face, const PointList
 double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face, const PointList& points,
   const int* faceIndices, std::size_t n)
 {
-  return skewnessOf(skewOffset(ownerCentre, neighbourCentre, face), face, points, faceIndices, n);
+  return skewnessOf(skewOffset(interiorFrame(ownerCentre, neighbourCentre, face), face), face, points, faceIndices, n);
+}
+
+double boundarySkewness(const Vec3& ownerCentre, const FaceGeometry& face, const PointList& points, const int* faceIndices, std::size_t n)
+{
+  return skewnessOf(skewOffset(boundaryFrame(ownerCentre, face), face), face, points, faceIndices, n);
 }
 
 CellFaceList::CellFaceList(const std::vector<CellFaces>& cells)
@@ -361,43 +403,60 @@ void prefetchPoints(const PointList& points, const int* face, std::size_t n)
   }
 }
 
-// Every interior face's geometry (work.faces, out of its owner as listed), then every cell's
-// centre (work.centres) and whether it is inverted (hasNegativePyramid): a cell takes an interior
-// face's geometry from work.faces (negated for the neighbour's reversed copy) and computes only
-// the others'.
-void cellCentres(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, std::vector<unsigned char>& inverted,
-  FaceWorkspace& work)
+// The face that measured face j (interior faces first, then boundary faces) is, as its owner lists it.
+long listedFace(const MeshFaces& mesh, long j)
 {
+  const long interior = static_cast<long>(mesh.interior.size());
+  return j < interior ? mesh.interior[j].face : mesh.boundary[j - interior].face;
+}
+
+// Every interior and boundary face's geometry (work.faces, out of its owner as listed), then
+// every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid): a cell takes
+// those faces' geometry from work.faces (negated for the neighbour's reversed copy) and computes
+// only the others'.
+void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<unsigned char>& inverted, FaceWorkspace& work)
+{
+  const CellFaceList& cells = mesh.cells;
+  const InteriorFaces& faces = mesh.interior;
   const long interior = static_cast<long>(faces.size());
-  if (static_cast<long>(work.interiorOf.size()) != cells.faces())
+  const long measured = interior + static_cast<long>(mesh.boundary.size());
+  if (static_cast<long>(work.slotOf.size()) != cells.faces() || work.slotted != measured)
   {
-    work.interiorOf.resize(static_cast<std::size_t>(cells.faces()));
+    work.slotOf.resize(static_cast<std::size_t>(cells.faces()));
 #pragma omp parallel for schedule(static)
     for (long f = 0; f < cells.faces(); ++f)
     {
-      work.interiorOf[f] = -1;
+      work.slotOf[f] = -1;
     }
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < interior; ++i)
     {
-      work.interiorOf[faces[i].face] = static_cast<int>(i);
+      work.slotOf[faces[i].face] = static_cast<int>(i);
       if (reversedCopy(cells, faces[i].face, faces[i].neighbourFace))
       {
-        work.interiorOf[faces[i].neighbourFace] = static_cast<int>(-2 - i);
+        work.slotOf[faces[i].neighbourFace] = static_cast<int>(-2 - i);
       }
     }
+#pragma omp parallel for schedule(static)
+    for (long j = interior; j < measured; ++j)
+    {
+      work.slotOf[mesh.boundary[j - interior].face] = static_cast<int>(j);
+    }
+    work.slotted = measured;
   }
-  work.faces.resize(static_cast<std::size_t>(interior));
+  work.faces.resize(static_cast<std::size_t>(measured));
   // the loops of every verdict in chunks taken as threads come free: a virtual CPU at times runs
   // at half speed, and an even split waits for it (each entry's value is the same either way)
 #pragma omp parallel for schedule(dynamic, 4096)
-  for (long i = 0; i < interior; ++i)
+  for (long j = 0; j < measured; ++j)
   {
-    if (i + Ahead < interior)
+    if (j + Ahead < measured)
     {
-      prefetchPoints(points, cells.face(faces[i + Ahead].face), cells.faceSize(faces[i + Ahead].face));
+      const long ahead = listedFace(mesh, j + Ahead);
+      prefetchPoints(points, cells.face(ahead), cells.faceSize(ahead));
     }
-    work.faces[i] = faceGeometry(points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
+    const long f = listedFace(mesh, j);
+    work.faces[j] = faceGeometry(points, cells.face(f), cells.faceSize(f));
   }
   work.centres.resize(cells.cells());
   inverted.resize(cells.cells());
@@ -411,7 +470,7 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const Inter
       {
         for (long f = cells.firstFace(c + Ahead); f < cells.firstFace(c + Ahead + 1); ++f)
         {
-          const int i = work.interiorOf[f];
+          const int i = work.slotOf[f];
           if (i < -1)
           {
             __builtin_prefetch(&work.faces[-2 - i]); // a neighbour's copy: far from the cell's own faces
@@ -425,7 +484,7 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const Inter
       g.clear();
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
-        const int i = work.interiorOf[f];
+        const int i = work.slotOf[f];
         if (i >= 0)
         {
           g.push_back(work.faces[i]);
@@ -446,35 +505,40 @@ void cellCentres(const PointList& points, const CellFaceList& cells, const Inter
 }
 
 // The face measures from the faces' geometry and the cells' centres in work (cellCentres on these
-// points). Each face is oriented by `orientation`, or, without it, as
-// faceOrientation decides on these points, written to `decided`.
-void measureFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>* orientation, std::vector<int>* decided, const FaceWorkspace& work, FaceMeasures& m)
+// points). Each interior face is oriented by `orientation`, or, without it, as faceOrientation
+// decides on these points, written to `decided`; a boundary face's skewness has no orientation.
+void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vector<int>* orientation, std::vector<int>* decided,
+  const FaceWorkspace& work, FaceMeasures& m)
 {
+  const CellFaceList& cells = mesh.cells;
+  const InteriorFaces& faces = mesh.interior;
+  const long interior = static_cast<long>(faces.size());
+  const long boundary = static_cast<long>(mesh.boundary.size());
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(m.perFace ? faces.size() : 0);
   m.skewness.resize(m.perFace ? faces.size() : 0);
+  m.boundarySkewness.resize(m.perFace ? mesh.boundary.size() : 0);
   double leastCosine = 1, maxSkewness = 0; // minimum and maximum: the same for any thread count
+  // for the largest alone, a face whose bound is no more than this thread's largest so far cannot
+  // change it: its points (a cache miss each) are not read (a tenth of a 1M-cell case's
+  // verdict); the largest is the same
+  auto skewnessOrNone = [&](const SkewOffset& offset, const FaceGeometry& g, long face) {
+    return m.perFace || offset.bound() > maxSkewness ? skewnessOf(offset, g, points, cells.face(face), cells.faceSize(face)) : 0.0;
+  };
 #pragma omp parallel for schedule(dynamic, 4096) reduction(min : leastCosine) reduction(max : maxSkewness)
-  for (long i = 0; i < static_cast<long>(faces.size()); ++i)
+  for (long i = 0; i < interior; ++i)
   {
-    if (i + Ahead < static_cast<long>(faces.size()))
+    if (i + Ahead < interior)
     {
       __builtin_prefetch(work.centres[faces[i + Ahead].neighbour].data());
     }
-    const int* face = cells.face(faces[i].face);
-    const std::size_t n = cells.faceSize(faces[i].face);
     FaceGeometry g = work.faces[i];
     const Vec3& P = work.centres[faces[i].owner];
     const Vec3& N = work.centres[faces[i].neighbour];
     const int sign = orientation ? (*orientation)[i] : ((*decided)[i] = g.area.dot(g.centre - P) < 0 ? -1 : 1);
     g.area *= sign;
     const double cosine = faceCosine(P, N, g.area);
-    // for the largest alone, a face whose bound is no more than this thread's largest so far
-    // cannot change it: its points (a cache miss each) are not read (a tenth of a 1M-cell
-    // case's verdict); the largest is the same
-    const SkewOffset offset = skewOffset(P, N, g);
-    const double skew = m.perFace || offset.bound() > maxSkewness ? skewnessOf(offset, g, points, face, n) : 0.0;
+    const double skew = skewnessOrNone(skewOffset(interiorFrame(P, N, g), g), g, faces[i].face);
     leastCosine = std::min(leastCosine, cosine);
     maxSkewness = std::max(maxSkewness, skew);
     if (m.perFace)
@@ -483,58 +547,78 @@ void measureFaces(const PointList& points, const CellFaceList& cells, const Inte
       m.skewness[i] = skew;
     }
   }
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : maxSkewness)
+  for (long b = 0; b < boundary; ++b)
+  {
+    const FaceGeometry& g = work.faces[interior + b];
+    const double skew = skewnessOrNone(skewOffset(boundaryFrame(work.centres[mesh.boundary[b].owner], g), g), g, mesh.boundary[b].face);
+    maxSkewness = std::max(maxSkewness, skew);
+    if (m.perFace)
+    {
+      m.boundarySkewness[b] = skew;
+    }
+  }
   m.maxNonOrthogonality = faces.empty() ? 0 : nonOrthogonalityOf(leastCosine);
   m.maxSkewness = maxSkewness;
 }
 }
 
-FaceTail faceTail(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation,
-  bool skewness, double width, FaceWorkspace& work)
+FaceTail faceTail(
+  const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, bool skewness, double width, FaceWorkspace& work)
 {
   std::vector<unsigned char> inverted;
-  cellCentres(points, cells, faces, inverted, work);
-  const long count = static_cast<long>(faces.size());
+  cellCentres(points, mesh, inverted, work);
+  const CellFaceList& cells = mesh.cells;
+  const InteriorFaces& faces = mesh.interior;
+  const long interior = static_cast<long>(faces.size());
+  const long count = skewness ? interior + static_cast<long>(mesh.boundary.size()) : interior;
   FaceTail tail;
   if (count == 0)
   {
     return tail;
   }
-  // a face's oriented geometry, its cells' centres, its cosine and its skewness's offset
-  auto measured = [&](long i, const auto& use) {
-    if (i + Ahead < count)
+  // measured face j's oriented geometry, and what its measure is defined by
+  auto geometry = [&](long j) {
+    FaceGeometry g = work.faces[j];
+    if (j < interior)
     {
-      __builtin_prefetch(work.centres[faces[i + Ahead].neighbour].data());
+      g.area *= orientation[j];
     }
-    FaceGeometry g = work.faces[i];
-    g.area *= orientation[i];
-    const Vec3& P = work.centres[faces[i].owner];
-    const Vec3& N = work.centres[faces[i].neighbour];
-    return use(g, P, N);
+    return g;
   };
-  auto skewnessAt = [&](long i, const SkewOffset& offset, const FaceGeometry& g) {
-    return skewnessOf(offset, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
+  auto frame = [&](long j, const FaceGeometry& g) {
+    if (j + Ahead < interior)
+    {
+      __builtin_prefetch(work.centres[faces[j + Ahead].neighbour].data());
+    }
+    return j < interior ? interiorFrame(work.centres[faces[j].owner], work.centres[faces[j].neighbour], g)
+                        : boundaryFrame(work.centres[mesh.boundary[j - interior].owner], g);
+  };
+  auto skewnessAt = [&](long j, const SkewOffset& offset, const FaceGeometry& g) {
+    const long f = listedFace(mesh, j);
+    return skewnessOf(offset, g, points, cells.face(f), cells.faceSize(f));
   };
   // the largest: the least cosine, or the skewness where its bound exceeds this thread's largest;
   // each face's cosine (or skewness bound) kept for the tail's pass
   work.screen.resize(static_cast<std::size_t>(count));
   double leastCosine = 1, largestSkewness = 0;
 #pragma omp parallel for schedule(dynamic, 4096) reduction(min : leastCosine) reduction(max : largestSkewness)
-  for (long i = 0; i < count; ++i)
+  for (long j = 0; j < count; ++j)
   {
-    measured(i, [&](const FaceGeometry& g, const Vec3& P, const Vec3& N) {
-      if (!skewness)
-      {
-        work.screen[i] = faceCosine(P, N, g.area);
-        leastCosine = std::min(leastCosine, work.screen[i]);
-        return;
-      }
-      const SkewOffset offset = skewOffset(P, N, g);
-      work.screen[i] = offset.bound();
-      if (work.screen[i] > largestSkewness)
-      {
-        largestSkewness = std::max(largestSkewness, skewnessAt(i, offset, g));
-      }
-    });
+    const FaceGeometry g = geometry(j);
+    const SkewFrame f = frame(j, g);
+    if (!skewness)
+    {
+      work.screen[j] = cosineOf(f.d, g.area);
+      leastCosine = std::min(leastCosine, work.screen[j]);
+      continue;
+    }
+    const SkewOffset offset = skewOffset(f, g);
+    work.screen[j] = offset.bound();
+    if (work.screen[j] > largestSkewness)
+    {
+      largestSkewness = std::max(largestSkewness, skewnessAt(j, offset, g));
+    }
   }
   tail.largest = skewness ? largestSkewness : nonOrthogonalityOf(leastCosine);
   const double floor = tail.largest - width;
@@ -548,18 +632,25 @@ FaceTail faceTail(const PointList& points, const CellFaceList& cells, const Inte
 #pragma omp parallel for schedule(dynamic)
   for (long b = 0; b < blocks; ++b)
   {
-    for (long i = b * Block; i < std::min(count, (b + 1) * Block); ++i)
+    for (long j = b * Block; j < std::min(count, (b + 1) * Block); ++j)
     {
-      if (skewness ? work.screen[i] < floor : work.screen[i] > mostCosine)
+      if (skewness ? work.screen[j] < floor : work.screen[j] > mostCosine)
       {
         continue;
       }
-      const double q = skewness ? measured(i, [&](const FaceGeometry& g, const Vec3& P, const Vec3& N) {
-        return skewnessAt(i, skewOffset(P, N, g), g);
-      }) : nonOrthogonalityOf(work.screen[i]);
+      double q = 0;
+      if (skewness)
+      {
+        const FaceGeometry g = geometry(j);
+        q = skewnessAt(j, skewOffset(frame(j, g), g), g);
+      }
+      else
+      {
+        q = nonOrthogonalityOf(work.screen[j]);
+      }
       if (q >= floor)
       {
-        found[b].emplace_back(i, q);
+        found[b].emplace_back(j, q);
       }
     }
   }
@@ -659,38 +750,141 @@ MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<i
     mesh.interior[f] = { owner[f], neighbour[f], mesh.cells.firstFace(owner[f]) + ownerSlot[f],
       mesh.cells.firstFace(neighbour[f]) + neighbourSlot[f] };
   }
+  mesh.boundary = boundaryFaces(mesh.cells, mesh.interior);
   return mesh;
 }
 
-std::vector<int> faceOrientation(
-  const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, FaceWorkspace& work, FaceMeasures& out)
+std::vector<int> faceOrientation(const PointList& points, const MeshFaces& mesh, FaceWorkspace& work, FaceMeasures& out)
 {
-  cellCentres(points, cells, faces, out.inverted, work);
-  std::vector<int> orientation(faces.size(), 1);
-  measureFaces(points, cells, faces, nullptr, &orientation, work, out);
+  cellCentres(points, mesh, out.inverted, work);
+  std::vector<int> orientation(mesh.interior.size(), 1);
+  measureFaces(points, mesh, nullptr, &orientation, work, out);
   return orientation;
 }
 
-std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces)
+std::vector<int> faceOrientation(const PointList& points, const MeshFaces& mesh)
 {
   FaceWorkspace work;
   FaceMeasures measures;
-  return faceOrientation(points, cells, faces, work, measures);
+  return faceOrientation(points, mesh, work, measures);
 }
 
-void faceMeasures(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
+void faceMeasures(
+  const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& m)
 {
-  cellCentres(points, cells, faces, m.inverted, work);
-  measureFaces(points, cells, faces, &orientation, nullptr, work, m);
+  cellCentres(points, mesh, m.inverted, work);
+  measureFaces(points, mesh, &orientation, nullptr, work, m);
 }
 
-FaceMeasures faceMeasures(
-  const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation)
+FaceMeasures faceMeasures(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation)
 {
   FaceWorkspace work;
   FaceMeasures m;
-  faceMeasures(points, cells, faces, orientation, work, m);
+  faceMeasures(points, mesh, orientation, work, m);
   return m;
+}
+
+BoundaryFaces boundaryFaces(const CellFaceList& cells, const InteriorFaces& interior)
+{
+  std::vector<unsigned char> copy(static_cast<std::size_t>(cells.faces()), 0);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < static_cast<long>(interior.size()); ++i)
+  {
+    copy[interior[i].face] = copy[interior[i].neighbourFace] = 1;
+  }
+  BoundaryFaces boundary;
+  for (int c = 0; c < cells.cells(); ++c)
+  {
+    for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
+    {
+      if (!copy[f])
+      {
+        boundary.push_back({ c, f });
+      }
+    }
+  }
+  return boundary;
+}
+
+std::vector<std::uint64_t> boundaryKeys(const PointList& points, const CellFaceList& cells, const BoundaryFaces& boundary)
+{
+  std::vector<std::uint64_t> keys(boundary.size());
+#pragma omp parallel
+  {
+    std::vector<std::array<std::uint64_t, 3>> corners;
+#pragma omp for schedule(static)
+    for (long b = 0; b < static_cast<long>(boundary.size()); ++b)
+    {
+      const int* face = cells.face(boundary[b].face);
+      corners.resize(cells.faceSize(boundary[b].face));
+      for (std::size_t k = 0; k < corners.size(); ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          const double x = points[face[k]][c] == 0 ? 0.0 : points[face[k]][c]; // -0 as 0
+          std::memcpy(&corners[k][c], &x, sizeof x);
+        }
+      }
+      std::sort(corners.begin(), corners.end());
+      std::uint64_t key = corners.size();
+      for (const auto& corner : corners)
+      {
+        for (std::uint64_t bits : corner)
+        {
+          // splitmix64's finalizer over the key and the next word
+          std::uint64_t z = (key ^ bits) + 0x9e3779b97f4a7c15ULL;
+          z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+          z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+          key = z ^ (z >> 31);
+        }
+      }
+      keys[b] = key;
+    }
+  }
+  return keys;
+}
+
+std::vector<std::uint64_t> repeatedKeys(std::vector<std::uint64_t> keys)
+{
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint64_t> repeated;
+  for (std::size_t k = 1; k < keys.size(); ++k)
+  {
+    if (keys[k] == keys[k - 1] && (repeated.empty() || repeated.back() != keys[k]))
+    {
+      repeated.push_back(keys[k]);
+    }
+  }
+  return repeated;
+}
+
+long leaveOutFaces(BoundaryFaces& boundary, const std::vector<std::uint64_t>& keys, const std::vector<std::uint64_t>& between)
+{
+  if (between.empty())
+  {
+    return 0;
+  }
+  std::size_t kept = 0;
+  for (std::size_t b = 0; b < boundary.size(); ++b)
+  {
+    if (!std::binary_search(between.begin(), between.end(), keys[b]))
+    {
+      boundary[kept++] = boundary[b];
+    }
+  }
+  const long left = static_cast<long>(boundary.size() - kept);
+  boundary.resize(kept);
+  return left;
+}
+
+MeshFaces meshFaces(CellFaceList cells, const PointList& points)
+{
+  MeshFaces mesh;
+  mesh.cells = std::move(cells);
+  mesh.interior = interiorFaces(mesh.cells);
+  mesh.boundary = boundaryFaces(mesh.cells, mesh.interior);
+  const std::vector<std::uint64_t> keys = boundaryKeys(points, mesh.cells, mesh.boundary);
+  leaveOutFaces(mesh.boundary, keys, repeatedKeys(keys));
+  return mesh;
 }
 } // namespace mlsdeform

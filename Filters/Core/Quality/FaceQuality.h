@@ -4,13 +4,18 @@
 // and per interior face
 //   non-orthogonality = angle between the face area vector S_f and d = C_N - C_P (degrees),
 //   skewness = |sv| / fd, sv the offset of the face centre from where the line P-N crosses the
-//              face plane, fd the largest extent of the face along sv (at least 0.2 |d|).
+//              face plane, fd the largest extent of the face along sv (at least 0.2 |d|);
+// per boundary face (polyMeshTools::faceSkewness: "treat as if mirror cell on other side",
+// primitiveMeshTools::boundaryFaceSkewness) the skewness with d = n (n . (C_f - C_P)), n = S_f /
+// |S_f|, and fd at least 0.4 |d|: the interior formula with the owner mirrored across the face
+// plane; no non-orthogonality (checkMesh's is 0 there).
 #pragma once
 
 #include "Common/CoreTypes.h"
 #include "Common/UninitializedVector.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <vector>
 
@@ -62,6 +67,9 @@ inline double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, con
 {
   return skewness(ownerCentre, neighbourCentre, face, points, faceIndices.data(), faceIndices.size());
 }
+
+/// OpenFOAM's skewness of a boundary face (its owner mirrored across the face plane).
+double boundarySkewness(const Vec3& ownerCentre, const FaceGeometry& face, const PointList& points, const int* faceIndices, std::size_t n);
 
 /// A cell as its list of faces, each a polygon of point indices.
 using CellFaces = std::vector<std::vector<int>>;
@@ -154,17 +162,46 @@ using InteriorFaces = UninitializedVector<InteriorFace>;
 /// Throws std::invalid_argument for a face shared by more than two cells.
 InteriorFaces interiorFaces(const CellFaceList& cells);
 
-/// A mesh's cells as lists of faces, and the faces between two cells.
+/// A face of one cell only: its number in the CellFaceList and that cell.
+struct BoundaryFace
+{
+  int owner;
+  long face;
+};
+using BoundaryFaces = std::vector<BoundaryFace>;
+
+/// The faces of the cells that are no copy of an interior face, in face order.
+BoundaryFaces boundaryFaces(const CellFaceList& cells, const InteriorFaces& interior);
+
+/// Per boundary face, a key of its points' positions that does not depend on their order (the
+/// bits of their sorted coordinates, mixed): two pieces of one mesh (blocks, processes, cells
+/// whose points were not merged) touch at the faces of equal keys, which are not on the mesh's
+/// boundary. Two different faces share a key with probability 2^-64 a pair.
+std::vector<std::uint64_t> boundaryKeys(const PointList& points, const CellFaceList& cells, const BoundaryFaces& boundary);
+
+/// The keys that occur more than once in keys, sorted.
+std::vector<std::uint64_t> repeatedKeys(std::vector<std::uint64_t> keys);
+
+/// The boundary faces whose key (keys, one per face) is not in `between` (sorted): those on the
+/// mesh's boundary, not between its pieces. Returns how many were left out.
+long leaveOutFaces(BoundaryFaces& boundary, const std::vector<std::uint64_t>& keys, const std::vector<std::uint64_t>& between);
+
+/// A mesh's cells as lists of faces, the faces between two cells and those on its boundary.
 struct MeshFaces
 {
   CellFaceList cells;
   InteriorFaces interior;
+  BoundaryFaces boundary;
 };
+
+/// The mesh of these cells: its interior faces matched by their points (interiorFaces), its
+/// boundary faces the others, less those between pieces that touch (equal boundaryKeys on points).
+MeshFaces meshFaces(CellFaceList cells, const PointList& points);
 
 /// The cells' faces and the interior faces of a mesh in OpenFOAM's form (polyMesh), without
 /// matching faces by their points: face f, the points points[start[f]] .. points[start[f + 1] - 1]
 /// listed so that their normal points out of owner[f], lies between owner[f] and neighbour[f] for
-/// f < neighbour.size() and on the boundary of owner[f] after. The cells are 0 .. the largest
+/// f < neighbour.size() and on the boundary of owner[f] after (the boundary faces, in face order). The cells are 0 .. the largest
 /// owner or neighbour; each lists its faces in face order, those it is the neighbour of reversed
 /// (out of the cell, as VTK lists a cell's faces); an interior face's copy is its owner's. Throws
 /// std::invalid_argument when the lists' sizes disagree, a cell or point index is out of range
@@ -175,10 +212,10 @@ MeshFaces ownerNeighbourFaces(const std::vector<int>& start, const std::vector<i
 /// Per interior face, +1 or -1 so that the oriented area vector points out of the owner on
 /// `points`. OpenFOAM fixes that order in the topology, so decide it on the undeformed mesh and
 /// keep it: a neighbour whose centre folds over to the owner's side then shows above 90 degrees.
-std::vector<int> faceOrientation(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces);
+std::vector<int> faceOrientation(const PointList& points, const MeshFaces& mesh);
 
-/// The largest non-orthogonality (degrees) and skewness over the interior faces and, when asked
-/// for (perFace), those of every interior face; the cells with a pyramid of negative volume
+/// The largest non-orthogonality (degrees) over the interior faces and skewness over the interior
+/// and boundary faces and, when asked for (perFace), those of every face; the cells with a pyramid of negative volume
 /// (inverted, hasNegativePyramid) and their number. A summary without the per-face values takes
 /// no face-sized buffer and one arc cosine in all.
 struct FaceMeasures
@@ -186,33 +223,36 @@ struct FaceMeasures
   bool perFace = true;
   std::vector<double> nonOrthogonality; // per interior face, when perFace
   std::vector<double> skewness;         // per interior face, when perFace
+  std::vector<double> boundarySkewness; // per boundary face, when perFace
   double maxNonOrthogonality = 0;
   double maxSkewness = 0;
   std::vector<unsigned char> inverted; // per cell
   long invertedCells = 0;
 };
-FaceMeasures faceMeasures(
-  const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation);
+FaceMeasures faceMeasures(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation);
 
-/// The mesh-sized buffers of faceMeasures, kept between calls on the same cells and interior
-/// faces so that measuring another deformation allocates nothing. Each interior face's geometry
-/// is computed once, from its owner's copy, and serves both its cells and its measures, as
-/// OpenFOAM computes it (three times as often before: 52% of a 400k-point verdict's time).
+/// The mesh-sized buffers of faceMeasures, kept between calls on one mesh so that measuring
+/// another deformation allocates nothing. Each interior and boundary face's geometry is computed
+/// once, from its owner's copy, and serves both its cells and its measures, as OpenFOAM computes
+/// it (three times as often before: 52% of a 400k-point verdict's time).
 struct FaceWorkspace
 {
   std::vector<Vec3> centres;       // per cell
-  std::vector<FaceGeometry> faces; // per interior face, out of its owner as listed
-  std::vector<int> interiorOf;     // per face of the cells: i for interior face i's owner's copy,
-                                   // -2 - i for its neighbour's, -1 on the boundary
-  std::vector<double> screen;      // per interior face: faceTail's cosine or skewness bound
+  std::vector<FaceGeometry> faces; // per interior face, out of its owner as listed, then per boundary face
+  std::vector<int> slotOf;         // per face of the cells: s for the owner's copy of faces[s], -2 - i
+                                   // for interior face i's neighbour's, -1 for a face measured alone
+  long slotted = -1;               // the interior and boundary faces slotOf was made for
+  std::vector<double> screen;      // per face measured: faceTail's cosine or skewness bound
 };
 
 /// faceMeasures into out (per face as out.perFace says), with the buffers of work.
-void faceMeasures(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
+void faceMeasures(
+  const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, FaceWorkspace& work, FaceMeasures& out);
 
-/// The interior faces whose measure (the non-orthogonality, or with `skewness` the skewness) is
-/// at least largest - width, in face order, with their measures and the largest over every face;
+/// The faces whose measure (the non-orthogonality of an interior face, or with `skewness` the
+/// skewness of an interior or boundary face) is at least largest - width, numbered interior faces
+/// first (i), then boundary faces (interior.size() + b), in that order, with their measures and
+/// the largest over every face;
 /// the faces' and cells' geometry of these points in work. One pass over the cells and one over
 /// the faces, which keeps their cosines (or skewness bounds, in work.screen): a face's arc cosine
 /// (or its points' extent) is computed only where it may lie within width of the largest.
@@ -222,11 +262,10 @@ struct FaceTail
   std::vector<long> faces;
   std::vector<double> values;
 };
-FaceTail faceTail(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, const std::vector<int>& orientation,
-  bool skewness, double width, FaceWorkspace& work);
+FaceTail faceTail(
+  const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, bool skewness, double width, FaceWorkspace& work);
 
 /// faceOrientation, and with it the measures of these points into out (with the buffers of work):
 /// the rest mesh's measures at the cost of one pass over its cells.
-std::vector<int> faceOrientation(
-  const PointList& points, const CellFaceList& cells, const InteriorFaces& faces, FaceWorkspace& work, FaceMeasures& out);
+std::vector<int> faceOrientation(const PointList& points, const MeshFaces& mesh, FaceWorkspace& work, FaceMeasures& out);
 } // namespace mlsdeform

@@ -59,13 +59,13 @@ void nonOrthogonalityAdjoint(const Vec3& P, const Vec3& N, const Vec3& S, double
   Pbar -= dBar;
 }
 
-// The skewness's (FaceQuality's skewnessOf) derivatives, times weight: along the centres, the
-// oriented area vector, the face centre, and the face point that sets its extent.
-void skewnessAdjoint(const Vec3& P, const Vec3& N, const FaceGeometry& face, const PointList& points, const int* ids, std::size_t n,
-  double weight, Vec3& Pbar, Vec3& Nbar, Vec3& Sbar, Vec3& cBar, Terms& terms)
+// The skewness's (FaceQuality's skewnessOf on Cpf = C_f - P and d, its least extent share |d|)
+// derivatives, times weight: along Cpf, d, the oriented area vector, the face centre, and the
+// face point that sets its extent.
+void skewnessAdjoint(const Vec3& Cpf, const Vec3& d, double share, const FaceGeometry& face, const PointList& points, const int* ids,
+  std::size_t n, double weight, Vec3& CpfBar, Vec3& dBar, Vec3& Sbar, Vec3& cBar, Terms& terms)
 {
   const Vec3& S = face.area;
-  const Vec3 Cpf = face.centre - P, d = N - P;
   const double den = S.dot(d) + RootVerySmall;
   const double t = S.dot(Cpf) / den;
   const Vec3 sv = Cpf - t * d;
@@ -75,8 +75,8 @@ void skewnessAdjoint(const Vec3& P, const Vec3& N, const FaceGeometry& face, con
     return; // no skewness: a cone's tip, no derivative
   }
   const Vec3 svHat = sv / (length + RootVerySmall);
-  double fd = 0.2 * d.norm() + RootVerySmall;
-  std::size_t k = n; // the point that sets the extent, or n for 0.2 |d|
+  double fd = share * d.norm() + RootVerySmall;
+  std::size_t k = n; // the point that sets the extent, or n for share |d|
   for (std::size_t i = 0; i < n; ++i)
   {
     const double v = std::abs(svHat.dot(points[ids[i]] - face.centre));
@@ -89,10 +89,9 @@ void skewnessAdjoint(const Vec3& P, const Vec3& N, const FaceGeometry& face, con
   // q = |sv| / fd
   Vec3 svBar = weight / fd * svHat;
   const double fdBar = -weight * length / (fd * fd);
-  Vec3 dBar = Vec3::Zero();
   if (k == n)
   {
-    dBar += fdBar * 0.2 * d / d.norm();
+    dBar += fdBar * share * d / d.norm();
   }
   else
   {
@@ -105,12 +104,24 @@ void skewnessAdjoint(const Vec3& P, const Vec3& N, const FaceGeometry& face, con
   }
   // sv = Cpf - t d, t = S . Cpf / (S . d)
   const double tBar = -svBar.dot(d);
-  const Vec3 CpfBar = svBar + tBar * S / den;
+  CpfBar += svBar + tBar * S / den;
   dBar += -t * svBar - tBar * t * S / den;
   Sbar += tBar * (Cpf - t * d) / den;
-  cBar += CpfBar;
-  Pbar -= CpfBar + dBar;
-  Nbar += dBar;
+}
+
+// A boundary face's d = n (n . Cpf), n = S / |S| (FaceQuality's boundaryFrame): dBar taken back
+// to Cpf and S.
+void boundaryFrameAdjoint(const Vec3& Cpf, const Vec3& S, const Vec3& dBar, Vec3& CpfBar, Vec3& Sbar)
+{
+  const double length = S.norm();
+  if (!(length > RootVerySmall))
+  {
+    return; // d = 0 there (normalised's zero)
+  }
+  const Vec3 n = S / length;
+  const Vec3 nBar = n.dot(Cpf) * dBar + n.dot(dBar) * Cpf;
+  CpfBar += n.dot(dBar) * n;
+  Sbar += (nBar - n.dot(nBar) * n) / length;
 }
 }
 
@@ -151,13 +162,15 @@ AggregatePart aggregatePart(const std::vector<double>& q, double rho)
   return part;
 }
 
-FaceAggregate aggregateFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, QualityMeasure measure, double rho, FaceWorkspace& work)
+FaceAggregate aggregateFaces(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, QualityMeasure measure,
+  double rho, FaceWorkspace& work)
 {
   FaceAggregate a;
-  const double width = (std::log(std::max<double>(1, static_cast<double>(faces.size()))) + 46) / rho;
-  a.tail = faceTail(points, cells, faces, orientation, measure == QualityMeasure::Skewness, width, work);
-  a.part.count = static_cast<long>(faces.size());
+  const bool skewness = measure == QualityMeasure::Skewness;
+  const std::size_t count = mesh.interior.size() + (skewness ? mesh.boundary.size() : 0);
+  const double width = (std::log(std::max<double>(1, static_cast<double>(count))) + 46) / rho;
+  a.tail = faceTail(points, mesh, orientation, skewness, width, work);
+  a.part.count = static_cast<long>(count);
   if (a.part.count > 0)
   {
     a.part.largest = a.tail.largest;
@@ -169,10 +182,11 @@ FaceAggregate aggregateFaces(const PointList& points, const CellFaceList& cells,
   return a;
 }
 
-void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, const FaceTail& tail, QualityMeasure measure, double rho,
-  const AggregatePart& whole, PointList& gradient)
+void addAggregateGradient(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, const FaceWorkspace& work,
+  const FaceTail& tail, QualityMeasure measure, double rho, const AggregatePart& whole, PointList& gradient)
 {
+  const CellFaceList& cells = mesh.cells;
+  const long interior = static_cast<long>(mesh.interior.size());
   std::vector<std::size_t> heavy; // the tail's faces of weight >= LeastWeight, in face order
   for (std::size_t t = 0; t < tail.faces.size(); ++t)
   {
@@ -185,25 +199,46 @@ void addAggregateGradient(const PointList& points, const CellFaceList& cells, co
 #pragma omp parallel for schedule(dynamic, 16)
   for (long h = 0; h < static_cast<long>(heavy.size()); ++h)
   {
-    const long i = tail.faces[heavy[h]];
-    const InteriorFace& f = faces[i];
+    const long j = tail.faces[heavy[h]]; // an interior face, or boundary face j - interior
+    const bool inside = j < interior;
+    const long face = inside ? mesh.interior[j].face : mesh.boundary[j - interior].face;
+    const int owner = inside ? mesh.interior[j].owner : mesh.boundary[j - interior].owner;
     const double weight = std::exp(rho * (tail.values[heavy[h]] - whole.largest)) / whole.sum;
-    const Vec3& P = work.centres[f.owner];
-    const Vec3& N = work.centres[f.neighbour];
-    FaceGeometry g = faceGeometry(points, cells.face(f.face), cells.faceSize(f.face));
-    g.area *= orientation[i];
+    const Vec3& P = work.centres[owner];
+    FaceGeometry g = faceGeometry(points, cells.face(face), cells.faceSize(face));
+    const int sign = inside ? orientation[j] : 1;
+    g.area *= sign;
     Vec3 Pbar = Vec3::Zero(), Nbar = Vec3::Zero(), Sbar = Vec3::Zero(), cBar = Vec3::Zero();
     if (measure == QualityMeasure::NonOrthogonality)
     {
-      nonOrthogonalityAdjoint(P, N, g.area, weight, Pbar, Nbar, Sbar);
+      nonOrthogonalityAdjoint(P, work.centres[mesh.interior[j].neighbour], g.area, weight, Pbar, Nbar, Sbar);
     }
     else
     {
-      skewnessAdjoint(P, N, g, points, cells.face(f.face), cells.faceSize(f.face), weight, Pbar, Nbar, Sbar, cBar, terms[h]);
+      // Cpf = C_f - P; d = N - P inside, n (n . Cpf) on the boundary
+      const Vec3 Cpf = g.centre - P;
+      const Vec3 n = g.area.norm() > RootVerySmall ? Vec3(g.area / g.area.norm()) : Vec3::Zero();
+      const Vec3 d = inside ? Vec3(work.centres[mesh.interior[j].neighbour] - P) : Vec3(n * n.dot(Cpf));
+      Vec3 CpfBar = Vec3::Zero(), dBar = Vec3::Zero();
+      skewnessAdjoint(Cpf, d, inside ? 0.2 : 0.4, g, points, cells.face(face), cells.faceSize(face), weight, CpfBar, dBar, Sbar, cBar, terms[h]);
+      if (inside)
+      {
+        Nbar += dBar;
+        Pbar -= dBar;
+      }
+      else
+      {
+        boundaryFrameAdjoint(Cpf, g.area, dBar, CpfBar, Sbar);
+      }
+      cBar += CpfBar;
+      Pbar -= CpfBar;
     }
-    addFace(points, cells.face(f.face), cells.faceSize(f.face), cBar, orientation[i] * Sbar, terms[h]);
-    addCell(points, cells, f.owner, Pbar, terms[h]);
-    addCell(points, cells, f.neighbour, Nbar, terms[h]);
+    addFace(points, cells.face(face), cells.faceSize(face), cBar, sign * Sbar, terms[h]);
+    addCell(points, cells, owner, Pbar, terms[h]);
+    if (inside)
+    {
+      addCell(points, cells, mesh.interior[j].neighbour, Nbar, terms[h]);
+    }
   }
   for (const Terms& t : terms)
   {

@@ -1,6 +1,7 @@
 // The mesh's quality as one smooth function of its points, for an optimizer's constraint (DAFoam's
 // KS-aggregated mesh quality): the Kreisselmeier-Steinhauser aggregate of checkMesh's
-// non-orthogonality (degrees) or skewness over the interior faces (FaceQuality.h), in its
+// non-orthogonality (degrees) over the interior faces or skewness over the interior and boundary
+// faces (FaceQuality.h), in its
 // max-shifted form
 //   KS = m + ln(sum_f exp(rho (q_f - m))) / rho,   m = max_f q_f,   m <= KS <= m + ln(N) / rho,
 // and its exact gradient at the points by reverse-mode differentiation of FaceQuality's
@@ -40,8 +41,8 @@ struct AggregatePart
 /// The part of values q (the elements' measures; one part of the tests' faces).
 AggregatePart aggregatePart(const std::vector<double>& q, double rho);
 
-/// The part of a face measure (NonOrthogonality or Skewness) over the interior faces on these
-/// points, and the faces that weigh in it: those within (ln N + 46) / rho of the largest
+/// The part of a face measure (NonOrthogonality over the interior faces, Skewness over the
+/// interior and boundary faces) on these points, and the faces that weigh in it: those within (ln N + 46) / rho of the largest
 /// (FaceQuality's faceTail). The others' terms exp(rho (q - m)) are below e^-46 / N each, their
 /// sum below 1e-20 of the sum (at least 1): under a double's round-off, and none of them is heavy
 /// enough for the gradient. work holds the geometry the gradient needs.
@@ -50,15 +51,14 @@ struct FaceAggregate
   AggregatePart part;
   FaceTail tail;
 };
-FaceAggregate aggregateFaces(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, QualityMeasure measure, double rho, FaceWorkspace& work);
+FaceAggregate aggregateFaces(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, QualityMeasure measure,
+  double rho, FaceWorkspace& work);
 
 /// Adds sum_f w_f dq_f/dX to gradient (one entry per point), the weights of the aggregate `whole`
 /// (over every part); work and tail as aggregateFaces left them on these points. The faces' terms
 /// are summed in face order: the same bits for any thread count.
-void addAggregateGradient(const PointList& points, const CellFaceList& cells, const InteriorFaces& faces,
-  const std::vector<int>& orientation, const FaceWorkspace& work, const FaceTail& tail, QualityMeasure measure, double rho,
-  const AggregatePart& whole, PointList& gradient);
+void addAggregateGradient(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, const FaceWorkspace& work,
+  const FaceTail& tail, QualityMeasure measure, double rho, const AggregatePart& whole, PointList& gradient);
 
 /// The reverse-mode derivatives of FaceQuality's geometry: given dF/d(centre) and dF/d(area) of a
 /// face, adds dF/d(its k-th point) to cornerBar[k] (k = 0 .. n-1).
