@@ -265,7 +265,8 @@ int vtkDeformationQuality::RequestData(
     }
     this->UpdateProgress(0.1);
     // OpenFOAM's face order: out of the owner in the undeformed mesh
-    const mlsvtk::VolumeMeshQuality topology(original ? original : input);
+    mlsvtk::VolumeMeshQuality topology(original ? original : input);
+    topology.leaveOutBoundaryFaces(mlsdeform::repeatedKeys(topology.boundaryKeys())); // unmerged points' faces
     this->UpdateProgress(0.4);
     mlsvtk::checkAbort(this);
     writeFaces(faceOutput, input->GetPoints(), topology);

@@ -268,7 +268,7 @@ VolumeMeshQuality::VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::strin
     if (!own)
     {
       vtkLogScopeF(TRACE, "mesh quality: interior and boundary faces");
-      Mesh = mlsdeform::meshFaces(std::move(cells), Points);
+      Mesh = mlsdeform::meshFaces(std::move(cells));
     }
     vtkLogScopeF(TRACE, "mesh quality: the undeformed mesh's figures");
     if (own && own->points == Points)

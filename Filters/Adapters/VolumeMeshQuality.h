@@ -105,10 +105,11 @@ enum class QualityVerdict
 class VolumeMeshQuality
 {
 public:
-  /// The faces of rest's cells, matched by their points (meshFaces: faces between pieces of
-  /// unmerged points are on no boundary); or, when rest is the mesh of the OpenFOAM case folder
-  /// casePath as it numbers it, the case's own (caseFaces), with the figures of the case's points
-  /// when those are rest's. The FEM solver's verdict needs no faces.
+  /// The faces of rest's cells, matched by their points (meshFaces); or, when rest is the mesh
+  /// of the OpenFOAM case folder casePath as it numbers it, the case's own (caseFaces), with the
+  /// figures of the case's points when those are rest's. The FEM solver's verdict needs no faces.
+  /// Faces where pieces of the mesh touch (unmerged points, another block or process) are
+  /// boundary faces until leaveOutBoundaryFaces.
   explicit VolumeMeshQuality(vtkUnstructuredGrid* rest, const std::string& casePath = std::string(),
     QualityVerdict verdict = QualityVerdict::CheckMesh);
 

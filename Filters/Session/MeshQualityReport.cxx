@@ -12,6 +12,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -37,37 +38,29 @@ bool samePoints(vtkPointSet* a, vtkPointSet* b)
     std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0), static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0;
 }
 
-// The boundary faces where one set's grid touches another's, or another process's (faces of the
-// same positions, boundaryKeys), are between pieces of one mesh: left out of every set's
-// skewness, as a boundary face is measured with its owner mirrored across it. (A set's own
-// pieces, unmerged points, VolumeMeshQuality leaves out itself: one process with one set has no
-// other piece.)
-void leaveOutFacesBetweenPieces(const std::vector<std::unique_ptr<VolumeMeshQuality>>& quality, const Collective& group)
+// The points of sets, for PieceInterfaces.
+PieceInterfaces::PointOf pointsOf(const std::vector<vtkPointSet*>& sets)
 {
-  if (group.size() == 1 && quality.size() <= 1)
+  return [&sets](std::size_t s, long id) {
+    double x[3];
+    sets[s]->GetPoint(id, x);
+    return Vec3(x[0], x[1], x[2]);
+  };
+}
+
+// The largest measures of the faces between pieces, as a summary to add.
+QualitySummary summaryOf(const PieceInterfaces::Measures& m)
+{
+  QualitySummary summary;
+  for (double q : m.nonOrthogonality)
   {
-    return;
+    summary.maxNonOrthogonality = std::max(summary.maxNonOrthogonality, q);
   }
-  std::vector<std::int64_t> local;
-  for (const auto& q : quality)
+  for (double q : m.skewness)
   {
-    if (q)
-    {
-      for (std::uint64_t key : q->boundaryKeys())
-      {
-        local.push_back(static_cast<std::int64_t>(key));
-      }
-    }
+    summary.maxSkewness = std::max(summary.maxSkewness, q);
   }
-  const std::vector<std::int64_t> every = group.gather(local);
-  const std::vector<std::uint64_t> between = repeatedKeys(std::vector<std::uint64_t>(every.begin(), every.end()));
-  for (const auto& q : quality)
-  {
-    if (q)
-    {
-      q->leaveOutBoundaryFaces(between);
-    }
-  }
+  return summary;
 }
 }
 
@@ -119,6 +112,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
     {
       // the deformation stands; this mesh's quality is not reported (said once per mesh)
       Quality.clear();
+      Interfaces = PieceInterfaces();
       Problem = problem + ". (ParaView's OpenFOAM reader with Decompose polyhedra on makes such cells: turn it off to measure "
                           "OpenFOAM's own cells.)";
       vtkWarningWithObjectMacro(owner, << "The mesh quality is not reported: " << Problem);
@@ -126,7 +120,12 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
     else
     {
       Problem.clear();
-      leaveOutFacesBetweenPieces(Quality, group);
+      std::vector<VolumeMeshQuality*> sets;
+      for (const auto& quality : Quality)
+      {
+        sets.push_back(quality.get());
+      }
+      Interfaces.find(sets, pointsOf(inSets), group);
       for (const auto& quality : Quality)
       {
         if (quality && quality->hasCells())
@@ -134,6 +133,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
           Original.add(quality->original());
         }
       }
+      Original.add(summaryOf(Interfaces.measure(pointsOf(inSets), group)));
     }
     Quality.resize(inSets.size());
     Measured = std::move(stamp);
@@ -164,6 +164,7 @@ void MeshQualityReport::report(const std::vector<vtkPointSet*>& inSets, const st
       measured = true;
     }
   }
+  deformed.add(summaryOf(Interfaces.measure(pointsOf(outSets), group)));
   if (!group.any(measured))
   {
     return;
@@ -211,6 +212,12 @@ MeshQualityReport::Aggregate MeshQualityReport::aggregate(
       }
     }
   });
+  if (!elements)
+  {
+    // the faces between pieces, after this process's own
+    const PieceInterfaces::Measures& shared = Interfaces.measure([&](std::size_t s, long id) { return points[Starts[s] + id]; }, group);
+    local.add(aggregatePart(measure == QualityMeasure::NonOrthogonality ? shared.nonOrthogonality : shared.skewness, rho), rho);
+  }
   // every process's part, combined in process order: the same on every process
   const std::vector<double> parts = group.gather(std::vector<double>{ local.largest, local.sum, static_cast<double>(local.count) });
   AggregatePart whole;
@@ -248,6 +255,16 @@ MeshQualityReport::Aggregate MeshQualityReport::aggregate(
           {
             (*gradient)[3 * (Starts[s] + i) + c] = elements ? -g[i][c] : g[i][c];
           }
+        }
+      }
+    }
+    if (!elements)
+    {
+      for (const PieceInterfaces::Term& t : Interfaces.aggregateGradient(measure, rho, whole, group))
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          (*gradient)[3 * (Starts[t.set] + t.point) + c] += t.value[c];
         }
       }
     }

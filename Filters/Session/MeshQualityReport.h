@@ -7,6 +7,7 @@
 #include "Adapters/Stamp.h"
 #include "Adapters/VolumeMeshQuality.h"
 #include "Common/Collective.h"
+#include "Session/PieceInterfaces.h"
 
 #include <memory>
 #include <string>
@@ -25,8 +26,10 @@ public:
   /// field when some process has volume cells (checkMesh's verdict; quadratic elements are
   /// measured by their Jacobian for InvertedCells only). A structural solver's mesh file (field data
   /// QualityVerdict "FemSolver") gets the FEM solver's verdict instead of checkMesh's: InvertedCells
-  /// by the elements' Jacobian, MinScaledJacobian, and no face measures. Split over processes, each measures its own piece
-  /// (the faces between pieces are not measured) and the summaries are combined exactly. Cells
+  /// by the elements' Jacobian, MinScaledJacobian, and no face measures. Split over processes (or
+  /// blocks, or cells whose points were not merged), each measures its own piece and the faces
+  /// between pieces are measured as interior faces across them (PieceInterfaces); the summaries
+  /// are combined exactly: the whole mesh's figures. Cells
   /// it cannot measure give a warning (from owner) once per input mesh and the field data
   /// MeshQualityProblem (why) on every update; the deformation stands.
   /// casePath: the OpenFOAM case folder the input was read from (or ""), whose own faces a grid
@@ -42,7 +45,7 @@ public:
 
   /// The KS aggregate of a face measure over the faces of every volume mesh on every process
   /// (FaceQualityAggregate.h: the non-orthogonality over the interior faces, the skewness over
-  /// the interior and boundary faces; the faces between pieces are not among them, as in the
+  /// the interior and boundary faces; the faces between pieces as interior faces, as in the
   /// report), on `points` (this process's output points, the sets in order, as the last report's
   /// sets), and its gradient there (3 per point) when gradient is given: the aggregate's value
   /// and its number of faces, the same on every process. Throws InvalidInputException when no
@@ -64,6 +67,7 @@ private:
   Stamp Measured; // of the cells and points the faces and the original's measures come from
   std::string Problem; // why Measured's cells are not measured (field data MeshQualityProblem), or ""
   std::vector<std::unique_ptr<VolumeMeshQuality>> Quality;
+  PieceInterfaces Interfaces; // the faces where the sets' and processes' pieces touch
   std::vector<long> Starts; // the first point of each set in the last report's sets (and their end)
   QualitySummary Original;
 };

@@ -353,8 +353,8 @@ class DesignConstraints:
         -KS of -sj, so that least - ln(N) / rho <= value <= least). ``getBiasBound(name)`` gives
         ln(N) / rho. rho defaults to 10 per degree (non-orthogonality) or 100. Absolute values by
         default (upper=70 degrees as checkMesh's; lower=0.2 for the scaled Jacobian). Needs the
-        filter's MeshQuality on. Under MPI the faces between the processes' pieces are not among
-        them (as in the verdict)."""
+        filter's MeshQuality on. Under MPI the faces between the processes' pieces are measured
+        across them (as checkMesh measures a processor patch): the serial value."""
         self._check_name(name)
         measures = ('nonOrthogonality', 'skewness', 'scaledJacobian')
         if measure not in measures:

@@ -124,7 +124,7 @@ TEST(InteriorFacesAreMatchedAndOriented)
   std::vector<CellFaces> nested = cubeRow(points, 2);
   auto v = [](int i, int j, int k) { return i + 3 * j + 6 * k; };
   std::reverse(nested[0][1].begin(), nested[0][1].end());
-  const MeshFaces mesh = meshFaces(CellFaceList(nested), points);
+  const MeshFaces mesh = meshFaces(CellFaceList(nested));
   const InteriorFaces& faces = mesh.interior;
   CHECK(faces.size() == 1);
   CHECK(faces[0].owner == 0 && faces[0].neighbour == 1 && faces[0].face == 1);
@@ -187,12 +187,13 @@ TEST(BoundaryFaceSkewness)
   const FaceGeometry thin{ Vec3(0.5, 0.5, 0), Vec3(0, 0, -1) };
   CHECK(std::abs(boundarySkewness(Vec3(0.5, 0.51, 0.05), thin, points, cube[0][4].data(), 4) - 0.02) < 1e-14);
   // the mesh: one cell, six boundary faces, the largest skewness the bottom's (and the top's)
-  const MeshFaces mesh = meshFaces(CellFaceList(cube), points);
+  const MeshFaces mesh = meshFaces(CellFaceList(cube));
   CHECK(mesh.interior.empty() && mesh.boundary.size() == 6);
   const FaceMeasures m = faceMeasures(points, mesh, faceOrientation(points, mesh));
   CHECK(m.boundarySkewness.size() == 6 && std::abs(m.maxSkewness - skew) < 1e-15 && m.maxNonOrthogonality == 0);
   // two copies of the cube side by side whose points were not merged (two pieces of one mesh):
-  // the faces where they touch are on no boundary, and not measured
+  // the faces where they touch have the same position keys, whatever their points' order, and
+  // left out they are on no boundary
   PointList two = points;
   std::vector<CellFaces> cells = cube;
   for (const Vec3& p : points)
@@ -201,13 +202,14 @@ TEST(BoundaryFaceSkewness)
   for (auto& face : right)
     for (int& i : face)
       i += static_cast<int>(points.size());
+  std::rotate(right[0].begin(), right[0].begin() + 1, right[0].end());
   cells.push_back(right);
-  const MeshFaces pieces = meshFaces(CellFaceList(cells), two);
-  CHECK(pieces.interior.empty() && pieces.boundary.size() == 10);
-  CHECK(std::none_of(pieces.boundary.begin(), pieces.boundary.end(),
-    [](const BoundaryFace& f) { return f.face == 1 || f.face == 6; })); // the left's +x, the right's -x face
-  const std::vector<std::uint64_t> keys = boundaryKeys(two, CellFaceList(cells), boundaryFaces(CellFaceList(cells), {}));
-  CHECK(keys[1] == keys[6] && repeatedKeys(keys) == std::vector<std::uint64_t>{ keys[1] });
+  MeshFaces pieces = meshFaces(CellFaceList(cells));
+  CHECK(pieces.interior.empty() && pieces.boundary.size() == 12);
+  const std::vector<std::uint64_t> keys = boundaryKeys(two, pieces.cells, pieces.boundary);
+  CHECK(keys[1] == keys[6] && repeatedKeys(keys) == std::vector<std::uint64_t>{ keys[1] }); // the left's +x, the right's -x face
+  CHECK(leaveOutFaces(pieces.boundary, keys, repeatedKeys(keys)) == 2 && pieces.boundary.size() == 10);
+  CHECK(std::none_of(pieces.boundary.begin(), pieces.boundary.end(), [](const BoundaryFace& f) { return f.face == 1 || f.face == 6; }));
 }
 
 TEST(OwnerNeighbourFacesAreOpenFOAMs)
@@ -248,7 +250,7 @@ TEST(OwnerNeighbourFacesAreOpenFOAMs)
     CHECK(faceGeometry(points, mesh.cells.face(copy), 4).area.isApprox(Vec3(-1, 0, 0)));
   }
   // every cell's faces point out of it: no negative pyramid, orientation +1, as matched
-  const MeshFaces matchedMesh = meshFaces(CellFaceList(cube), points);
+  const MeshFaces matchedMesh = meshFaces(CellFaceList(cube));
   const InteriorFaces& matched = matchedMesh.interior;
   CHECK(mesh.boundary.size() == 14 && matchedMesh.boundary.size() == 14);
   CHECK(matched.size() == 2 && matched[0].owner == 0 && matched[1].owner == 1);

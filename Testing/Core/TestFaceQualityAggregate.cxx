@@ -43,7 +43,7 @@ Block distortedBlock(int nx, int ny, int nz, double shear = 0)
           { v(x, y + 1, z), v(x, y + 1, z + 1), v(x + 1, y + 1, z + 1), v(x + 1, y + 1, z) },
           { v(x, y, z), v(x, y + 1, z), v(x + 1, y + 1, z), v(x + 1, y, z) },
           { v(x, y, z + 1), v(x + 1, y, z + 1), v(x + 1, y + 1, z + 1), v(x, y + 1, z + 1) } });
-  b.mesh = meshFaces(CellFaceList(cells), b.points);
+  b.mesh = meshFaces(CellFaceList(cells));
   b.orientation = faceOrientation(b.points, b.mesh);
   return b;
 }

@@ -32,6 +32,7 @@
 #include "Solver/ConstraintProjections.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -811,8 +812,10 @@ TEST(MeshQualityBeforeAndAfter)
 
 namespace
 {
-// Layers k0 .. k1 - 1 of a 2n x n x n box of hexahedra sheared by 0.6 along x per unit of z, their
-// points its own (a piece of the box that shares no point with the others), appended to grid.
+// Layers k0 .. k1 - 1 of a 2n x n x n box of hexahedra sheared along x by 0.6 z + 0.3 z^2 (and y
+// by 0.05 x z, so that no face is exactly unskewed: a cone's tip, where the skewness has no
+// derivative), their points its own (a piece of the box that shares no point with the others),
+// appended to grid.
 void addShearedLayers(vtkUnstructuredGrid* grid, int n, int k0, int k1)
 {
   const int nx = 2 * n, ny = n;
@@ -826,7 +829,10 @@ void addShearedLayers(vtkUnstructuredGrid* grid, int n, int k0, int k1)
   for (int k = k0; k <= k1; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i <= nx; ++i)
-        grid->GetPoints()->InsertNextPoint(double(i) / n + 0.6 * k / n, double(j) / n, double(k) / n);
+      {
+        const double x = double(i) / n, y = double(j) / n, z = double(k) / n;
+        grid->GetPoints()->InsertNextPoint(x + 0.6 * z + 0.3 * z * z, y + 0.05 * x * z, z);
+      }
   for (int k = k0; k < k1; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
@@ -838,14 +844,16 @@ void addShearedLayers(vtkUnstructuredGrid* grid, int n, int k0, int k1)
 }
 }
 
-TEST(FacesBetweenPiecesAreOnNoBoundary)
+TEST(FacesBetweenPiecesAreMeasuredAcrossThem)
 {
-  // The skewness is measured on boundary faces too (the owner mirrored across the face), so the
-  // faces where two pieces of one mesh touch without sharing points (two blocks, or one grid whose
-  // points were not merged) must not count as boundary faces. A 4 x 2 x 2 box of hexahedra has
-  // 28 interior and 40 boundary faces: the skewness aggregate's N is 68 whole, and 68 - 8 = 60
-  // split between its layers (the 8 faces between them measured by neither piece; 76 if they
-  // counted as the pieces' boundary).
+  // The faces where two pieces of one mesh touch without sharing points (two blocks, or one grid
+  // whose points were not merged) are boundary faces of each piece but interior faces of the
+  // mesh: measured across them (the other piece's cell centre), never as boundary faces (the
+  // owner mirrored). A 4 x 2 x 2 box of sheared hexahedra has 28 interior and 40 boundary faces
+  // (68; 76 if the 8 faces between the layers counted on both sides as boundary). At rest (the
+  // handle holds still), the aggregates, their gradients summed per position and the verdict
+  // are the whole mesh's to round-off: the same terms, summed in another order (a few dozen
+  // terms of size <= 60 degrees: 1e-13 relative).
   const int n = 2;
   auto whole = vtkSmartPointer<vtkUnstructuredGrid>::New();
   addShearedLayers(whole, n, 0, n);
@@ -858,8 +866,12 @@ TEST(FacesBetweenPiecesAreOnNoBoundary)
   vtkNew<vtkMultiBlockDataSet> blocks;
   blocks->SetBlock(0, lower);
   blocks->SetBlock(1, upper);
+  const std::vector<vtkPointSet*> layouts[3] = { { whole }, { unmerged }, { lower, upper } };
   const double bottom[6] = { -1, 4, -1, 2, -0.01, 0.01 }, top[6] = { -1, 4, -1, 2, 0.99, 1.01 };
-  double original = 0;
+  using Position = std::array<double, 3>;
+  std::map<Position, std::array<double, 3>> reference[2];
+  double referenceValue[2] = { 0, 0 }, referenceNonOrthogonality = 0, referenceSkewness = 0;
+  int layout = 0;
   for (vtkDataObject* mesh : { static_cast<vtkDataObject*>(whole), static_cast<vtkDataObject*>(unmerged), static_cast<vtkDataObject*>(blocks.Get()) })
   {
     PlaneScene scene(mesh);
@@ -868,19 +880,57 @@ TEST(FacesBetweenPiecesAreOnNoBoundary)
     t->SetBounds(top);
     scene.fixed->SetRegion(b);
     scene.handle->SetRegion(t);
-    scene.handle->SetTranslation(0.1, 0, 0.05);
+    scene.handle->SetTranslation(0, 0, 0);
     scene.deform->SetNumberOfSamples(100);
     scene.deform->Update();
-    vtkNew<vtkDoubleArray> value;
-    CHECK(scene.deform->ComputeMeshQualityAggregate(1, 10.0, value, nullptr, nullptr));
-    const double count = value->GetNumberOfValues() == 2 ? value->GetValue(1) : -1;
-    std::printf("%s: skewness aggregate over %g faces, largest before %.6g\n", mesh == whole ? "whole" : mesh == unmerged ? "unmerged" : "two blocks",
-      count, fieldValue(scene.deform->GetOutputDataObject(0), "OriginalMaxSkewness"));
-    CHECK(count == (mesh == whole ? 68 : 60));
-    // the undeformed pieces' largest is the whole's (the top and bottom faces': 0.6 of their extent)
-    const double largest = fieldValue(scene.deform->GetOutputDataObject(0), "OriginalMaxSkewness");
-    original = mesh == whole ? largest : original;
-    CHECK(largest > 0.5 && std::abs(largest - original) <= 1e-15 * largest);
+    vtkDataObject* out = scene.deform->GetOutputDataObject(0);
+    const double nonOrthogonality = fieldValue(out, "MaxNonOrthogonality"), skewness = fieldValue(out, "MaxSkewness");
+    std::printf("layout %d: largest non-orthogonality %.15g, skewness %.15g\n", layout, nonOrthogonality, skewness);
+    if (layout == 0)
+    {
+      referenceNonOrthogonality = nonOrthogonality;
+      referenceSkewness = skewness;
+    }
+    CHECK(std::abs(nonOrthogonality - referenceNonOrthogonality) <= 1e-13 * referenceNonOrthogonality);
+    CHECK(std::abs(skewness - referenceSkewness) <= 1e-13 * referenceSkewness && skewness > 0.5);
+    // the output points, the layout's sets in order
+    std::vector<Position> positions;
+    for (vtkPointSet* set : layouts[layout])
+      for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+      {
+        Position x;
+        set->GetPoint(i, x.data());
+        positions.push_back(x);
+      }
+    for (int measure : { 0, 1 })
+    {
+      vtkNew<vtkDoubleArray> value, gradient;
+      vtkNew<vtkIdTypeArray> rows;
+      CHECK(scene.deform->ComputeMeshQualityAggregate(measure, measure == 0 ? 1.0 : 10.0, value, rows, gradient));
+      CHECK(value->GetNumberOfValues() == 2 && value->GetValue(1) == (measure == 0 ? 28 : 68));
+      std::map<Position, std::array<double, 3>> byPosition;
+      double largest = 0;
+      for (vtkIdType r = 0; r < rows->GetNumberOfValues(); ++r)
+        for (int c = 0; c < 3; ++c)
+        {
+          byPosition[positions[rows->GetValue(r)]][c] += gradient->GetComponent(r, c);
+          largest = std::max(largest, std::abs(gradient->GetComponent(r, c)));
+        }
+      if (layout == 0)
+      {
+        reference[measure] = byPosition;
+        referenceValue[measure] = value->GetValue(0);
+      }
+      double worst = 0;
+      for (const auto& [x, g] : reference[measure])
+        for (int c = 0; c < 3; ++c)
+          worst = std::max(worst, std::abs(g[c] - byPosition[x][c]));
+      std::printf("  %s: KS %.15g over %g faces, gradient off the whole's by %.2g (largest %.3g)\n", measure ? "skewness" : "non-orthogonality",
+        value->GetValue(0), value->GetValue(1), worst, largest);
+      CHECK(std::abs(value->GetValue(0) - referenceValue[measure]) <= 1e-13 * referenceValue[measure]);
+      CHECK(largest > 0 && worst <= 1e-12 * largest && byPosition.size() == reference[measure].size());
+    }
+    ++layout;
   }
 }
 

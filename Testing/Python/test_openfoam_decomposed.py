@@ -138,6 +138,12 @@ def reference():
     parts = gathered(deformed('Decomposed Case', 0))
     d = deviation(parts[0], parts[1], whole[0], whole[1])
     check(d is not None and d <= 1e-10, 'read decomposed or reconstructed (polyhedra kept): the same deformation (%s)' % d)
+    # and the same mesh quality: the faces between the processor folders' pieces are measured
+    # across them, as checkMesh measures a processor patch (the deformations agree to 1e-10 of
+    # the diagonal, the cells are 1e-3 of it: 1e-7 relative; 1e-6 allowed)
+    for name in ('MaxNonOrthogonality', 'MaxSkewness', 'OriginalMaxNonOrthogonality', 'OriginalMaxSkewness'):
+        check(name in whole[2] and name in parts[2] and np.isclose(parts[2][name], whole[2][name], rtol=1e-6, atol=0),
+              '%s read decomposed %s, reconstructed %s' % (name, parts[2].get(name), whole[2].get(name)))
 
 
 def compare():
@@ -153,7 +159,8 @@ def compare():
     same = (np.diff(rest[order], axis=0) == 0).all(axis=1)
     check(same.any() and np.abs(np.diff(displacement[order], axis=0)[same]).max() == 0,
           'points that two processor folders (or a patch and the internal mesh) share are identical (%d)' % same.sum())
-    for name in ('HandleResidual', 'FixedResidual', 'ConstraintPoints', 'InvertedCells', 'MaxNonOrthogonality'):
+    for name in ('HandleResidual', 'FixedResidual', 'ConstraintPoints', 'InvertedCells', 'MaxNonOrthogonality', 'MaxSkewness',
+                 'OriginalMaxSkewness'):
         check(name in field and np.isclose(field[name], serial[name], rtol=1e-9, atol=1e-14),
               '%s is the serial one (%s, serial %s)' % (name, field.get(name), serial[name] if name in serial else None))
 

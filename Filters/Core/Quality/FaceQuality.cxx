@@ -410,53 +410,45 @@ long listedFace(const MeshFaces& mesh, long j)
   return j < interior ? mesh.interior[j].face : mesh.boundary[j - interior].face;
 }
 
-// Every interior and boundary face's geometry (work.faces, out of its owner as listed), then
-// every cell's centre (work.centres) and whether it is inverted (hasNegativePyramid): a cell takes
-// those faces' geometry from work.faces (negated for the neighbour's reversed copy) and computes
-// only the others'.
+// Every interior face's geometry (work.faces, out of its owner as listed), then every cell's
+// centre (work.centres) and whether it is inverted (hasNegativePyramid): a cell takes an interior
+// face's geometry from work.faces (negated for the neighbour's reversed copy) and computes only
+// the others' (a boundary face's again where it is measured: a tenth of the faces, and no
+// face-sized buffer more).
 void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<unsigned char>& inverted, FaceWorkspace& work)
 {
   const CellFaceList& cells = mesh.cells;
   const InteriorFaces& faces = mesh.interior;
   const long interior = static_cast<long>(faces.size());
-  const long measured = interior + static_cast<long>(mesh.boundary.size());
-  if (static_cast<long>(work.slotOf.size()) != cells.faces() || work.slotted != measured)
+  if (static_cast<long>(work.interiorOf.size()) != cells.faces())
   {
-    work.slotOf.resize(static_cast<std::size_t>(cells.faces()));
+    work.interiorOf.resize(static_cast<std::size_t>(cells.faces()));
 #pragma omp parallel for schedule(static)
     for (long f = 0; f < cells.faces(); ++f)
     {
-      work.slotOf[f] = -1;
+      work.interiorOf[f] = -1;
     }
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < interior; ++i)
     {
-      work.slotOf[faces[i].face] = static_cast<int>(i);
+      work.interiorOf[faces[i].face] = static_cast<int>(i);
       if (reversedCopy(cells, faces[i].face, faces[i].neighbourFace))
       {
-        work.slotOf[faces[i].neighbourFace] = static_cast<int>(-2 - i);
+        work.interiorOf[faces[i].neighbourFace] = static_cast<int>(-2 - i);
       }
     }
-#pragma omp parallel for schedule(static)
-    for (long j = interior; j < measured; ++j)
-    {
-      work.slotOf[mesh.boundary[j - interior].face] = static_cast<int>(j);
-    }
-    work.slotted = measured;
   }
-  work.faces.resize(static_cast<std::size_t>(measured));
+  work.faces.resize(static_cast<std::size_t>(interior));
   // the loops of every verdict in chunks taken as threads come free: a virtual CPU at times runs
   // at half speed, and an even split waits for it (each entry's value is the same either way)
 #pragma omp parallel for schedule(dynamic, 4096)
-  for (long j = 0; j < measured; ++j)
+  for (long i = 0; i < interior; ++i)
   {
-    if (j + Ahead < measured)
+    if (i + Ahead < interior)
     {
-      const long ahead = listedFace(mesh, j + Ahead);
-      prefetchPoints(points, cells.face(ahead), cells.faceSize(ahead));
+      prefetchPoints(points, cells.face(faces[i + Ahead].face), cells.faceSize(faces[i + Ahead].face));
     }
-    const long f = listedFace(mesh, j);
-    work.faces[j] = faceGeometry(points, cells.face(f), cells.faceSize(f));
+    work.faces[i] = faceGeometry(points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
   }
   work.centres.resize(cells.cells());
   inverted.resize(cells.cells());
@@ -470,7 +462,7 @@ void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<uns
       {
         for (long f = cells.firstFace(c + Ahead); f < cells.firstFace(c + Ahead + 1); ++f)
         {
-          const int i = work.slotOf[f];
+          const int i = work.interiorOf[f];
           if (i < -1)
           {
             __builtin_prefetch(&work.faces[-2 - i]); // a neighbour's copy: far from the cell's own faces
@@ -484,7 +476,7 @@ void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<uns
       g.clear();
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
-        const int i = work.slotOf[f];
+        const int i = work.interiorOf[f];
         if (i >= 0)
         {
           g.push_back(work.faces[i]);
@@ -547,11 +539,15 @@ void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vec
       m.skewness[i] = skew;
     }
   }
+  // the boundary faces' skewness: each thread's largest starts from the interior faces'
+  const double interiorSkewness = maxSkewness;
 #pragma omp parallel for schedule(dynamic, 4096) reduction(max : maxSkewness)
   for (long b = 0; b < boundary; ++b)
   {
-    const FaceGeometry& g = work.faces[interior + b];
-    const double skew = skewnessOrNone(skewOffset(boundaryFrame(work.centres[mesh.boundary[b].owner], g), g), g, mesh.boundary[b].face);
+    maxSkewness = std::max(maxSkewness, interiorSkewness);
+    const BoundaryFace& f = mesh.boundary[b];
+    const FaceGeometry g = faceGeometry(points, cells.face(f.face), cells.faceSize(f.face));
+    const double skew = skewnessOrNone(skewOffset(boundaryFrame(work.centres[f.owner], g), g), g, f.face);
     maxSkewness = std::max(maxSkewness, skew);
     if (m.perFace)
     {
@@ -579,11 +575,13 @@ FaceTail faceTail(
   }
   // measured face j's oriented geometry, and what its measure is defined by
   auto geometry = [&](long j) {
-    FaceGeometry g = work.faces[j];
-    if (j < interior)
+    if (j >= interior)
     {
-      g.area *= orientation[j];
+      const long f = mesh.boundary[j - interior].face;
+      return faceGeometry(points, cells.face(f), cells.faceSize(f));
     }
+    FaceGeometry g = work.faces[j];
+    g.area *= orientation[j];
     return g;
   };
   auto frame = [&](long j, const FaceGeometry& g) {
@@ -877,14 +875,22 @@ long leaveOutFaces(BoundaryFaces& boundary, const std::vector<std::uint64_t>& ke
   return left;
 }
 
-MeshFaces meshFaces(CellFaceList cells, const PointList& points)
+MeshFaces meshFaces(CellFaceList cells)
 {
   MeshFaces mesh;
   mesh.cells = std::move(cells);
   mesh.interior = interiorFaces(mesh.cells);
   mesh.boundary = boundaryFaces(mesh.cells, mesh.interior);
-  const std::vector<std::uint64_t> keys = boundaryKeys(points, mesh.cells, mesh.boundary);
-  leaveOutFaces(mesh.boundary, keys, repeatedKeys(keys));
   return mesh;
+}
+
+CellGeometry cellGeometry(const PointList& points, const CellFaceList& cells, int cell)
+{
+  std::vector<FaceGeometry> g;
+  for (long f = cells.firstFace(cell); f < cells.firstFace(cell + 1); ++f)
+  {
+    g.push_back(faceGeometry(points, cells.face(f), cells.faceSize(f)));
+  }
+  return cellGeometry(g);
 }
 } // namespace mlsdeform

@@ -162,6 +162,9 @@ using InteriorFaces = UninitializedVector<InteriorFace>;
 /// Throws std::invalid_argument for a face shared by more than two cells.
 InteriorFaces interiorFaces(const CellFaceList& cells);
 
+/// The centre and volume of cell `cell` of a CellFaceList on these points.
+CellGeometry cellGeometry(const PointList& points, const CellFaceList& cells, int cell);
+
 /// A face of one cell only: its number in the CellFaceList and that cell.
 struct BoundaryFace
 {
@@ -195,8 +198,8 @@ struct MeshFaces
 };
 
 /// The mesh of these cells: its interior faces matched by their points (interiorFaces), its
-/// boundary faces the others, less those between pieces that touch (equal boundaryKeys on points).
-MeshFaces meshFaces(CellFaceList cells, const PointList& points);
+/// boundary faces the others.
+MeshFaces meshFaces(CellFaceList cells);
 
 /// The cells' faces and the interior faces of a mesh in OpenFOAM's form (polyMesh), without
 /// matching faces by their points: face f, the points points[start[f]] .. points[start[f + 1] - 1]
@@ -231,17 +234,16 @@ struct FaceMeasures
 };
 FaceMeasures faceMeasures(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation);
 
-/// The mesh-sized buffers of faceMeasures, kept between calls on one mesh so that measuring
-/// another deformation allocates nothing. Each interior and boundary face's geometry is computed
-/// once, from its owner's copy, and serves both its cells and its measures, as OpenFOAM computes
-/// it (three times as often before: 52% of a 400k-point verdict's time).
+/// The mesh-sized buffers of faceMeasures, kept between calls on the same cells and interior
+/// faces so that measuring another deformation allocates nothing. Each interior face's geometry
+/// is computed once, from its owner's copy, and serves both its cells and its measures, as
+/// OpenFOAM computes it (three times as often before: 52% of a 400k-point verdict's time).
 struct FaceWorkspace
 {
   std::vector<Vec3> centres;       // per cell
-  std::vector<FaceGeometry> faces; // per interior face, out of its owner as listed, then per boundary face
-  std::vector<int> slotOf;         // per face of the cells: s for the owner's copy of faces[s], -2 - i
-                                   // for interior face i's neighbour's, -1 for a face measured alone
-  long slotted = -1;               // the interior and boundary faces slotOf was made for
+  std::vector<FaceGeometry> faces; // per interior face, out of its owner as listed
+  std::vector<int> interiorOf;     // per face of the cells: i for interior face i's owner's copy,
+                                   // -2 - i for its neighbour's, -1 for another face
   std::vector<double> screen;      // per face measured: faceTail's cosine or skewness bound
 };
 

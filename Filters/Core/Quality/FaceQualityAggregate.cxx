@@ -123,6 +123,44 @@ void boundaryFrameAdjoint(const Vec3& Cpf, const Vec3& S, const Vec3& dBar, Vec3
   CpfBar += n.dot(dBar) * n;
   Sbar += (nBar - n.dot(nBar) * n) / length;
 }
+
+// weight times the derivatives of one face's measure (the face `face` as cell `owner` lists it,
+// its area times sign; P the owner's centre, N the neighbour's, or none: a boundary face, its
+// owner mirrored) at the face's and the owner's points, into terms; those along N returned.
+Vec3 faceTerms(const PointList& points, const CellFaceList& cells, int owner, long face, int sign, const Vec3& P, const Vec3* N,
+  QualityMeasure measure, double weight, Terms& terms)
+{
+  FaceGeometry g = faceGeometry(points, cells.face(face), cells.faceSize(face));
+  g.area *= sign;
+  Vec3 Pbar = Vec3::Zero(), Nbar = Vec3::Zero(), Sbar = Vec3::Zero(), cBar = Vec3::Zero();
+  if (measure == QualityMeasure::NonOrthogonality)
+  {
+    nonOrthogonalityAdjoint(P, *N, g.area, weight, Pbar, Nbar, Sbar);
+  }
+  else
+  {
+    // Cpf = C_f - P; d = N - P inside, n (n . Cpf) on the boundary
+    const Vec3 Cpf = g.centre - P;
+    const Vec3 n = g.area.norm() > RootVerySmall ? Vec3(g.area / g.area.norm()) : Vec3::Zero();
+    const Vec3 d = N ? Vec3(*N - P) : Vec3(n * n.dot(Cpf));
+    Vec3 CpfBar = Vec3::Zero(), dBar = Vec3::Zero();
+    skewnessAdjoint(Cpf, d, N ? 0.2 : 0.4, g, points, cells.face(face), cells.faceSize(face), weight, CpfBar, dBar, Sbar, cBar, terms);
+    if (N)
+    {
+      Nbar += dBar;
+      Pbar -= dBar;
+    }
+    else
+    {
+      boundaryFrameAdjoint(Cpf, g.area, dBar, CpfBar, Sbar);
+    }
+    cBar += CpfBar;
+    Pbar -= CpfBar;
+  }
+  addFace(points, cells.face(face), cells.faceSize(face), cBar, sign * Sbar, terms);
+  addCell(points, cells, owner, Pbar, terms);
+  return Nbar;
+}
 }
 
 void AggregatePart::add(const AggregatePart& other, double rho)
@@ -200,44 +238,18 @@ void addAggregateGradient(const PointList& points, const MeshFaces& mesh, const 
   for (long h = 0; h < static_cast<long>(heavy.size()); ++h)
   {
     const long j = tail.faces[heavy[h]]; // an interior face, or boundary face j - interior
-    const bool inside = j < interior;
-    const long face = inside ? mesh.interior[j].face : mesh.boundary[j - interior].face;
-    const int owner = inside ? mesh.interior[j].owner : mesh.boundary[j - interior].owner;
     const double weight = std::exp(rho * (tail.values[heavy[h]] - whole.largest)) / whole.sum;
-    const Vec3& P = work.centres[owner];
-    FaceGeometry g = faceGeometry(points, cells.face(face), cells.faceSize(face));
-    const int sign = inside ? orientation[j] : 1;
-    g.area *= sign;
-    Vec3 Pbar = Vec3::Zero(), Nbar = Vec3::Zero(), Sbar = Vec3::Zero(), cBar = Vec3::Zero();
-    if (measure == QualityMeasure::NonOrthogonality)
+    if (j < interior)
     {
-      nonOrthogonalityAdjoint(P, work.centres[mesh.interior[j].neighbour], g.area, weight, Pbar, Nbar, Sbar);
+      const InteriorFace& f = mesh.interior[j];
+      const Vec3& N = work.centres[f.neighbour];
+      const Vec3 Nbar = faceTerms(points, cells, f.owner, f.face, orientation[j], work.centres[f.owner], &N, measure, weight, terms[h]);
+      addCell(points, cells, f.neighbour, Nbar, terms[h]);
     }
     else
     {
-      // Cpf = C_f - P; d = N - P inside, n (n . Cpf) on the boundary
-      const Vec3 Cpf = g.centre - P;
-      const Vec3 n = g.area.norm() > RootVerySmall ? Vec3(g.area / g.area.norm()) : Vec3::Zero();
-      const Vec3 d = inside ? Vec3(work.centres[mesh.interior[j].neighbour] - P) : Vec3(n * n.dot(Cpf));
-      Vec3 CpfBar = Vec3::Zero(), dBar = Vec3::Zero();
-      skewnessAdjoint(Cpf, d, inside ? 0.2 : 0.4, g, points, cells.face(face), cells.faceSize(face), weight, CpfBar, dBar, Sbar, cBar, terms[h]);
-      if (inside)
-      {
-        Nbar += dBar;
-        Pbar -= dBar;
-      }
-      else
-      {
-        boundaryFrameAdjoint(Cpf, g.area, dBar, CpfBar, Sbar);
-      }
-      cBar += CpfBar;
-      Pbar -= CpfBar;
-    }
-    addFace(points, cells.face(face), cells.faceSize(face), cBar, sign * Sbar, terms[h]);
-    addCell(points, cells, owner, Pbar, terms[h]);
-    if (inside)
-    {
-      addCell(points, cells, mesh.interior[j].neighbour, Nbar, terms[h]);
+      const BoundaryFace& f = mesh.boundary[j - interior];
+      faceTerms(points, cells, f.owner, f.face, 1, work.centres[f.owner], nullptr, measure, weight, terms[h]);
     }
   }
   for (const Terms& t : terms)
@@ -246,6 +258,28 @@ void addAggregateGradient(const PointList& points, const MeshFaces& mesh, const 
     {
       gradient[point] += value;
     }
+  }
+}
+
+Vec3 addFaceMeasureGradient(const PointList& points, const CellFaceList& cells, int owner, long face, int sign, const Vec3& P,
+  const Vec3& N, QualityMeasure measure, double weight, PointList& gradient)
+{
+  Terms terms;
+  const Vec3 Nbar = faceTerms(points, cells, owner, face, sign, P, &N, measure, weight, terms);
+  for (const auto& [point, value] : terms)
+  {
+    gradient[point] += value;
+  }
+  return Nbar;
+}
+
+void addCellCentreGradient(const PointList& points, const CellFaceList& cells, int cell, const Vec3& centreBar, PointList& gradient)
+{
+  Terms terms;
+  addCell(points, cells, cell, centreBar, terms);
+  for (const auto& [point, value] : terms)
+  {
+    gradient[point] += value;
   }
 }
 

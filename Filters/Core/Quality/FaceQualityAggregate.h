@@ -60,6 +60,16 @@ FaceAggregate aggregateFaces(const PointList& points, const MeshFaces& mesh, con
 void addAggregateGradient(const PointList& points, const MeshFaces& mesh, const std::vector<int>& orientation, const FaceWorkspace& work,
   const FaceTail& tail, QualityMeasure measure, double rho, const AggregatePart& whole, PointList& gradient);
 
+/// One face between cells with centres P (its owner's, cell `owner`) and N, as the owner lists
+/// it (face number `face`, its area times sign): weight times its measure's derivatives at the
+/// owner's points (the face's and the cell's) added to gradient, and those along N returned (for
+/// addCellCentreGradient at the neighbour's points: a face between two pieces of a mesh).
+Vec3 addFaceMeasureGradient(const PointList& points, const CellFaceList& cells, int owner, long face, int sign, const Vec3& P,
+  const Vec3& N, QualityMeasure measure, double weight, PointList& gradient);
+
+/// Adds d(centre of cell `cell`)/dX contracted with centreBar to gradient.
+void addCellCentreGradient(const PointList& points, const CellFaceList& cells, int cell, const Vec3& centreBar, PointList& gradient);
+
 /// The reverse-mode derivatives of FaceQuality's geometry: given dF/d(centre) and dF/d(area) of a
 /// face, adds dF/d(its k-th point) to cornerBar[k] (k = 0 .. n-1).
 void faceGeometryAdjoint(
