@@ -403,24 +403,18 @@ void prefetchPoints(const PointList& points, const int* face, std::size_t n)
   }
 }
 
-// The face that measured face j (interior faces first, then boundary faces) is, as its owner lists it.
-long listedFace(const MeshFaces& mesh, long j)
-{
-  const long interior = static_cast<long>(mesh.interior.size());
-  return j < interior ? mesh.interior[j].face : mesh.boundary[j - interior].face;
-}
-
 // Every interior face's geometry (work.faces, out of its owner as listed), then every cell's
 // centre (work.centres) and whether it is inverted (hasNegativePyramid): a cell takes an interior
 // face's geometry from work.faces (negated for the neighbour's reversed copy) and computes only
-// the others' (a boundary face's again where it is measured: a tenth of the faces, and no
-// face-sized buffer more).
+// the others', and with its centre its boundary faces' skewness (work.boundarySkewness) while
+// their points are at hand (measured after, they were read again: a fifth of a verdict's time).
 void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<unsigned char>& inverted, FaceWorkspace& work)
 {
   const CellFaceList& cells = mesh.cells;
   const InteriorFaces& faces = mesh.interior;
   const long interior = static_cast<long>(faces.size());
-  if (static_cast<long>(work.interiorOf.size()) != cells.faces())
+  const long boundary = static_cast<long>(mesh.boundary.size());
+  if (static_cast<long>(work.interiorOf.size()) != cells.faces() || work.boundaryFaces != boundary)
   {
     work.interiorOf.resize(static_cast<std::size_t>(cells.faces()));
 #pragma omp parallel for schedule(static)
@@ -437,7 +431,14 @@ void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<uns
         work.interiorOf[faces[i].neighbourFace] = static_cast<int>(-2 - i);
       }
     }
+#pragma omp parallel for schedule(static)
+    for (long b = 0; b < boundary; ++b)
+    {
+      work.interiorOf[mesh.boundary[b].face] = static_cast<int>(interior + b);
+    }
+    work.boundaryFaces = boundary;
   }
+  work.boundarySkewness.resize(static_cast<std::size_t>(boundary));
   work.faces.resize(static_cast<std::size_t>(interior));
   // the loops of every verdict in chunks taken as threads come free: a virtual CPU at times runs
   // at half speed, and an even split waits for it (each entry's value is the same either way)
@@ -467,17 +468,19 @@ void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<uns
           {
             __builtin_prefetch(&work.faces[-2 - i]); // a neighbour's copy: far from the cell's own faces
           }
-          else if (i == -1)
+          else if (i == -1 || i >= interior)
           {
             prefetchPoints(points, cells.face(f), cells.faceSize(f));
           }
         }
       }
       g.clear();
+      bool onBoundary = false;
       for (long f = cells.firstFace(c); f < cells.firstFace(c + 1); ++f)
       {
         const int i = work.interiorOf[f];
-        if (i >= 0)
+        onBoundary = onBoundary || i >= interior;
+        if (i >= 0 && i < interior)
         {
           g.push_back(work.faces[i]);
         }
@@ -492,6 +495,16 @@ void cellCentres(const PointList& points, const MeshFaces& mesh, std::vector<uns
       }
       work.centres[c] = cellGeometry(g).centre;
       inverted[c] = !g.empty() && hasNegativePyramid(g, work.centres[c]);
+      for (long f = cells.firstFace(c); onBoundary && f < cells.firstFace(c + 1); ++f)
+      {
+        const int i = work.interiorOf[f];
+        if (i >= interior)
+        {
+          const FaceGeometry& face = g[static_cast<std::size_t>(f - cells.firstFace(c))];
+          work.boundarySkewness[i - interior] =
+            skewnessOf(skewOffset(boundaryFrame(work.centres[c], face), face), face, points, cells.face(f), cells.faceSize(f));
+        }
+      }
     }
   }
 }
@@ -513,10 +526,8 @@ void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vec
   double leastCosine = 1, maxSkewness = 0; // minimum and maximum: the same for any thread count
   // for the largest alone, a face whose bound is no more than this thread's largest so far cannot
   // change it: its points (a cache miss each) are not read (a tenth of a 1M-cell case's
-  // verdict); the largest is the same
-  auto skewnessOrNone = [&](const SkewOffset& offset, const FaceGeometry& g, long face) {
-    return m.perFace || offset.bound() > maxSkewness ? skewnessOf(offset, g, points, cells.face(face), cells.faceSize(face)) : 0.0;
-  };
+  // verdict); the largest is the same. (In the loop's body: the thread's own largest, not the
+  // shared one a lambda outside it would see.)
 #pragma omp parallel for schedule(dynamic, 4096) reduction(min : leastCosine) reduction(max : maxSkewness)
   for (long i = 0; i < interior; ++i)
   {
@@ -530,7 +541,9 @@ void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vec
     const int sign = orientation ? (*orientation)[i] : ((*decided)[i] = g.area.dot(g.centre - P) < 0 ? -1 : 1);
     g.area *= sign;
     const double cosine = faceCosine(P, N, g.area);
-    const double skew = skewnessOrNone(skewOffset(interiorFrame(P, N, g), g), g, faces[i].face);
+    const SkewOffset offset = skewOffset(interiorFrame(P, N, g), g);
+    const int* face = cells.face(faces[i].face);
+    const double skew = m.perFace || offset.bound() > maxSkewness ? skewnessOf(offset, g, points, face, cells.faceSize(faces[i].face)) : 0.0;
     leastCosine = std::min(leastCosine, cosine);
     maxSkewness = std::max(maxSkewness, skew);
     if (m.perFace)
@@ -539,20 +552,14 @@ void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vec
       m.skewness[i] = skew;
     }
   }
-  // the boundary faces' skewness: each thread's largest starts from the interior faces'
-  const double interiorSkewness = maxSkewness;
-#pragma omp parallel for schedule(dynamic, 4096) reduction(max : maxSkewness)
+  // the boundary faces' skewness, measured with their cells' centres
   for (long b = 0; b < boundary; ++b)
   {
-    maxSkewness = std::max(maxSkewness, interiorSkewness);
-    const BoundaryFace& f = mesh.boundary[b];
-    const FaceGeometry g = faceGeometry(points, cells.face(f.face), cells.faceSize(f.face));
-    const double skew = skewnessOrNone(skewOffset(boundaryFrame(work.centres[f.owner], g), g), g, f.face);
-    maxSkewness = std::max(maxSkewness, skew);
-    if (m.perFace)
-    {
-      m.boundarySkewness[b] = skew;
-    }
+    maxSkewness = std::max(maxSkewness, work.boundarySkewness[b]);
+  }
+  if (m.perFace)
+  {
+    m.boundarySkewness.assign(work.boundarySkewness.begin(), work.boundarySkewness.end());
   }
   m.maxNonOrthogonality = faces.empty() ? 0 : nonOrthogonalityOf(leastCosine);
   m.maxSkewness = maxSkewness;
@@ -573,36 +580,36 @@ FaceTail faceTail(
   {
     return tail;
   }
-  // measured face j's oriented geometry, and what its measure is defined by
-  auto geometry = [&](long j) {
-    if (j >= interior)
-    {
-      const long f = mesh.boundary[j - interior].face;
-      return faceGeometry(points, cells.face(f), cells.faceSize(f));
-    }
-    FaceGeometry g = work.faces[j];
-    g.area *= orientation[j];
+  // interior face i's oriented geometry, what its measure is defined by, and its skewness; a
+  // boundary face's skewness is cellCentres'
+  auto geometry = [&](long i) {
+    FaceGeometry g = work.faces[i];
+    g.area *= orientation[i];
     return g;
   };
-  auto frame = [&](long j, const FaceGeometry& g) {
-    if (j + Ahead < interior)
+  auto frame = [&](long i, const FaceGeometry& g) {
+    if (i + Ahead < interior)
     {
-      __builtin_prefetch(work.centres[faces[j + Ahead].neighbour].data());
+      __builtin_prefetch(work.centres[faces[i + Ahead].neighbour].data());
     }
-    return j < interior ? interiorFrame(work.centres[faces[j].owner], work.centres[faces[j].neighbour], g)
-                        : boundaryFrame(work.centres[mesh.boundary[j - interior].owner], g);
+    return interiorFrame(work.centres[faces[i].owner], work.centres[faces[i].neighbour], g);
   };
-  auto skewnessAt = [&](long j, const SkewOffset& offset, const FaceGeometry& g) {
-    const long f = listedFace(mesh, j);
-    return skewnessOf(offset, g, points, cells.face(f), cells.faceSize(f));
+  auto skewnessAt = [&](long i, const SkewOffset& offset, const FaceGeometry& g) {
+    return skewnessOf(offset, g, points, cells.face(faces[i].face), cells.faceSize(faces[i].face));
   };
   // the largest: the least cosine, or the skewness where its bound exceeds this thread's largest;
-  // each face's cosine (or skewness bound) kept for the tail's pass
+  // each face's cosine (or skewness bound; a boundary face's skewness) kept for the tail's pass
   work.screen.resize(static_cast<std::size_t>(count));
   double leastCosine = 1, largestSkewness = 0;
 #pragma omp parallel for schedule(dynamic, 4096) reduction(min : leastCosine) reduction(max : largestSkewness)
   for (long j = 0; j < count; ++j)
   {
+    if (j >= interior)
+    {
+      work.screen[j] = work.boundarySkewness[j - interior];
+      largestSkewness = std::max(largestSkewness, work.screen[j]);
+      continue;
+    }
     const FaceGeometry g = geometry(j);
     const SkewFrame f = frame(j, g);
     if (!skewness)
@@ -636,15 +643,11 @@ FaceTail faceTail(
       {
         continue;
       }
-      double q = 0;
-      if (skewness)
+      double q = work.screen[j]; // a boundary face's skewness
+      if (j < interior)
       {
         const FaceGeometry g = geometry(j);
-        q = skewnessAt(j, skewOffset(frame(j, g), g), g);
-      }
-      else
-      {
-        q = nonOrthogonalityOf(work.screen[j]);
+        q = skewness ? skewnessAt(j, skewOffset(frame(j, g), g), g) : nonOrthogonalityOf(work.screen[j]);
       }
       if (q >= floor)
       {

@@ -243,7 +243,10 @@ struct FaceWorkspace
   std::vector<Vec3> centres;       // per cell
   std::vector<FaceGeometry> faces; // per interior face, out of its owner as listed
   std::vector<int> interiorOf;     // per face of the cells: i for interior face i's owner's copy,
-                                   // -2 - i for its neighbour's, -1 for another face
+                                   // -2 - i for its neighbour's, interior + b for boundary face b,
+                                   // -1 for another face
+  long boundaryFaces = -1;         // the boundary faces interiorOf was made for
+  std::vector<double> boundarySkewness; // per boundary face
   std::vector<double> screen;      // per face measured: faceTail's cosine or skewness bound
 };
 
