@@ -13,7 +13,9 @@
 #include <vtkMeshQuality.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkDataSetAttributes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,11 +24,25 @@
 
 namespace mlsvtk
 {
+namespace
+{
+// Whether cell c is another process's, held here as a ghost (measured there).
+bool ghostCell(vtkUnsignedCharArray* ghosts, vtkIdType c)
+{
+  return ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL);
+}
+}
+
 mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid)
 {
+  vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
   return mlsdeform::CellFaceList::build(static_cast<int>(grid->GetNumberOfCells()), [&]() {
     // per thread: GetCellPoints' thread-safe variant's list, a face's points
     return [&, scratch = vtkSmartPointer<vtkIdList>::New(), polygon = std::vector<vtkIdType>()](int c, auto add) mutable {
+      if (ghostCell(ghosts, c))
+      {
+        return; // no faces: its neighbours' faces are between pieces (PieceInterfaces)
+      }
       const int type = grid->GetCellType(c);
       if (type == VTK_POLYHEDRON)
       {
@@ -107,9 +123,14 @@ Elements::Elements(vtkUnstructuredGrid* grid, ElementSet set)
 {
   using mlsdeform::ElementShape;
   vtkNew<vtkIdList> ids;
+  vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
   Start.push_back(0);
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
+    if (ghostCell(ghosts, c))
+    {
+      continue;
+    }
     const std::optional<ElementShape> shape = elementShape(grid->GetCellType(c));
     const bool quadratic = shape == ElementShape::Tetra10 || shape == ElementShape::Hexa20 || shape == ElementShape::Wedge15;
     if (shape && (quadratic || set == ElementSet::All))

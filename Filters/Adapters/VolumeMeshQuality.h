@@ -20,7 +20,8 @@ class vtkUnstructuredGrid;
 
 namespace mlsvtk
 {
-/// The faces of every 3D cell as point-id polygons (none for other cells).
+/// The faces of every 3D cell as point-id polygons (none for other cells, nor for another
+/// process's cells held as ghosts, VTK's DUPLICATECELL: they are measured there).
 mlsdeform::CellFaceList cellFaces(vtkUnstructuredGrid* grid);
 
 /// The element shape of a VTK cell type that ElementJacobian measures, if it is one.

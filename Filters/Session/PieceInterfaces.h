@@ -1,5 +1,6 @@
-// The faces where pieces of one mesh touch: blocks of a dataset, the processes' pieces, cells
-// whose points were not merged (faces of the same positions: boundaryKeys). Each piece has them as
+// The faces where pieces of one mesh touch: blocks of a dataset, the processes' pieces (their
+// ghost cells left out), cells whose points were not merged (faces of the same positions:
+// boundaryKeys). Each piece has them as
 // boundary faces; here they are measured as the interior faces they are, with the other piece's
 // cell centre across them, as OpenFOAM measures a processor patch's faces: the verdict and the KS
 // aggregates are the whole mesh's however it is split.

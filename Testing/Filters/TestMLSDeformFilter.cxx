@@ -28,6 +28,9 @@
 #include <vtkTransformFilter.h>
 #include <vtkTrivialProducer.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkCellData.h>
+#include <vtkUnsignedCharArray.h>
 
 #include "Solver/ConstraintProjections.h"
 
@@ -846,9 +849,9 @@ void addShearedLayers(vtkUnstructuredGrid* grid, int n, int k0, int k1)
 
 TEST(FacesBetweenPiecesAreMeasuredAcrossThem)
 {
-  // The faces where two pieces of one mesh touch without sharing points (two blocks, or one grid
-  // whose points were not merged) are boundary faces of each piece but interior faces of the
-  // mesh: measured across them (the other piece's cell centre), never as boundary faces (the
+  // The faces where two pieces of one mesh touch without sharing points (two blocks, one grid
+  // whose points were not merged, or two processes' pieces each with the other's cells as ghosts)
+  // are boundary faces of each piece but interior faces of the mesh: measured across them (the other piece's cell centre), never as boundary faces (the
   // owner mirrored). A 4 x 2 x 2 box of sheared hexahedra has 28 interior and 40 boundary faces
   // (68; 76 if the 8 faces between the layers counted on both sides as boundary). At rest (the
   // handle holds still), the aggregates, their gradients summed per position and the verdict
@@ -866,13 +869,30 @@ TEST(FacesBetweenPiecesAreMeasuredAcrossThem)
   vtkNew<vtkMultiBlockDataSet> blocks;
   blocks->SetBlock(0, lower);
   blocks->SetBlock(1, upper);
-  const std::vector<vtkPointSet*> layouts[3] = { { whole }, { unmerged }, { lower, upper } };
+  // as a process's piece with a layer of ghost cells (another process's cells, VTK's
+  // DUPLICATECELL: measured there, not here), each layer here with the other as its ghosts
+  auto withGhosts = [&](int own) {
+    auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    addShearedLayers(grid, n, 0, n);
+    vtkNew<vtkUnsignedCharArray> ghosts;
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+      ghosts->InsertNextValue(c / (2 * n * n) == own ? 0 : vtkDataSetAttributes::DUPLICATECELL);
+    grid->GetCellData()->AddArray(ghosts);
+    return grid;
+  };
+  vtkSmartPointer<vtkUnstructuredGrid> lowerWithGhosts = withGhosts(0), upperWithGhosts = withGhosts(1);
+  vtkNew<vtkMultiBlockDataSet> ghostBlocks;
+  ghostBlocks->SetBlock(0, lowerWithGhosts);
+  ghostBlocks->SetBlock(1, upperWithGhosts);
+  const std::vector<vtkPointSet*> layouts[4] = { { whole }, { unmerged }, { lower, upper }, { lowerWithGhosts, upperWithGhosts } };
   const double bottom[6] = { -1, 4, -1, 2, -0.01, 0.01 }, top[6] = { -1, 4, -1, 2, 0.99, 1.01 };
   using Position = std::array<double, 3>;
   std::map<Position, std::array<double, 3>> reference[2];
   double referenceValue[2] = { 0, 0 }, referenceNonOrthogonality = 0, referenceSkewness = 0;
   int layout = 0;
-  for (vtkDataObject* mesh : { static_cast<vtkDataObject*>(whole), static_cast<vtkDataObject*>(unmerged), static_cast<vtkDataObject*>(blocks.Get()) })
+  for (vtkDataObject* mesh : { static_cast<vtkDataObject*>(whole), static_cast<vtkDataObject*>(unmerged),
+         static_cast<vtkDataObject*>(blocks.Get()), static_cast<vtkDataObject*>(ghostBlocks.Get()) })
   {
     PlaneScene scene(mesh);
     vtkNew<vtkBox> b, t;
