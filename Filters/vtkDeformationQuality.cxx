@@ -3,6 +3,7 @@
 #include "Quality/FaceQuality.h"
 #include "Adapters/AlgorithmProgress.h"
 #include "Adapters/FailurePolicy.h"
+#include "Adapters/ProcessCollective.h"
 #include "Adapters/VolumeMeshQuality.h"
 #include "Adapters/ReportArrays.h"
 #include "Sampling/Sampling.h"
@@ -27,7 +28,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <exception>
 #include <limits>
+#include <optional>
 #include <string>
 
 vtkStandardNewMacro(vtkDeformationQuality);
@@ -250,14 +254,16 @@ int vtkDeformationQuality::RequestData(
   vtkTable* summary = vtkTable::GetData(outputVector, 2);
   output->ShallowCopy(input);
   this->SetErrorCode(vtkErrorCode::NoError);
+  PointList points, originalPoints;
+  std::optional<mlsvtk::VolumeMeshQuality> faces;
+  std::exception_ptr failure;
   try
   {
     if (input->GetNumberOfCells() == 0)
     {
       throw mlsdeform::InvalidInputException("the input has no cells");
     }
-    const PointList points = mlsvtk::gridPoints(input, "the input mesh's points");
-    PointList originalPoints;
+    points = mlsvtk::gridPoints(input, "the input mesh's points");
     if (original)
     {
       requireSameCells(input, original);
@@ -265,8 +271,32 @@ int vtkDeformationQuality::RequestData(
     }
     this->UpdateProgress(0.1);
     // OpenFOAM's face order: out of the owner in the undeformed mesh
-    mlsvtk::VolumeMeshQuality topology(original ? original : input);
-    topology.leaveOutBoundaryFaces(mlsdeform::repeatedKeys(topology.boundaryKeys())); // unmerged points' faces
+    faces.emplace(original ? original : input);
+  }
+  catch (...)
+  {
+    failure = std::current_exception();
+  }
+  // The faces where this grid's pieces (unmerged points) or the processes' pieces touch are on
+  // no boundary: left out (this filter has no other piece's cell centres to measure them with).
+  // Every process takes part, also one whose input failed.
+  std::vector<std::int64_t> keys;
+  if (faces)
+  {
+    for (std::uint64_t key : faces->boundaryKeys())
+    {
+      keys.push_back(static_cast<std::int64_t>(key));
+    }
+  }
+  const std::vector<std::int64_t> every = mlsvtk::ProcessCollective().gather(keys);
+  try
+  {
+    if (failure)
+    {
+      std::rethrow_exception(failure);
+    }
+    mlsvtk::VolumeMeshQuality& topology = *faces;
+    topology.leaveOutBoundaryFaces(mlsdeform::repeatedKeys(std::vector<std::uint64_t>(every.begin(), every.end())));
     this->UpdateProgress(0.4);
     mlsvtk::checkAbort(this);
     writeFaces(faceOutput, input->GetPoints(), topology);

@@ -12,8 +12,9 @@
  *   face's orientation (out of its owner, the lower cell id) is taken from the original mesh and
  *   kept, as OpenFOAM keeps its face order: a neighbour folded over its owner shows above 90.
  *   A boundary face (of one cell) has checkMesh's skewness too, its owner mirrored across it;
- *   where two pieces of the mesh touch without sharing points, their faces are on no boundary
- *   and get no measure.
+ *   where two pieces of the mesh touch without sharing points (unmerged points, the MPI
+ *   processes' pieces) their faces are on no boundary and get no measure here (MLS Deform's
+ *   report measures them across the pieces).
  * - per cell whether it is inverted: a face pyramid (apex the cell centre, base a face as the
  *   cell lists it, VTK's outward order) of negative volume, OpenFOAM's face-pyramid check. The
  *   scaled Jacobian is not that test: some warped cells that checkMesh accepts have a negative one.

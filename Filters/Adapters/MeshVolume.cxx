@@ -5,6 +5,8 @@
 #include "Quality/FaceQuality.h"
 
 #include <vtkUnstructuredGrid.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkDataSetAttributes.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -38,10 +40,12 @@ MeshVolume::MeshVolume(vtkUnstructuredGrid* grid, const mlsdeform::PointList& re
 {
   std::vector<vtkIdType> others; // the cells measured by their faces
   std::vector<int> nodes;
+  vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray(); // another process's cells: measured there
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     const int type = grid->GetCellType(c);
-    if ((!selected.empty() && !selected[static_cast<std::size_t>(c)]) || cellDimension(type) != 3)
+    if ((!selected.empty() && !selected[static_cast<std::size_t>(c)]) || cellDimension(type) != 3 ||
+      (ghosts && (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL)))
     {
       continue;
     }

@@ -114,18 +114,25 @@ class _Surface:
 
 def _polygons(block):
     """The polygons of a block (a polydata's polys; an unstructured grid's triangles, quads and
-    polygons, as a redistributed polydata becomes): (offsets, connectivity), or None."""
+    polygons, as a redistributed polydata becomes), less another process's held as ghosts (VTK's
+    DUPLICATECELL: counted there): (offsets, connectivity), or None."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid, VTK_POLYGON, VTK_QUAD, VTK_TRIANGLE
+    from vtkmodules.vtkCommonDataModel import (vtkDataSetAttributes, vtkPolyData, vtkUnstructuredGrid, VTK_POLYGON, VTK_QUAD,
+                                               VTK_TRIANGLE)
     if isinstance(block, vtkPolyData):
         cells, keep = block.GetPolys(), None
+        first = block.GetNumberOfVerts() + block.GetNumberOfLines()  # the polys' first cell id
     elif isinstance(block, vtkUnstructuredGrid) and block.GetNumberOfCells() > 0:
-        cells = block.GetCells()
+        cells, first = block.GetCells(), 0
         keep = np.isin(vtk_to_numpy(block.GetCellTypesArray()), [VTK_TRIANGLE, VTK_QUAD, VTK_POLYGON])
     else:
         return None
     if cells.GetNumberOfCells() == 0:
         return None
+    ghosts = block.GetCellGhostArray()
+    if ghosts is not None:
+        own = (vtk_to_numpy(ghosts)[first:first + cells.GetNumberOfCells()] & vtkDataSetAttributes.DUPLICATECELL) == 0
+        keep = own if keep is None else keep & own
     offsets = vtk_to_numpy(cells.GetOffsetsArray()).astype(np.int64)
     connectivity = vtk_to_numpy(cells.GetConnectivityArray()).astype(np.int64)
     if keep is not None:

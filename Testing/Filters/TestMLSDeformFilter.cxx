@@ -889,7 +889,7 @@ TEST(FacesBetweenPiecesAreMeasuredAcrossThem)
   const double bottom[6] = { -1, 4, -1, 2, -0.01, 0.01 }, top[6] = { -1, 4, -1, 2, 0.99, 1.01 };
   using Position = std::array<double, 3>;
   std::map<Position, std::array<double, 3>> reference[2];
-  double referenceValue[2] = { 0, 0 }, referenceNonOrthogonality = 0, referenceSkewness = 0;
+  double referenceValue[2] = { 0, 0 }, referenceNonOrthogonality = 0, referenceSkewness = 0, referenceVolume = 0;
   int layout = 0;
   for (vtkDataObject* mesh : { static_cast<vtkDataObject*>(whole), static_cast<vtkDataObject*>(unmerged),
          static_cast<vtkDataObject*>(blocks.Get()), static_cast<vtkDataObject*>(ghostBlocks.Get()) })
@@ -913,6 +913,11 @@ TEST(FacesBetweenPiecesAreMeasuredAcrossThem)
     }
     CHECK(std::abs(nonOrthogonality - referenceNonOrthogonality) <= 1e-13 * referenceNonOrthogonality);
     CHECK(std::abs(skewness - referenceSkewness) <= 1e-13 * referenceSkewness && skewness > 0.5);
+    // the mesh's volume too: the ghost cells counted by the process that owns them
+    vtkNew<vtkDoubleArray> volume;
+    CHECK(scene.deform->ComputeMeshVolume(nullptr, volume, nullptr, nullptr));
+    referenceVolume = layout == 0 ? volume->GetValue(0) : referenceVolume;
+    CHECK(std::abs(volume->GetValue(0) - referenceVolume) <= 1e-13 * referenceVolume && referenceVolume > 1);
     // the output points, the layout's sets in order
     std::vector<Position> positions;
     for (vtkPointSet* set : layouts[layout])

@@ -395,6 +395,28 @@ if mode == 'serial':
         check(abs(f['V'][0] - 0.5 * depth) <= 1e-15, '%s: the volume %.15f = 1 x 0.5 x the depth' % (kind, f['V'][0]))
         vdvs.setDesignVars({'top_1': 0.03, 'top_2': -0.02})
         check_single_gradient(vdvs, vcons, 'V', '%s volume' % kind)
+    # a surface's polygons leave out another process's held as ghosts (counted there): two
+    # triangles after a vertex, the second a ghost
+    from vtkmodules.vtkCommonCore import vtkPoints, vtkUnsignedCharArray
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkDataSetAttributes, vtkPolyData
+    ghosted = vtkPolyData()
+    corners = vtkPoints()
+    for x in ((0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)):
+        corners.InsertNextPoint(x)
+    ghosted.SetPoints(corners)
+    verts, polys = vtkCellArray(), vtkCellArray()
+    verts.InsertNextCell(1, [0])
+    polys.InsertNextCell(3, [0, 1, 2])
+    polys.InsertNextCell(3, [1, 3, 2])
+    ghosted.SetVerts(verts)
+    ghosted.SetPolys(polys)
+    flags = vtkUnsignedCharArray()
+    flags.SetName(vtkDataSetAttributes.GhostArrayName())
+    for value in (0, 0, vtkDataSetAttributes.DUPLICATECELL):  # the vertex, then the two triangles
+        flags.InsertNextValue(value)
+    ghosted.GetCellData().AddArray(flags)
+    offsets, connectivity = mlsdeform.constraints._polygons(ghosted)
+    check(list(offsets) == [0, 3] and list(connectivity) == [0, 1, 2], 'a ghost polygon is left out of a surface (%s)' % list(connectivity))
     np.savez(os.path.join(work, 'constraints.npz'), **{'f_' + n: np.atleast_1d(v) for n, v in funcs.items()},
              **{'J_' + n: v for n, v in jacobian.items()})
 else:
