@@ -208,7 +208,7 @@ void Elements::addAggregateGradient(
   {
     for (std::size_t j = FrameStart[e]; j < FrameStart[e + 1]; ++j)
     {
-      if (std::exp(rho * (Negated[j] - whole.largest)) / whole.sum >= 1e-20)
+      if (std::exp(rho * (Negated[j] - whole.largest)) / whole.sum >= mlsdeform::LeastAggregateWeight)
       {
         heavy.push_back(e);
         break;

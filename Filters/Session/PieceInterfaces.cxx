@@ -12,11 +12,6 @@ using namespace mlsdeform;
 
 namespace mlsvtk
 {
-namespace
-{
-constexpr double LeastWeight = 1e-20; // FaceQualityAggregate's: faces of a smaller weight add nothing
-}
-
 void PieceInterfaces::find(const std::vector<VolumeMeshQuality*>& sets, const PointOf& rest, const Collective& group)
 {
   *this = PieceInterfaces();
@@ -225,7 +220,7 @@ std::vector<PieceInterfaces::Term> PieceInterfaces::aggregateGradient(
       continue;
     }
     const double weight = std::exp(rho * (q[k++] - whole.largest)) / whole.sum;
-    if (weight >= LeastWeight)
+    if (weight >= LeastAggregateWeight)
     {
       const Piece& piece = Pieces[side.set];
       const Vec3 Nbar = addFaceMeasureGradient(piece.points, piece.cells, side.cell, side.face, side.sign, Centres[i],

@@ -116,37 +116,22 @@ double nonOrthogonalityOf(double cosine)
   return std::acos(cosine) * 180.0 / M_PI;
 }
 
-namespace
-{
-// What a face's skewness is defined by: Cpf = C_f - P, the line d it is measured against and the
-// least extent fd's share of |d|. An interior face: d = N - P, 0.2; a boundary face (OpenFOAM's
-// boundaryFaceSkewness): d = n (n . Cpf), the normal part of Cpf, 0.4 (0.2 of the mirrored cell's).
-struct SkewFrame
-{
-  Vec3 Cpf;
-  Vec3 d;
-  double extentShare;
-};
-
 SkewFrame interiorFrame(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face)
 {
   return { face.centre - ownerCentre, neighbourCentre - ownerCentre, 0.2 };
 }
 
-// OpenFOAM's normalised(): zero for a vector of length at most ROOTVSMALL.
-Vec3 normalised(const Vec3& v)
-{
-  const double length = v.norm();
-  return length > RootVerySmall ? Vec3(v / length) : Vec3::Zero();
-}
-
 SkewFrame boundaryFrame(const Vec3& ownerCentre, const FaceGeometry& face)
 {
+  // OpenFOAM's normalised(): zero for a vector of length at most ROOTVSMALL
+  const double length = face.area.norm();
+  const Vec3 n = length > RootVerySmall ? Vec3(face.area / length) : Vec3::Zero();
   const Vec3 Cpf = face.centre - ownerCentre;
-  const Vec3 n = normalised(face.area);
   return { Cpf, n * n.dot(Cpf), 0.4 };
 }
 
+namespace
+{
 // Skewness's offset sv of the face centre and its least extent fd = share |d|: |sv| / fd bounds
 // the skewness from above without the face's points.
 struct SkewOffset
@@ -522,7 +507,6 @@ void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vec
   m.invertedCells = std::count(m.inverted.begin(), m.inverted.end(), 1);
   m.nonOrthogonality.resize(m.perFace ? faces.size() : 0);
   m.skewness.resize(m.perFace ? faces.size() : 0);
-  m.boundarySkewness.resize(m.perFace ? mesh.boundary.size() : 0);
   double leastCosine = 1, maxSkewness = 0; // minimum and maximum: the same for any thread count
   // for the largest alone, a face whose bound is no more than this thread's largest so far cannot
   // change it: its points (a cache miss each) are not read (a tenth of a 1M-cell case's
@@ -557,10 +541,7 @@ void measureFaces(const PointList& points, const MeshFaces& mesh, const std::vec
   {
     maxSkewness = std::max(maxSkewness, work.boundarySkewness[b]);
   }
-  if (m.perFace)
-  {
-    m.boundarySkewness.assign(work.boundarySkewness.begin(), work.boundarySkewness.end());
-  }
+  m.boundarySkewness.assign(work.boundarySkewness.begin(), m.perFace ? work.boundarySkewness.end() : work.boundarySkewness.begin());
   m.maxNonOrthogonality = faces.empty() ? 0 : nonOrthogonalityOf(leastCosine);
   m.maxSkewness = maxSkewness;
 }

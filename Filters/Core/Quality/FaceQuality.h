@@ -68,6 +68,18 @@ inline double skewness(const Vec3& ownerCentre, const Vec3& neighbourCentre, con
   return skewness(ownerCentre, neighbourCentre, face, points, faceIndices.data(), faceIndices.size());
 }
 
+/// What a face's skewness is measured by: Cpf = C_f - P, the line d and the least extent fd's
+/// share of |d|. An interior face: d = N - P, 0.2; a boundary face (OpenFOAM's
+/// boundaryFaceSkewness): d = n (n . Cpf), the normal part of Cpf, 0.4 (0.2 of the mirrored cell's).
+struct SkewFrame
+{
+  Vec3 Cpf;
+  Vec3 d;
+  double extentShare;
+};
+SkewFrame interiorFrame(const Vec3& ownerCentre, const Vec3& neighbourCentre, const FaceGeometry& face);
+SkewFrame boundaryFrame(const Vec3& ownerCentre, const FaceGeometry& face);
+
 /// OpenFOAM's skewness of a boundary face (its owner mirrored across the face plane).
 double boundarySkewness(const Vec3& ownerCentre, const FaceGeometry& face, const PointList& points, const int* faceIndices, std::size_t n);
 

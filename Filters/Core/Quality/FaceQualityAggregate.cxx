@@ -9,7 +9,6 @@ namespace mlsdeform
 namespace
 {
 constexpr double RootVerySmall = 1e-150; // FaceQuality's (OpenFOAM's ROOTVSMALL)
-constexpr double LeastWeight = 1e-20;    // faces of a smaller weight are left out of the gradient
 
 // A gradient's entries of one face's term: (point, dq/dX) pairs, summed later in face order.
 using Terms = std::vector<std::pair<int, Vec3>>;
@@ -139,12 +138,10 @@ Vec3 faceTerms(const PointList& points, const CellFaceList& cells, int owner, lo
   }
   else
   {
-    // Cpf = C_f - P; d = N - P inside, n (n . Cpf) on the boundary
-    const Vec3 Cpf = g.centre - P;
-    const Vec3 n = g.area.norm() > RootVerySmall ? Vec3(g.area / g.area.norm()) : Vec3::Zero();
-    const Vec3 d = N ? Vec3(*N - P) : Vec3(n * n.dot(Cpf));
+    const SkewFrame f = N ? interiorFrame(P, *N, g) : boundaryFrame(P, g);
+    const Vec3& Cpf = f.Cpf;
     Vec3 CpfBar = Vec3::Zero(), dBar = Vec3::Zero();
-    skewnessAdjoint(Cpf, d, N ? 0.2 : 0.4, g, points, cells.face(face), cells.faceSize(face), weight, CpfBar, dBar, Sbar, cBar, terms);
+    skewnessAdjoint(Cpf, f.d, f.extentShare, g, points, cells.face(face), cells.faceSize(face), weight, CpfBar, dBar, Sbar, cBar, terms);
     if (N)
     {
       Nbar += dBar;
@@ -225,10 +222,10 @@ void addAggregateGradient(const PointList& points, const MeshFaces& mesh, const 
 {
   const CellFaceList& cells = mesh.cells;
   const long interior = static_cast<long>(mesh.interior.size());
-  std::vector<std::size_t> heavy; // the tail's faces of weight >= LeastWeight, in face order
+  std::vector<std::size_t> heavy; // the tail's faces of weight >= LeastAggregateWeight, in face order
   for (std::size_t t = 0; t < tail.faces.size(); ++t)
   {
-    if (std::exp(rho * (tail.values[t] - whole.largest)) / whole.sum >= LeastWeight)
+    if (std::exp(rho * (tail.values[t] - whole.largest)) / whole.sum >= LeastAggregateWeight)
     {
       heavy.push_back(t);
     }

@@ -26,6 +26,9 @@ enum class QualityMeasure
   ScaledJacobian,
 };
 
+/// Terms of a smaller weight w = exp(rho (q - m)) / sum are left out of the gradients.
+constexpr double LeastAggregateWeight = 1e-20;
+
 /// The pieces of a KS aggregate over several meshes or processes: m, sum exp(rho (q - m)) and N.
 struct AggregatePart
 {
